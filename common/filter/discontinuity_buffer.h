@@ -1,0 +1,83 @@
+#pragma once
+// Discontinuity buffer (Wald et al. 2002, "Interactive Global Illumination").
+//
+// IGI shades each pixel with one of N x N interleaved VPL sets, so neighbours
+// see different light samples. The filter averages *demodulated irradiance*
+// (radiance divided by the centre's albedo; the caller remodulates once) over
+// the (2r+1) x (2r+1) window around each pixel, r = N/2, but only over
+// neighbours on the same surface, so geometric edges stay sharp.
+//
+// Definition, for an inner pixel p of a region:
+//   p invalid (depth = +inf)  ->  out_p = value_p
+//   otherwise                 ->  out_p = sum_{q in S_p} value_q / |S_p|,
+//   S_p = { q in region : |q.x - p.x| <= r, |q.y - p.y| <= r, q valid,
+//           dot(n_p, n_q) >= normal_cos, |d_q - d_p| <= depth_ratio * d_p }.
+// p is always in S_p. Windows are clipped to the region, which the caller
+// clips to the image; so an inner pixel needs r pixels of border on every
+// side that is not an image edge, else its window is silently cut short.
+//
+// Determinism: out_p is a pure function of the data in p's window and the
+// settings, never of the region's size or offset, so the same pixel filtered
+// in differently cut tiles is bit-identical (a cluster's tiles must seam).
+//
+// Threading: the functions are pure; call them concurrently on distinct
+// outputs. Each call allocates its own scratch.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace igi {
+
+// One tile region, row-major, width * height entries in each vector.
+struct FilterInput {
+  int x0 = 0, y0 = 0;  // image coordinates of the region's top-left pixel
+  int width = 0, height = 0;
+  std::vector<float> depth;       // distance from the camera; +inf marks "no surface"
+  std::vector<glm::vec3> normal;  // unit shading normal (ignored where depth is +inf)
+  std::vector<glm::vec3> value;   // demodulated irradiance, finite, >= 0
+};
+
+struct FilterSettings {
+  int radius = 1;            // window is (2r+1) x (2r+1); r = N/2 for N x N VPL sets
+  float normal_cos = 0.9f;   // q counts only if dot(n_p, n_q) >= normal_cos ...
+  float depth_ratio = 0.05f; // ... and |d_q - d_p| <= depth_ratio * d_p (scale-free)
+  // Fixed-point scale of the running sums: value * fixed_scale is rounded to
+  // an integer, so one quantum is 1 / fixed_scale. See filter_fixed_scale().
+  double fixed_scale = 0x1p32;
+};
+
+// Image coordinates; must lie inside the region.
+struct Rect {
+  int x = 0, y = 0, w = 0, h = 0;
+};
+
+// How many inner pixels took each path. Invalid pixels (copied through)
+// count as exact.
+struct FilterStats {
+  uint64_t fast_pixels = 0, exact_pixels = 0;
+};
+
+// The reference: evaluates the definition above pixel by pixel, O(window)
+// each, summing the window row-major in double. `out` receives inner.w *
+// inner.h values, row-major. Throws std::invalid_argument on a malformed
+// input, an inner rect outside the region or a short `out`.
+void filter_brute_force(const FilterInput& in, const FilterSettings& s, Rect inner, std::span<glm::vec3> out);
+
+// The same result in constant time per pixel where a whole window lies on
+// one surface (box sums of int64 fixed-point values, exact up to one
+// quantum); other pixels are evaluated exactly like filter_brute_force, bit
+// for bit. Same contract and errors as filter_brute_force; `stats`, if given,
+// is overwritten.
+void filter_discontinuity(const FilterInput& in, const FilterSettings& s, Rect inner, std::span<glm::vec3> out,
+                          FilterStats* stats = nullptr);
+
+// A fixed_scale for a frame whose demodulated irradiance is typically
+// `typical_value`: 2^(24 - round(log2(typical))), so a typical value keeps 24
+// bits (float precision) and values up to ~2^24 x typical fit the sums before
+// they saturate. The exponent is clamped to [-32, 64]; a typical value that
+// is zero, negative or not finite gives the default 2^32.
+double filter_fixed_scale(double typical_value);
+
+}  // namespace igi

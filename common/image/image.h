@@ -1,0 +1,30 @@
+#pragma once
+// Linear RGB float images and their files. EXR (and any float format
+// OpenImageIO knows) stores linear values; PNG/JPEG store clamped sRGB.
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace igi {
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec3> pixels;  // row-major, row 0 at the top
+
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), pixels(size_t(w) * h, glm::vec3(0.0f)) {}
+  glm::vec3& at(int x, int y) { return pixels[size_t(y) * width + x]; }
+  const glm::vec3& at(int x, int y) const { return pixels[size_t(y) * width + x]; }
+  glm::vec3 mean() const;
+};
+
+// Throws std::runtime_error naming the path on failure.
+void write_image(const Image& image, const std::string& path, float exposure = 1.0f);
+Image read_image(const std::string& path);
+
+float linear_to_srgb(float linear);
+float srgb_to_linear(float encoded);
+
+}  // namespace igi

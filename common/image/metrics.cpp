@@ -1,0 +1,63 @@
+#include "image/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace igi {
+
+static void check_sizes(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height)
+    throw std::invalid_argument("image sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) +
+                                " vs " + std::to_string(b.width) + "x" + std::to_string(b.height));
+}
+
+double rel_mse(const Image& image, const Image& reference, float epsilon) {
+  check_sizes(image, reference);
+  double sum = 0.0;
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      double d = image.pixels[i][c] - reference.pixels[i][c];
+      double r = reference.pixels[i][c];
+      sum += d * d / (r * r + epsilon);
+    }
+  return sum / (3.0 * double(image.pixels.size()));
+}
+
+double rmse(const Image& image, const Image& reference) {
+  check_sizes(image, reference);
+  double sum = 0.0;
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      double d = image.pixels[i][c] - reference.pixels[i][c];
+      sum += d * d;
+    }
+  return std::sqrt(sum / (3.0 * double(image.pixels.size())));
+}
+
+double max_abs_error(const Image& image, const Image& reference) {
+  check_sizes(image, reference);
+  double m = 0.0;
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) m = std::max(m, double(std::abs(image.pixels[i][c] - reference.pixels[i][c])));
+  return m;
+}
+
+Image abs_difference(const Image& a, const Image& b) {
+  check_sizes(a, b);
+  Image d(a.width, a.height);
+  for (size_t i = 0; i < a.pixels.size(); ++i) d.pixels[i] = glm::abs(a.pixels[i] - b.pixels[i]);
+  return d;
+}
+
+glm::dvec3 region_mean(const Image& image, int x, int y, int w, int h) {
+  int x0 = std::max(0, x), y0 = std::max(0, y);
+  int x1 = std::min(image.width, x + w), y1 = std::min(image.height, y + h);
+  glm::dvec3 sum(0.0);
+  for (int j = y0; j < y1; ++j)
+    for (int i = x0; i < x1; ++i) sum += glm::dvec3(image.at(i, j));
+  long n = long(std::max(0, x1 - x0)) * std::max(0, y1 - y0);
+  return n > 0 ? sum / double(n) : sum;
+}
+
+}  // namespace igi

@@ -1,0 +1,143 @@
+#include "lighting/lights.h"
+
+#include <cmath>
+
+#include "sampling/warp.h"
+
+namespace igi {
+
+float spot_attenuation(const PunctualLight& light, glm::vec3 direction_from_light) {
+  float cos_outer = std::cos(light.outer_cone), cos_inner = std::cos(light.inner_cone);
+  float scale = 1.0f / std::max(0.001f, cos_inner - cos_outer);
+  float cd = glm::dot(glm::normalize(light.direction), direction_from_light);
+  float a = glm::clamp((cd - cos_outer) * scale, 0.0f, 1.0f);
+  return a * a;
+}
+
+LightSet::LightSet(const Scene& scene) : scene_(scene), light_of_triangle_(scene.triangles.size(), -1) {
+  Bounds b = scene.bounds();
+  scene_center_ = b.empty() ? glm::vec3(0.0f) : b.center();
+  scene_radius_ = b.empty() ? 1.0f : std::max(1e-6f, 0.5f * b.diagonal());
+  for (uint32_t i = 0; i < scene.triangles.size(); ++i)
+    if (scene.materials[scene.triangle_material[i]].is_emissive() && triangle_area(i) > 0.0f) {
+      light_of_triangle_[i] = int32_t(lights_.size());
+      lights_.push_back({LightKind::Area, i});
+    }
+  for (uint32_t i = 0; i < scene.lights.size(); ++i) {
+    static constexpr LightKind kinds[] = {LightKind::Point, LightKind::Spot, LightKind::Directional};
+    lights_.push_back({kinds[int(scene.lights[i].type)], i});
+  }
+  std::vector<float> weights;
+  for (const Light& l : lights_) weights.push_back(power(l));
+  distribution_ = Distribution1D(weights);
+}
+
+float LightSet::triangle_area(uint32_t triangle) const {
+  const glm::uvec3& t = scene_.triangles[triangle];
+  return 0.5f * glm::length(glm::cross(scene_.positions[t[1]] - scene_.positions[t[0]],
+                                       scene_.positions[t[2]] - scene_.positions[t[0]]));
+}
+
+float LightSet::power(const Light& light) const {
+  if (light.kind == LightKind::Area) {
+    const Material& m = scene_.materials[scene_.triangle_material[light.index]];
+    return luminance(m.emission) * triangle_area(light.index) * kPi;
+  }
+  const PunctualLight& p = scene_.lights[light.index];
+  float i = luminance(p.intensity);
+  switch (light.kind) {
+    case LightKind::Point: return 4.0f * kPi * i;
+    case LightKind::Spot: return 2.0f * kPi * (1.0f - std::cos(0.5f * (p.inner_cone + p.outer_cone))) * i;
+    default: return kPi * scene_radius_ * scene_radius_ * i;
+  }
+}
+
+LightSample LightSet::sample(glm::vec3 p, float u_select, glm::vec2 u) const {
+  LightSample s;
+  if (lights_.empty()) return s;
+  uint32_t index = distribution_.sample(u_select);
+  float select = distribution_.probability(index);
+  const Light& light = lights_[index];
+  if (light.kind == LightKind::Area) {
+    const glm::uvec3& t = scene_.triangles[light.index];
+    glm::vec3 p0 = scene_.positions[t[0]], p1 = scene_.positions[t[1]], p2 = scene_.positions[t[2]];
+    glm::vec2 b = uniform_triangle(u);
+    glm::vec3 q = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
+    glm::vec3 n = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    glm::vec3 d = q - p;
+    float dist2 = glm::dot(d, d);
+    s.distance = std::sqrt(dist2);
+    s.direction = d / s.distance;
+    float cos_light = -glm::dot(n, s.direction);
+    if (cos_light <= 0.0f || dist2 <= 0.0f) return LightSample{};  // back face emits nothing
+    s.radiance = scene_.materials[scene_.triangle_material[light.index]].emission;
+    s.pdf = select * dist2 / (cos_light * triangle_area(light.index));
+    return s;
+  }
+  const PunctualLight& pl = scene_.lights[light.index];
+  s.delta = true;
+  s.pdf = select;
+  if (light.kind == LightKind::Directional) {
+    s.direction = -glm::normalize(pl.direction);
+    s.distance = INFINITY;
+    s.radiance = pl.intensity;
+    return s;
+  }
+  glm::vec3 d = pl.position - p;
+  float dist2 = glm::dot(d, d);
+  s.distance = std::sqrt(dist2);
+  s.direction = d / s.distance;
+  float falloff = light.kind == LightKind::Spot ? spot_attenuation(pl, -s.direction) : 1.0f;
+  s.radiance = pl.intensity * (falloff / dist2);
+  return s;
+}
+
+float LightSet::pdf_area(uint32_t triangle, glm::vec3 p, glm::vec3 hit_point) const {
+  int32_t light = light_of_triangle_[triangle];
+  if (light < 0) return 0.0f;
+  const glm::uvec3& t = scene_.triangles[triangle];
+  glm::vec3 n = glm::normalize(glm::cross(scene_.positions[t[1]] - scene_.positions[t[0]],
+                                          scene_.positions[t[2]] - scene_.positions[t[0]]));
+  glm::vec3 d = hit_point - p;
+  float dist2 = glm::dot(d, d);
+  float cos_light = std::abs(glm::dot(n, d)) / std::sqrt(dist2);
+  if (cos_light <= 0.0f) return 0.0f;
+  return distribution_.probability(uint32_t(light)) * dist2 / (cos_light * triangle_area(triangle));
+}
+
+EmissionSample LightSet::sample_emission(float u_select, glm::vec2 u) const {
+  uint32_t index = distribution_.sample(u_select);
+  float select = distribution_.probability(index);
+  const Light& light = lights_[index];
+  EmissionSample e{};
+  e.kind = light.kind;
+  e.light = index;
+  if (light.kind == LightKind::Area) {
+    const glm::uvec3& t = scene_.triangles[light.index];
+    glm::vec3 p0 = scene_.positions[t[0]], p1 = scene_.positions[t[1]], p2 = scene_.positions[t[2]];
+    glm::vec2 b = uniform_triangle(u);
+    e.position = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
+    e.normal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    // Radiance times area: the VPL's emitted radiance per unit projected solid angle.
+    e.power = scene_.materials[scene_.triangle_material[light.index]].emission *
+              (triangle_area(light.index) / select);
+    return e;
+  }
+  const PunctualLight& pl = scene_.lights[light.index];
+  if (light.kind == LightKind::Directional) {
+    // A point on a disc of the scene's radius facing the light, outside the scene.
+    glm::vec3 dir = glm::normalize(pl.direction);
+    Frame frame(dir);
+    float r = std::sqrt(u.x) * scene_radius_, phi = 2.0f * kPi * u.y;
+    e.position = scene_center_ - dir * scene_radius_ + frame.to_world({r * std::cos(phi), r * std::sin(phi), 0.0f});
+    e.normal = dir;
+    e.power = pl.intensity * (kPi * scene_radius_ * scene_radius_ / select);
+    return e;
+  }
+  e.position = pl.position;
+  e.normal = glm::vec3(0.0f);
+  e.power = pl.intensity / select;  // intensity per steradian; direction chosen by the caller
+  return e;
+}
+
+}  // namespace igi

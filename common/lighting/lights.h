@@ -1,0 +1,78 @@
+#pragma once
+// Every light of a scene in one list, chosen in proportion to its power:
+// emissive triangles (area lights, front face only) and punctual lights.
+//
+// Units: area-light radiance W/(m^2 sr); point/spot intensity W/sr;
+// directional irradiance W/m^2. Power is the luminance of the emitted flux.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "sampling/distribution.h"
+#include "scene/scene.h"
+
+namespace igi {
+
+enum class LightKind : uint8_t { Area, Point, Spot, Directional };
+
+struct Light {
+  LightKind kind;
+  uint32_t index;  // triangle (Area) or Scene::lights entry (others)
+};
+
+// A point on a light as seen from a shading point, for next-event estimation.
+struct LightSample {
+  glm::vec3 direction;    // unit, from the shading point towards the light
+  float distance = 0.0f;  // infinity for directional lights
+  glm::vec3 radiance;     // incident radiance (area) or irradiance-normalised intensity / r^2 (delta)
+  float pdf = 0.0f;       // solid-angle density including selection; selection prob for delta lights
+  bool delta = false;
+};
+
+// A ray leaving a light, for tracing light paths (VPLs).
+struct EmissionSample {
+  glm::vec3 position;
+  glm::vec3 normal;     // area: surface normal; point/spot: zero; directional: travel direction
+  glm::vec3 power;      // flux carried by this path: emitted quantity / (pdf of choosing it)
+  LightKind kind;
+  uint32_t light;       // index into LightSet::lights()
+};
+
+class LightSet {
+ public:
+  explicit LightSet(const Scene& scene);
+
+  const std::vector<Light>& lights() const { return lights_; }
+  bool empty() const { return lights_.empty(); }
+  float selection_probability(uint32_t light) const { return distribution_.probability(light); }
+
+  // Next-event estimation from point p. u_select picks the light; u picks the point.
+  LightSample sample(glm::vec3 p, float u_select, glm::vec2 u) const;
+  // Solid-angle density with which sample() would have picked the point hit on
+  // emissive `triangle` at `hit_point` from `p` (for MIS of BSDF-sampled hits).
+  float pdf_area(uint32_t triangle, glm::vec3 p, glm::vec3 hit_point) const;
+
+  // A light and a point on it, with the power it carries (for VPL light paths).
+  // Area lights: point uniform on the triangle; the direction is sampled by the caller.
+  EmissionSample sample_emission(float u_select, glm::vec2 u) const;
+
+  float scene_radius() const { return scene_radius_; }
+  const Scene& scene() const { return scene_; }
+  float triangle_area(uint32_t triangle) const;
+
+ private:
+  float power(const Light& light) const;
+
+  const Scene& scene_;
+  std::vector<Light> lights_;
+  std::vector<int32_t> light_of_triangle_;  // -1 when not emissive
+  Distribution1D distribution_;
+  glm::vec3 scene_center_;
+  float scene_radius_ = 1.0f;
+};
+
+// Spot cone attenuation as in the KHR_lights_punctual reference (smooth, squared).
+float spot_attenuation(const PunctualLight& light, glm::vec3 direction_from_light);
+
+}  // namespace igi

@@ -1,0 +1,33 @@
+#pragma once
+// The four material models, evaluated and sampled in world space.
+//
+// Conventions: wo and wi are unit vectors pointing away from the surface;
+// eval() returns the BSDF value f(wo, wi) without the cosine; sample()
+// returns weight = f * |cos(wi, n)| / pdf. Specular lobes (mirror, glass)
+// are Dirac deltas: eval() and pdf() return 0 for them and sample() marks its
+// result specular. Both sides of a surface reflect alike (the shading normal
+// is flipped towards wo); single-sidedness is decided by ray tracing.
+#include <optional>
+
+#include <glm/glm.hpp>
+
+#include "scene/surface.h"
+
+namespace igi {
+
+struct BsdfSample {
+  glm::vec3 wi;
+  glm::vec3 weight;  // f * |cos| / pdf
+  float pdf = 0.0f;  // solid angle; undefined (set to 1) for specular
+  bool specular = false;
+};
+
+glm::vec3 bsdf_eval(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi);
+float bsdf_pdf(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi);
+// u: 2D sample for the direction; u_lobe: 1D sample for choosing a lobe (glass).
+std::optional<BsdfSample> bsdf_sample(const SurfacePoint& sp, glm::vec3 wo, glm::vec2 u, float u_lobe);
+
+// Fresnel reflectance of a smooth dielectric; cos_i may be negative (inside).
+float fresnel_dielectric(float cos_i, float eta);
+
+}  // namespace igi

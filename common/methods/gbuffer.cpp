@@ -1,0 +1,86 @@
+#include "methods/gbuffer.h"
+
+#include <algorithm>
+
+#include "material/bsdf.h"
+#include "sampling/hash.h"
+#include "scene/camera_rays.h"
+
+namespace igi {
+
+Region tile_region(const TileJob& job, int image_width, int image_height) {
+  Region r;
+  r.x0 = std::max(0, job.x - job.border);
+  r.y0 = std::max(0, job.y - job.border);
+  r.width = std::min(image_width, job.x + job.w + job.border) - r.x0;
+  r.height = std::min(image_height, job.y + job.h + job.border) - r.y0;
+  return r;
+}
+
+namespace {
+
+// Follows mirrors and glass from a first hit to a non-specular surface.
+void resolve_chain(const Accel& accel, Ray ray, Hit hit, uint32_t pixel_seed, int max_depth,
+                   GSample& g, RayCounts& rays) {
+  const Scene& scene = accel.scene();
+  float travelled = 0.0f;
+  for (int depth = 0;; ++depth) {
+    SurfacePoint sp = surface_at(scene, hit, ray.direction);
+    travelled += hit.t;
+    g.emitted += g.throughput * sp.emitted();
+    if (!sp.material->is_specular()) {
+      g.surface = sp;
+      g.wo = -ray.direction;
+      g.depth = travelled;
+      return;
+    }
+    if (depth + 1 >= max_depth) return;
+    float u_lobe = float(hash(pixel_seed, uint32_t(depth)) >> 8) * 0x1p-24f;
+    auto bs = bsdf_sample(sp, -ray.direction, glm::vec2(0.5f), u_lobe);
+    if (!bs) return;
+    g.throughput *= bs->weight;
+    ray = Ray{offset_origin(sp, bs->wi), bs->wi};
+    ++rays.secondary;
+    if (!accel.intersect(ray, hit)) return;
+  }
+}
+
+}  // namespace
+
+void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& region, int max_depth,
+                   std::vector<GSample>& out, RayCounts& rays) {
+  out.assign(size_t(region.width) * region.height, GSample{});
+  CameraBasis camera(frame.camera, frame.width, frame.height);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  for (int by = 0; by < region.height; by += 4)
+    for (int bx = 0; bx < region.width; bx += 4) {
+      alignas(64) int valid[16];
+      alignas(64) RTCRayHit16 packet;
+      for (int i = 0; i < 16; ++i) {
+        const int x = bx + (i & 3), y = by + (i >> 2);
+        valid[i] = x < region.width && y < region.height ? -1 : 0;
+        glm::vec3 d = glm::normalize(camera.direction(float(region.x0 + x) + 0.5f, float(region.y0 + y) + 0.5f));
+        packet.ray.org_x[i] = camera.origin.x; packet.ray.org_y[i] = camera.origin.y; packet.ray.org_z[i] = camera.origin.z;
+        packet.ray.dir_x[i] = d.x; packet.ray.dir_y[i] = d.y; packet.ray.dir_z[i] = d.z;
+        packet.ray.tnear[i] = 0.0f; packet.ray.tfar[i] = INFINITY;
+        packet.ray.mask[i] = ~0u; packet.ray.flags[i] = 0; packet.ray.time[i] = 0.0f;
+        packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+        rays.primary += valid[i] ? 1 : 0;
+      }
+      rtcIntersect16(valid, accel.handle(), &context, &packet);
+      for (int i = 0; i < 16; ++i) {
+        const int x = bx + (i & 3), y = by + (i >> 2);
+        if (!valid[i] || packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+        Ray ray{camera.origin, {packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]}};
+        Hit hit{packet.ray.tfar[i], accel.triangle_index(packet.hit.geomID[i], packet.hit.primID[i]),
+                {packet.hit.u[i], packet.hit.v[i]}};
+        uint32_t pixel_seed = hash(uint32_t(region.x0 + x), uint32_t(region.y0 + y), frame.seed);
+        resolve_chain(accel, ray, hit, pixel_seed, max_depth, out[size_t(y) * region.width + x], rays);
+      }
+    }
+}
+
+}  // namespace igi

@@ -1,0 +1,105 @@
+#include "methods/path_tracer.h"
+
+#include <cmath>
+
+#include "material/bsdf.h"
+#include "sampling/hash.h"
+#include "sampling/sobol.h"
+#include "sampling/warp.h"
+#include "scene/camera_rays.h"
+#include "scene/surface.h"
+
+namespace igi {
+namespace {
+
+float power_heuristic(float a, float b) { return a * a / (a * a + b * b); }
+
+// Dimensions per path vertex: light choice, light point (2), BSDF lobe, BSDF direction (2), roulette.
+constexpr uint32_t kDimsPerBounce = 10;  // SampleStream gives every 1D draw a pair of its own
+
+}  // namespace
+
+PathTracer::PathTracer(const SceneContext& context, const RenderSettings& settings)
+    : context_(context), settings_(settings) {}
+
+void PathTracer::begin_frame(const FrameSetup& frame) { frame_ = frame; }
+
+void PathTracer::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const {
+  CameraBasis camera(frame_.camera, frame_.width, frame_.height);
+  for (int y = job.y; y < job.y + job.h; ++y)
+    for (int x = job.x; x < job.x + job.w; ++x) {
+      const uint32_t pixel_seed = hash(uint32_t(x), uint32_t(y), frame_.seed);
+      glm::dvec3 sum(0.0);
+      for (uint32_t i = 0; i < frame_.sample_count; ++i) {
+        const uint32_t index = frame_.sample_begin + i;
+        glm::vec2 jitter = sample_2d(index, 0, pixel_seed);
+        Ray ray = camera.ray(float(x) + jitter.x, float(y) + jitter.y);
+        ++rays.primary;
+        sum += glm::dvec3(radiance(ray, index, pixel_seed, rays));
+      }
+      // Per-pass mean; passes are combined by the caller as sums.
+      out[size_t(y - job.y) * job.w + (x - job.x)] = glm::vec3(sum / double(frame_.sample_count));
+    }
+}
+
+glm::vec3 PathTracer::radiance(Ray ray, uint32_t sample_index, uint32_t pixel_seed, RayCounts& rays) const {
+  const Scene& scene = context_.scene;
+  glm::vec3 result(0.0f), throughput(1.0f);
+  bool specular_bounce = true;  // the camera "bounce": emission counts in full
+  float bsdf_pdf_prev = 0.0f;
+  glm::vec3 prev_position = ray.origin;
+  for (int depth = 0; depth < settings_.max_depth; ++depth) {
+    Hit hit;
+    if (!context_.accel.intersect(ray, hit)) break;
+    SurfacePoint sp = surface_at(scene, hit, ray.direction);
+    const glm::vec3 wo = -ray.direction;
+
+    // Emission found by the BSDF sample, weighted against light sampling.
+    glm::vec3 le = sp.emitted();
+    if (le != glm::vec3(0.0f)) {
+      float w = 1.0f;
+      if (!specular_bounce)
+        w = power_heuristic(bsdf_pdf_prev, context_.lights.pdf_area(hit.triangle, prev_position, sp.position));
+      result += throughput * le * w;
+    }
+
+    SampleStream u(sample_index, pixel_seed, 2 + kDimsPerBounce * uint32_t(depth));
+    const float u_light = u.next_1d();
+    const glm::vec2 u_light_point = u.next_2d();
+    const float u_lobe = u.next_1d();
+    const glm::vec2 u_bsdf = u.next_2d();
+    const float u_roulette = u.next_1d();
+
+    // Next-event estimation.
+    if (!sp.material->is_specular()) {
+      LightSample ls = context_.lights.sample(sp.position, u_light, u_light_point);
+      glm::vec3 f = ls.pdf > 0.0f ? bsdf_eval(sp, wo, ls.direction) : glm::vec3(0.0f);
+      if (f != glm::vec3(0.0f)) {
+        Ray shadow{offset_origin(sp, ls.direction), ls.direction, 0.0f, ls.distance * (1.0f - kShadowEpsilon)};
+        ++rays.shadow;
+        if (!context_.accel.occluded(shadow)) {
+          float cos_i = std::abs(glm::dot(ls.direction, sp.shading_normal));
+          float w = ls.delta ? 1.0f : power_heuristic(ls.pdf, bsdf_pdf(sp, wo, ls.direction));
+          result += throughput * f * ls.radiance * (cos_i * w / ls.pdf);
+        }
+      }
+    }
+
+    auto bs = bsdf_sample(sp, wo, u_bsdf, u_lobe);
+    if (!bs) break;
+    throughput *= bs->weight;
+    specular_bounce = bs->specular;
+    bsdf_pdf_prev = bs->pdf;
+    prev_position = sp.position;
+    if (depth >= 3) {  // Russian roulette on the path's throughput
+      float q = std::min(0.95f, max_component(throughput));
+      if (u_roulette >= q) break;
+      throughput /= q;
+    }
+    ray = Ray{offset_origin(sp, bs->wi), bs->wi};
+    ++rays.secondary;
+  }
+  return result;
+}
+
+}  // namespace igi

@@ -1,0 +1,83 @@
+#pragma once
+// Unoccluded light from one VPL to one G-buffer sample, demodulated (the
+// BSDF at the shading point is evaluated with albedo 1; the caller multiplies
+// the filtered result by the albedo once). See vpl/vpl.h for the terms.
+#include <cmath>
+
+#include "material/bsdf.h"
+#include "methods/gbuffer.h"
+#include "sampling/warp.h"
+#include "vpl/vpl.h"
+
+namespace igi {
+
+struct ShadowQuery {
+  glm::vec3 origin, direction;
+  float tfar = 0.0f;
+};
+
+struct VplShading {
+  const Scene& scene;
+  float clamp_bound;  // bound on G = cos_x cos_y / r^2; infinity when off
+
+  // BSDF at the shading point with albedo 1.
+  static glm::vec3 demodulated_bsdf(const GSample& g, glm::vec3 wi) {
+    const SurfacePoint& sp = g.surface;
+    if (sp.material->type == MaterialType::Diffuse) {
+      bool same_side = glm::dot(g.wo, sp.geometric_normal) * glm::dot(wi, sp.geometric_normal) > 0.0f;
+      return same_side ? glm::vec3(kInvPi) : glm::vec3(0.0f);
+    }
+    SurfacePoint white = sp;
+    white.albedo = glm::vec3(1.0f);
+    return bsdf_eval(white, g.wo, wi);
+  }
+
+  // BSDF at a surface VPL, light arriving from v.incident and leaving along `out`.
+  glm::vec3 vpl_bsdf(const Vpl& v, glm::vec3 out) const {
+    const Material& m = scene.materials[v.material];
+    if (m.type == MaterialType::Diffuse) return v.albedo * kInvPi;
+    SurfacePoint sp;
+    sp.position = v.position;
+    sp.geometric_normal = sp.shading_normal = v.normal;
+    sp.material = &m;
+    sp.albedo = v.albedo;
+    return bsdf_eval(sp, v.incident, out);
+  }
+
+  // Returns the contribution (zero when none) and fills the shadow ray.
+  glm::vec3 contribution(const GSample& g, const Vpl& v, ShadowQuery& q) const {
+    const SurfacePoint& sp = g.surface;
+    glm::vec3 wi, emitted;
+    float g_term, distance;
+    if (v.kind == VplKind::Directional) {
+      wi = -v.normal;
+      distance = INFINITY;
+      g_term = std::abs(glm::dot(wi, sp.shading_normal));
+      emitted = v.flux;
+    } else {
+      glm::vec3 d = v.position - sp.position;
+      float dist2 = glm::dot(d, d);
+      distance = std::sqrt(dist2);
+      wi = d / distance;
+      float cos_x = std::abs(glm::dot(wi, sp.shading_normal));
+      if (v.kind == VplKind::Surface || v.kind == VplKind::Area) {
+        float cos_y = -glm::dot(wi, v.normal);
+        if (cos_y <= 0.0f) return glm::vec3(0.0f);
+        g_term = std::min(cos_x * cos_y / dist2, clamp_bound);
+        emitted = v.kind == VplKind::Surface ? vpl_bsdf(v, -wi) * v.flux : v.flux;
+      } else {
+        g_term = cos_x / dist2;  // exact point and spot lights: never clamped
+        emitted = v.kind == VplKind::Spot ? v.flux * spot_attenuation(scene.lights[v.light], -wi) : v.flux;
+      }
+    }
+    glm::vec3 f = demodulated_bsdf(g, wi);
+    glm::vec3 c = f * emitted * g_term;
+    if (c.x <= 0.0f && c.y <= 0.0f && c.z <= 0.0f) return glm::vec3(0.0f);
+    q.origin = offset_origin(sp, wi);
+    q.direction = wi;
+    q.tfar = std::isinf(distance) ? INFINITY : distance * (1.0f - kShadowEpsilon);
+    return c;
+  }
+};
+
+}  // namespace igi

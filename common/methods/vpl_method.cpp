@@ -1,0 +1,116 @@
+#include "methods/vpl_method.h"
+
+#include <cmath>
+
+#include "filter/discontinuity_buffer.h"
+#include "methods/gbuffer.h"
+#include "methods/vpl_contribution.h"
+#include "vpl/vpl_generator.h"
+
+namespace igi {
+
+VplMethod::VplMethod(const SceneContext& context, const RenderSettings& settings)
+    : context_(context), settings_(settings) {
+  if (settings.clamp > 0.0f) {
+    float d = settings.clamp * context.scene.bounds().diagonal();
+    clamp_bound_ = 1.0f / (d * d);
+  }
+}
+
+void VplMethod::begin_frame(const FrameSetup& frame) {
+  frame_ = frame;
+  vpls_ = generate_vpls(context_, settings_, frame.seed);
+  // A typical demodulated irradiance: one set's flux spread over the scene.
+  double flux = 0.0;
+  for (const Vpl& v : vpls_.vpls) flux += (v.flux.x + v.flux.y + v.flux.z) / 3.0;
+  double diagonal = context_.scene.bounds().diagonal();
+  fixed_scale_ = filter_fixed_scale(flux / std::max(1, vpls_.set_count()) / (diagonal * diagonal));
+}
+
+// Sums, for each valid pixel, the unoccluded contributions of its VPLs. Rays
+// of a packet share one VPL and come from nearby pixels of one set.
+void VplMethod::shade(const std::vector<GSample>& gbuffer, const Region& region,
+                      std::vector<glm::vec3>& irradiance, RayCounts& rays) const {
+  irradiance.assign(gbuffer.size(), glm::vec3(0.0f));
+  VplShading shading{context_.scene, clamp_bound_};
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  const int sets = interleaved() ? vpls_.set_count() : 1;
+  std::vector<uint32_t> pixels;
+  for (int s = 0; s < sets; ++s) {
+    pixels.clear();
+    for (int y = 0; y < region.height; ++y)
+      for (int x = 0; x < region.width; ++x) {
+        const size_t i = size_t(y) * region.width + x;
+        if (gbuffer[i].valid() && (!interleaved() || vpls_.set_of_pixel(region.x0 + x, region.y0 + y) == s))
+          pixels.push_back(uint32_t(i));
+      }
+    const uint32_t begin = interleaved() ? vpls_.set_begin[s] : 0;
+    const uint32_t end = interleaved() ? vpls_.set_begin[s + 1] : uint32_t(vpls_.vpls.size());
+    for (uint32_t v = begin; v < end; ++v)
+      for (size_t chunk = 0; chunk < pixels.size(); chunk += 16) {
+        alignas(64) int valid[16];
+        alignas(64) RTCRay16 packet;
+        glm::vec3 contribution[16];
+        for (int k = 0; k < 16; ++k) {
+          ShadowQuery q{};
+          valid[k] = 0;
+          contribution[k] = glm::vec3(0.0f);
+          if (chunk + k < pixels.size()) contribution[k] = shading.contribution(gbuffer[pixels[chunk + k]], vpls_.vpls[v], q);
+          if (contribution[k] != glm::vec3(0.0f)) valid[k] = -1;
+          packet.org_x[k] = q.origin.x; packet.org_y[k] = q.origin.y; packet.org_z[k] = q.origin.z;
+          packet.dir_x[k] = q.direction.x; packet.dir_y[k] = q.direction.y; packet.dir_z[k] = q.direction.z;
+          packet.tnear[k] = 0.0f; packet.tfar[k] = q.tfar;
+          packet.mask[k] = ~0u; packet.flags[k] = 0; packet.time[k] = 0.0f;
+          rays.shadow += valid[k] ? 1 : 0;
+        }
+        rtcOccluded16(valid, context_.accel.handle(), &context, &packet);
+        for (int k = 0; k < 16; ++k)
+          if (valid[k] && packet.tfar[k] >= 0.0f) irradiance[pixels[chunk + k]] += contribution[k];
+      }
+  }
+  // Each set alone estimates the full light; ir sums all S of them.
+  if (!interleaved())
+    for (glm::vec3& e : irradiance) e *= 1.0f / float(vpls_.set_count());
+}
+
+void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const {
+  const Region region = tile_region(job, frame_.width, frame_.height);
+  std::vector<GSample> gbuffer;
+  build_gbuffer(context_.accel, frame_, region, settings_.max_depth, gbuffer, rays);
+  std::vector<glm::vec3> irradiance;
+  shade(gbuffer, region, irradiance, rays);
+
+  std::vector<glm::vec3> filtered(size_t(job.w) * job.h);
+  if (interleaved() && settings_.filter) {
+    FilterInput in;
+    in.x0 = region.x0; in.y0 = region.y0; in.width = region.width; in.height = region.height;
+    in.value = std::move(irradiance);
+    in.depth.reserve(gbuffer.size());
+    in.normal.reserve(gbuffer.size());
+    for (const GSample& g : gbuffer) {
+      in.depth.push_back(g.depth);
+      in.normal.push_back(g.valid() ? g.surface.shading_normal : glm::vec3(0.0f));
+    }
+    FilterSettings fs;
+    fs.radius = settings_.interleave / 2;
+    fs.normal_cos = settings_.filter_normal_cos;
+    fs.depth_ratio = settings_.filter_depth_ratio;
+    fs.fixed_scale = fixed_scale_;
+    filter_discontinuity(in, fs, Rect{job.x, job.y, job.w, job.h}, filtered);
+  } else {
+    for (int y = 0; y < job.h; ++y)
+      for (int x = 0; x < job.w; ++x)
+        filtered[size_t(y) * job.w + x] = irradiance[size_t(job.y + y - region.y0) * region.width + (job.x + x - region.x0)];
+  }
+  for (int y = 0; y < job.h; ++y)
+    for (int x = 0; x < job.w; ++x) {
+      const GSample& g = gbuffer[size_t(job.y + y - region.y0) * region.width + (job.x + x - region.x0)];
+      glm::vec3 c = g.emitted;
+      if (g.valid()) c += g.throughput * g.surface.albedo * filtered[size_t(y) * job.w + x];
+      out[size_t(y) * job.w + x] = c;
+    }
+}
+
+}  // namespace igi

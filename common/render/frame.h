@@ -1,0 +1,36 @@
+#pragma once
+// One frame as plain data: what the master sends once per frame, and the
+// tile jobs it streams. No pointers, so both travel over the wire unchanged.
+#include <cstdint>
+
+#include "scene/scene.h"
+
+namespace igi {
+
+struct FrameSetup {
+  uint64_t frame_id = 0;
+  Camera camera;
+  int width = 0;
+  int height = 0;
+  uint32_t seed = 0;          // scrambles every sample of the frame
+  uint32_t sample_begin = 0;  // pt: first sample index of this pass
+  uint32_t sample_count = 1;  // pt: samples per pixel in this pass
+};
+
+// A rectangle of the image, rendered with `border` extra pixels on each side
+// (clipped to the image) that the filter reads but the result leaves out.
+struct TileJob {
+  int x = 0, y = 0, w = 0, h = 0;
+  int border = 0;
+};
+
+struct RayCounts {
+  uint64_t primary = 0, shadow = 0, secondary = 0;
+  uint64_t total() const { return primary + shadow + secondary; }
+  RayCounts& operator+=(const RayCounts& o) {
+    primary += o.primary; shadow += o.shadow; secondary += o.secondary;
+    return *this;
+  }
+};
+
+}  // namespace igi

@@ -1,0 +1,42 @@
+#include "render/offline_render.h"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include "render/accumulator.h"
+
+namespace igi {
+
+OfflineResult render_offline(const SceneContext& context, const RenderSettings& settings,
+                             const FrameSetup& base, int samples, const FrameOptions& options) {
+  auto method = make_method(context, settings);
+  if (!method) throw std::invalid_argument(std::string("method not available: ") + method_name(settings.method));
+  const bool pt = settings.method == MethodKind::PathTracer;
+  const int per_pass = pt ? std::min(samples, 16) : 1;
+  const int passes = (samples + per_pass - 1) / per_pass;
+
+  auto start = std::chrono::steady_clock::now();
+  Accumulator accumulator(base.width, base.height);
+  OfflineResult result;
+  for (int pass = 0; pass < passes; ++pass) {
+    FrameSetup frame = base;
+    if (pt) {
+      frame.sample_begin = uint32_t(pass * per_pass);
+      frame.sample_count = uint32_t(std::min(per_pass, samples - pass * per_pass));
+    } else {
+      frame.seed = base.seed + uint32_t(pass);
+    }
+    method->begin_frame(frame);
+    FrameOptions pass_options = options;
+    if (options.progress)
+      pass_options.progress = [&](float f) { options.progress((float(pass) + f) / float(passes)); };
+    Image image = render_frame(*method, frame, tile_border(settings), pass_options, result.rays);
+    accumulator.add(image, double(frame.sample_count));
+  }
+  result.image = accumulator.resolve();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace igi

@@ -1,0 +1,63 @@
+#pragma once
+// Embree BVH over a Scene. Built once, then read-only: every query method is
+// thread-safe. Triangles that need per-hit decisions (alpha masks, single-sided
+// faces) live in a second geometry with an intersection filter, so the common
+// opaque double-sided case runs with no callback at all.
+//
+// Threads that trace must call enable_flush_to_zero() first (Embree asks for
+// FTZ/DAZ; the renderer's thread pool does it).
+#include <cstdint>
+#include <vector>
+
+#include <embree3/rtcore.h>
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace igi {
+
+struct Ray {
+  glm::vec3 origin;
+  glm::vec3 direction;
+  float tnear = 0.0f;
+  float tfar = 1e30f;
+};
+
+struct Hit {
+  float t = 0.0f;
+  uint32_t triangle = 0;  // index into Scene::triangles
+  glm::vec2 barycentric{0.0f};  // Embree's (u, v): p = (1-u-v) p0 + u p1 + v p2
+};
+
+void enable_flush_to_zero();
+
+class Accel {
+ public:
+  explicit Accel(const Scene& scene);
+  ~Accel();
+  Accel(const Accel&) = delete;
+  Accel& operator=(const Accel&) = delete;
+
+  bool intersect(const Ray& ray, Hit& hit) const;
+  bool occluded(const Ray& ray) const;
+
+  RTCScene handle() const { return scene_handle_; }
+  const Scene& scene() const { return scene_; }
+  // Maps an Embree (geomID, primID) pair back to Scene::triangles.
+  uint32_t triangle_index(unsigned geom_id, unsigned prim_id) const {
+    return geometry_triangles_[geom_id][prim_id];
+  }
+  // Whether the filtered triangle is transparent at this hit (alpha mask or
+  // the back of a single-sided face seen from `direction`).
+  bool rejects(uint32_t triangle, glm::vec2 barycentric, glm::vec3 direction) const;
+
+ private:
+  void add_geometry(const std::vector<uint32_t>& triangles, bool filtered);
+
+  const Scene& scene_;
+  RTCDevice device_ = nullptr;
+  RTCScene scene_handle_ = nullptr;
+  std::vector<std::vector<uint32_t>> geometry_triangles_;
+};
+
+}  // namespace igi

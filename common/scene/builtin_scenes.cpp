@@ -1,0 +1,149 @@
+#include "scene/builtin_scenes.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace igi {
+
+uint32_t add_material(Scene& scene, Material material) {
+  scene.materials.push_back(std::move(material));
+  return uint32_t(scene.materials.size() - 1);
+}
+
+void add_quad(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, uint32_t material) {
+  uint32_t base = uint32_t(scene.positions.size());
+  for (glm::vec3 p : {a, b, c, d}) scene.positions.push_back(p);
+  scene.triangles.push_back({base, base + 1, base + 2});
+  scene.triangles.push_back({base, base + 2, base + 3});
+  scene.triangle_material.insert(scene.triangle_material.end(), 2, material);
+}
+
+Scene make_cornell_box() {
+  Scene s;
+  s.name = "cornell";
+  auto diffuse = [&](const char* name, glm::vec3 albedo) {
+    Material m;
+    m.name = name;
+    m.base_color = albedo;
+    return add_material(s, m);
+  };
+  const uint32_t white = diffuse("white", {0.725f, 0.71f, 0.68f});
+  const uint32_t red = diffuse("red", {0.63f, 0.065f, 0.05f});
+  const uint32_t green = diffuse("green", {0.14f, 0.45f, 0.091f});
+  Material light_material;
+  light_material.name = "light";
+  light_material.base_color = glm::vec3(0.78f);
+  light_material.emission = {17.0f, 12.0f, 4.0f};
+  const uint32_t light = add_material(s, light_material);
+
+  // Published coordinates in millimetres.
+  auto q = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, uint32_t m) {
+    add_quad(s, a * 1e-3f, b * 1e-3f, c * 1e-3f, d * 1e-3f, m);
+  };
+  q({552.8f, 0, 0}, {0, 0, 0}, {0, 0, 559.2f}, {549.6f, 0, 559.2f}, white);                    // floor
+  q({556, 548.8f, 0}, {556, 548.8f, 559.2f}, {0, 548.8f, 559.2f}, {0, 548.8f, 0}, white);      // ceiling
+  q({549.6f, 0, 559.2f}, {0, 0, 559.2f}, {0, 548.8f, 559.2f}, {556, 548.8f, 559.2f}, white);   // back
+  q({0, 0, 559.2f}, {0, 0, 0}, {0, 548.8f, 0}, {0, 548.8f, 559.2f}, green);                    // right
+  q({552.8f, 0, 0}, {549.6f, 0, 559.2f}, {556, 548.8f, 559.2f}, {556, 548.8f, 0}, red);        // left
+  // Light, a tenth of a millimetre below the ceiling, emitting downwards.
+  q({343, 548.7f, 227}, {343, 548.7f, 332}, {213, 548.7f, 332}, {213, 548.7f, 227}, light);
+  // Short block.
+  q({130, 165, 65}, {82, 165, 225}, {240, 165, 272}, {290, 165, 114}, white);
+  q({290, 0, 114}, {290, 165, 114}, {240, 165, 272}, {240, 0, 272}, white);
+  q({130, 0, 65}, {130, 165, 65}, {290, 165, 114}, {290, 0, 114}, white);
+  q({82, 0, 225}, {82, 165, 225}, {130, 165, 65}, {130, 0, 65}, white);
+  q({240, 0, 272}, {240, 165, 272}, {82, 165, 225}, {82, 0, 225}, white);
+  // Tall block.
+  q({423, 330, 247}, {265, 330, 296}, {314, 330, 456}, {472, 330, 406}, white);
+  q({423, 0, 247}, {423, 330, 247}, {472, 330, 406}, {472, 0, 406}, white);
+  q({472, 0, 406}, {472, 330, 406}, {314, 330, 456}, {314, 0, 456}, white);
+  q({314, 0, 456}, {314, 330, 456}, {265, 330, 296}, {265, 0, 296}, white);
+  q({265, 0, 296}, {265, 330, 296}, {423, 330, 247}, {423, 0, 247}, white);
+
+  Camera cam;
+  cam.position = {0.278f, 0.273f, -0.800f};
+  cam.forward = {0.0f, 0.0f, 1.0f};
+  cam.up = {0.0f, 1.0f, 0.0f};
+  cam.vfov = 2.0f * std::atan(12.5f / 35.0f);  // 35 mm lens on 25 mm film
+  s.camera = cam;
+  return s;
+}
+
+Scene make_furnace(float albedo, float radiance) {
+  Scene s;
+  s.name = "furnace";
+  Material m;
+  m.name = "furnace";
+  m.base_color = glm::vec3(albedo);
+  m.emission = glm::vec3(radiance);
+  add_material(s, m);
+  const int rings = 24, segments = 48;
+  auto point = [](int i, int j) {
+    float theta = float(M_PI) * i / rings, phi = 2.0f * float(M_PI) * j / segments;
+    return glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+  };
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      glm::vec3 a = point(i, j), b = point(i + 1, j), c = point(i + 1, j + 1), d = point(i, j + 1);
+      // Wound so the front faces the centre; drop the degenerate pole triangles.
+      uint32_t base = uint32_t(s.positions.size());
+      for (glm::vec3 p : {a, b, c, d}) s.positions.push_back(p);
+      if (i != rings - 1) { s.triangles.push_back({base, base + 1, base + 2}); s.triangle_material.push_back(0); }
+      if (i != 0) { s.triangles.push_back({base, base + 2, base + 3}); s.triangle_material.push_back(0); }
+    }
+  Camera cam;
+  cam.position = glm::vec3(0.0f);
+  cam.forward = {0.0f, 0.0f, 1.0f};
+  cam.vfov = 1.2f;
+  s.camera = cam;
+  return s;
+}
+
+Scene make_cornell_blob(int triangles) {
+  Scene s = make_cornell_box();
+  s.name = "cornell-blob";
+  // Drop the blocks: the last 10 quads (20 triangles) of the Cornell box.
+  s.triangles.resize(s.triangles.size() - 20);
+  s.triangle_material.resize(s.triangles.size());
+  const uint32_t white = 0;
+  const int rings = std::max(8, int(std::sqrt(triangles / 4.0)));
+  const int segments = 2 * rings;
+  const glm::vec3 center(0.278f, 0.17f, 0.28f);
+  auto point = [&](int i, int j) {
+    float theta = float(M_PI) * i / rings, phi = 2.0f * float(M_PI) * j / segments;
+    glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+    float bump = 1.0f + 0.08f * std::sin(7.0f * theta) * std::sin(5.0f * phi);
+    return center + 0.15f * bump * n;
+  };
+  const uint32_t base = uint32_t(s.positions.size());
+  for (int i = 0; i <= rings; ++i)
+    for (int j = 0; j < segments; ++j) s.positions.push_back(point(i, j));
+  auto index = [&](int i, int j) { return base + uint32_t(i * segments + (j % segments)); };
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      // Outward-facing winding; the pole rows lose their degenerate triangle.
+      if (i != rings - 1) s.triangles.push_back({index(i, j), index(i + 1, j + 1), index(i + 1, j)});
+      if (i != 0) s.triangles.push_back({index(i, j), index(i, j + 1), index(i + 1, j + 1)});
+    }
+  s.triangle_material.resize(s.triangles.size(), white);
+  return s;
+}
+
+std::vector<std::string> builtin_scene_names() { return {"cornell", "cornell-blob", "furnace"}; }
+
+bool is_builtin_scene(const std::string& name) {
+  for (const std::string& n : builtin_scene_names())
+    if (n == name) return true;
+  return false;
+}
+
+Scene make_builtin_scene(const std::string& name) {
+  if (name == "cornell") return make_cornell_box();
+  if (name == "furnace") return make_furnace(0.5f, 1.0f);
+  if (name == "cornell-blob") return make_cornell_blob(320000);
+  std::string known;
+  for (const std::string& n : builtin_scene_names()) known += (known.empty() ? "" : ", ") + n;
+  throw SceneError("unknown built-in scene '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace igi

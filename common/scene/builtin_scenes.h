@@ -1,0 +1,31 @@
+#pragma once
+// Scenes that need no file, selectable by name on every command line.
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace igi {
+
+// The Cornell box with its published geometry, camera and reflectances
+// (Cornell University Program of Computer Graphics), converted to metres.
+Scene make_cornell_box();
+// A closed sphere seen from inside: every surface diffuse with `albedo` and
+// emitting `radiance` towards the centre. Exact answer: radiance / (1 - albedo).
+Scene make_furnace(float albedo, float radiance);
+
+// The Cornell box with the two blocks replaced by a finely tessellated bumpy
+// sphere of about `triangles` triangles (for throughput measurements).
+Scene make_cornell_blob(int triangles);
+
+std::vector<std::string> builtin_scene_names();
+bool is_builtin_scene(const std::string& name);
+// Throws SceneError for an unknown name.
+Scene make_builtin_scene(const std::string& name);
+
+// Builders shared by the procedural scenes.
+uint32_t add_material(Scene& scene, Material material);
+// Quad a-b-c-d as two triangles; the front face follows the a->b->c winding.
+void add_quad(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, uint32_t material);
+
+}  // namespace igi

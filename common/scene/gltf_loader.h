@@ -1,0 +1,36 @@
+#pragma once
+// Reads a glTF 2.0 file (.gltf with its buffers and images, or .glb) into a
+// Scene: triangles flattened into world space, materials mapped onto the
+// renderer's four models, KHR_lights_punctual lights and the first
+// perspective camera. The mapping lives next to each step:
+//   gltf_nodes.h      node tree, lights, camera
+//   gltf_geometry.h   primitives into world-space triangles
+//   gltf_materials.h  materials and base colour textures
+//   gltf_features.h   what is not modelled, reported once each
+//   gltf_accessors.h  bounds-checked reads of the binary data
+//
+// Malformed or unreadable input throws SceneError whose message names the
+// file and the offending element, e.g.
+//   "scene.gltf: accessors[3] (POSITION of meshes[0].primitives[0]): count 1000
+//    (stride 12, byteOffset 0) exceeds bufferView 2 (48 bytes)".
+// The finished scene passes Scene::validate(): it has triangles and a light.
+// Keeps no state between calls.
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace igi {
+
+struct LoadedScene {
+  Scene scene;
+  // One line per feature the renderer left out or repaired, each naming the
+  // file, the feature and what became of it.
+  std::vector<std::string> warnings;
+};
+
+// Binary when the file starts with the "glTF" magic or is named *.glb;
+// JSON otherwise.
+LoadedScene load_gltf(const std::string& path);
+
+}  // namespace igi

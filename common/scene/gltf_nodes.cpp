@@ -1,0 +1,193 @@
+#include "scene/gltf_nodes.h"
+
+#include <cmath>
+#include <utility>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
+
+namespace igi {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Column-major matrix if given, else translation * rotation * scale.
+glm::dmat4 local_transform(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());
+  glm::dmat4 m(1.0);
+  if (node.translation.size() == 3) m = glm::translate(m, glm::make_vec3(node.translation.data()));
+  if (node.rotation.size() == 4) {
+    const std::vector<double>& q = node.rotation;  // glTF order: x, y, z, w
+    m *= glm::mat4_cast(glm::normalize(glm::dquat(q[3], q[0], q[1], q[2])));
+  }
+  if (node.scale.size() == 3) m = glm::scale(m, glm::make_vec3(node.scale.data()));
+  return m;
+}
+
+glm::vec3 world_point(const glm::dmat4& world, glm::dvec3 local) {
+  return glm::vec3(world * glm::dvec4(local, 1.0));
+}
+
+// Where a local axis points in world space; zero-length if the transform
+// collapses it.
+glm::dvec3 world_axis(const glm::dmat4& world, glm::dvec3 local) {
+  const glm::dvec3 axis = glm::dmat3(world) * local;
+  const double length = glm::length(axis);
+  return length > 0.0 && std::isfinite(length) ? axis / length : glm::dvec3(0.0);
+}
+
+std::vector<int> root_nodes(const tinygltf::Model& model, std::string& scene_name, const GltfDiagnostics& diag) {
+  if (!model.scenes.empty()) {
+    const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
+    if (size_t(scene) >= model.scenes.size())
+      diag.fail("scene", "default scene " + std::to_string(scene) + " does not exist (the file has " +
+                             std::to_string(model.scenes.size()) + ")");
+    scene_name = model.scenes[size_t(scene)].name;
+    return model.scenes[size_t(scene)].nodes;
+  }
+  std::vector<bool> is_child(model.nodes.size(), false);
+  for (const tinygltf::Node& node : model.nodes)
+    for (int child : node.children)
+      if (child >= 0 && size_t(child) < model.nodes.size()) is_child[size_t(child)] = true;
+  std::vector<int> roots;
+  for (size_t i = 0; i < model.nodes.size(); ++i)
+    if (!is_child[i]) roots.push_back(int(i));
+  return roots;
+}
+
+class NodeWalker {
+ public:
+  NodeWalker(const tinygltf::Model& model, GltfDiagnostics& diag)
+      : model_(model), diag_(diag), visited_(model.nodes.size(), false) {}
+
+  FlattenedNodes walk();
+
+ private:
+  struct Pending {
+    int node;
+    int parent;  // -1 for a scene root
+    glm::dmat4 parent_world;
+  };
+
+  void visit(const Pending& pending, std::vector<Pending>& stack);
+  void add_light(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world);
+  void add_camera(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world);
+
+  const tinygltf::Model& model_;
+  GltfDiagnostics& diag_;
+  std::vector<bool> visited_;
+  FlattenedNodes out_;
+};
+
+FlattenedNodes NodeWalker::walk() {
+  std::vector<Pending> stack;
+  const std::vector<int> roots = root_nodes(model_, out_.scene_name, diag_);
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, -1, glm::dmat4(1.0)});
+  while (!stack.empty()) {
+    const Pending pending = stack.back();
+    stack.pop_back();
+    visit(pending, stack);
+  }
+  return std::move(out_);
+}
+
+// An explicit stack, not recursion: a deep chain of nodes cannot overflow it.
+void NodeWalker::visit(const Pending& pending, std::vector<Pending>& stack) {
+  const std::string referrer = pending.parent < 0 ? "scene nodes" : gltf_element("nodes", size_t(pending.parent)) + ".children";
+  if (pending.node < 0 || size_t(pending.node) >= model_.nodes.size())
+    diag_.fail(referrer, "node " + std::to_string(pending.node) + " does not exist (the file has " +
+                             std::to_string(model_.nodes.size()) + ")");
+  const std::string name = gltf_element("nodes", size_t(pending.node));
+  if (visited_[size_t(pending.node)])
+    diag_.fail(name, "reached twice from " + referrer + ": a glTF node has at most one parent and no cycles");
+  visited_[size_t(pending.node)] = true;
+
+  const tinygltf::Node& node = model_.nodes[size_t(pending.node)];
+  const glm::dmat4 world = pending.parent_world * local_transform(node);
+  if (node.mesh >= 0) {
+    if (size_t(node.mesh) >= model_.meshes.size())
+      diag_.fail(name, "mesh " + std::to_string(node.mesh) + " does not exist (the file has " +
+                           std::to_string(model_.meshes.size()) + ")");
+    out_.instances.push_back({node.mesh, world});
+  }
+  if (node.camera >= 0) add_camera(node, name, world);
+  add_light(node, name, world);
+  for (auto it = node.children.rbegin(); it != node.children.rend(); ++it)
+    stack.push_back({*it, pending.node, world});
+}
+
+void NodeWalker::add_light(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world) {
+  auto ext = node.extensions.find("KHR_lights_punctual");
+  if (ext == node.extensions.end()) return;
+  const tinygltf::Value& reference = ext->second;
+  const int index = reference.IsObject() && reference.Has("light") && reference.Get("light").IsNumber()
+                        ? reference.Get("light").GetNumberAsInt() : -1;
+  if (index < 0 || size_t(index) >= model_.lights.size())
+    diag_.fail(name + ".extensions.KHR_lights_punctual", "expected 'light' to index one of the file's " +
+                                                            std::to_string(model_.lights.size()) + " lights");
+  const tinygltf::Light& light = model_.lights[size_t(index)];
+  PunctualLight out;
+  const glm::vec3 color = light.color.size() >= 3 ? glm::vec3(light.color[0], light.color[1], light.color[2]) : glm::vec3(1.0f);
+  out.intensity = color * float(light.intensity);  // radiometric: W/sr or W/m^2
+  out.position = world_point(world, glm::dvec3(0.0));
+  out.direction = glm::vec3(world_axis(world, glm::dvec3(0.0, 0.0, -1.0)));
+  if (light.type == "point") {
+    out.type = LightType::Point;
+  } else if (light.type == "spot") {
+    out.type = LightType::Spot;
+    out.inner_cone = float(light.spot.innerConeAngle);
+    out.outer_cone = float(light.spot.outerConeAngle);
+  } else if (light.type == "directional") {
+    out.type = LightType::Directional;
+  } else {
+    diag_.warn_once("light type " + light.type, "light type '" + light.type + "' (" +
+                                                    gltf_element("lights", size_t(index)) + ") unknown: light ignored");
+    return;
+  }
+  if (out.type != LightType::Point && out.direction == glm::vec3(0.0f))
+    diag_.fail(name, "the transform collapses the direction of light " + std::to_string(index));
+  if (light.range > 0.0)
+    diag_.warn_once("light range", "light range ignored: lights fall off with the inverse square law, without cut-off");
+  out_.lights.push_back(out);
+}
+
+void NodeWalker::add_camera(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world) {
+  if (size_t(node.camera) >= model_.cameras.size())
+    diag_.fail(name, "camera " + std::to_string(node.camera) + " does not exist (the file has " +
+                         std::to_string(model_.cameras.size()) + ")");
+  const std::string camera_name = gltf_element("cameras", size_t(node.camera));
+  const tinygltf::Camera& camera = model_.cameras[size_t(node.camera)];
+  if (camera.type != "perspective") {
+    diag_.warn_once("camera " + camera.type, camera.type + " camera (" + camera_name +
+                                                 ") ignored: only perspective cameras are supported");
+    return;
+  }
+  if (out_.camera) {
+    diag_.warn_once("extra cameras", "cameras after the first perspective camera ignored (first ignored on " + name + ")");
+    return;
+  }
+  const double yfov = camera.perspective.yfov;
+  if (!(yfov > 0.0 && yfov < kPi)) diag_.fail(camera_name, "yfov " + std::to_string(yfov) + ", expected in (0, pi)");
+  const glm::dvec3 forward = world_axis(world, glm::dvec3(0.0, 0.0, -1.0));
+  const glm::dvec3 up = world_axis(world, glm::dvec3(0.0, 1.0, 0.0));
+  // Re-orthogonalise: a sheared or non-uniformly scaled parent may tilt up.
+  const glm::dvec3 true_up = up - glm::dot(up, forward) * forward;
+  if (forward == glm::dvec3(0.0) || glm::length(true_up) < 1e-9)
+    diag_.fail(name, "the transform collapses the view of " + camera_name);
+  Camera out;
+  out.position = world_point(world, glm::dvec3(0.0));
+  out.forward = glm::vec3(forward);
+  out.up = glm::vec3(glm::normalize(true_up));
+  out.vfov = float(yfov);
+  out_.camera = out;
+}
+
+}  // namespace
+
+FlattenedNodes flatten_nodes(const tinygltf::Model& model, GltfDiagnostics& diag) {
+  return NodeWalker(model, diag).walk();
+}
+
+}  // namespace igi

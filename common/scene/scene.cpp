@@ -1,0 +1,91 @@
+#include "scene/scene.h"
+
+#include <cmath>
+#include <string>
+
+namespace igi {
+
+const char* material_type_name(MaterialType type) {
+  switch (type) {
+    case MaterialType::Diffuse: return "diffuse";
+    case MaterialType::Conductor: return "conductor";
+    case MaterialType::Mirror: return "mirror";
+    case MaterialType::Glass: return "glass";
+  }
+  return "unknown";
+}
+
+glm::vec4 Texture::sample(glm::vec2 uv) const {
+  if (width <= 0 || height <= 0) return glm::vec4(1.0f);
+  float fx = (uv.x - std::floor(uv.x)) * width - 0.5f;
+  float fy = (uv.y - std::floor(uv.y)) * height - 0.5f;
+  int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));
+  float tx = fx - x0, ty = fy - y0;
+  auto at = [&](int x, int y) {
+    x = ((x % width) + width) % width;
+    y = ((y % height) + height) % height;
+    return texels[size_t(y) * width + x];
+  };
+  return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), tx),
+                  glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), tx), ty);
+}
+
+Bounds Scene::bounds() const {
+  Bounds b;
+  for (const glm::uvec3& t : triangles)
+    for (int k = 0; k < 3; ++k) b.extend(positions[t[k]]);
+  return b;
+}
+
+bool Scene::has_light() const {
+  if (!lights.empty()) return true;
+  for (uint32_t m : triangle_material)
+    if (materials[m].is_emissive()) return true;
+  return false;
+}
+
+Camera Scene::auto_camera() const {
+  Bounds b = bounds();
+  Camera cam;
+  if (b.empty()) return cam;
+  glm::vec3 c = b.center();
+  glm::vec3 extent = b.upper - b.lower;
+  float radius = 0.5f * glm::length(extent);
+  float distance = radius / std::tan(0.5f * cam.vfov);
+  cam.position = c + glm::vec3(0.0f, 0.0f, 0.5f * extent.z + distance);
+  cam.forward = glm::vec3(0.0f, 0.0f, -1.0f);
+  return cam;
+}
+
+static bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+void Scene::validate() const {
+  const std::string where = "scene '" + name + "': ";
+  if (triangles.empty()) throw SceneError(where + "no geometry (no triangles)");
+  if (triangle_material.size() != triangles.size())
+    throw SceneError(where + "triangle_material has " + std::to_string(triangle_material.size()) +
+                     " entries, expected one per triangle (" + std::to_string(triangles.size()) + ")");
+  if (!normals.empty() && normals.size() != positions.size())
+    throw SceneError(where + "normals must be empty or one per position");
+  if (!uvs.empty() && uvs.size() != positions.size())
+    throw SceneError(where + "uvs must be empty or one per position");
+  for (size_t i = 0; i < positions.size(); ++i)
+    if (!finite(positions[i]))
+      throw SceneError(where + "position " + std::to_string(i) + " is not finite");
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    for (int k = 0; k < 3; ++k)
+      if (triangles[i][k] >= positions.size())
+        throw SceneError(where + "triangle " + std::to_string(i) + " indexes vertex " +
+                         std::to_string(triangles[i][k]) + " of " + std::to_string(positions.size()));
+    if (triangle_material[i] >= materials.size())
+      throw SceneError(where + "triangle " + std::to_string(i) + " uses material " +
+                       std::to_string(triangle_material[i]) + " of " + std::to_string(materials.size()));
+  }
+  for (const Material& m : materials)
+    if (m.base_color_texture >= int(textures.size()))
+      throw SceneError(where + "material '" + m.name + "' names texture " +
+                       std::to_string(m.base_color_texture) + " of " + std::to_string(textures.size()));
+  if (!has_light()) throw SceneError(where + "no light (no emissive material and no punctual light)");
+}
+
+}  // namespace igi

@@ -1,0 +1,115 @@
+#pragma once
+// The renderer's whole view of a scene: flattened world-space triangles,
+// a handful of material models, lights and an optional camera.
+//
+// Conventions (also in the README):
+//  - Units: metres (glTF). Nothing in the renderer depends on absolute scale;
+//    scale-dependent options are given relative to the scene's bounding box.
+//  - Radiometry: RGB radiance in W/(m^2 sr); punctual light intensity in W/sr;
+//    directional irradiance in W/m^2 (KHR_lights_punctual read radiometrically).
+//  - Area lights are emissive triangles that emit from their front face only
+//    (counter-clockwise winding, right-hand rule gives the front normal).
+//  - Colours are linear RGB; textures decoded from sRGB on load.
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace igi {
+
+enum class MaterialType : uint8_t {
+  Diffuse,    // Lambertian, albedo = base_color
+  Conductor,  // GGX microfacet metal, alpha = roughness^2, Fresnel = base_color
+  Mirror,     // perfect specular reflection, tinted by base_color
+  Glass,      // smooth dielectric with index of refraction ior
+};
+
+const char* material_type_name(MaterialType type);
+
+struct Material {
+  std::string name;
+  MaterialType type = MaterialType::Diffuse;
+  glm::vec3 base_color{0.8f};
+  float alpha = 1.0f;              // GGX roughness parameter (Conductor only)
+  float ior = 1.5f;                // Glass only
+  int base_color_texture = -1;     // index into Scene::textures, or -1
+  bool alpha_mask = false;         // glTF alphaMode MASK
+  float alpha_cutoff = 0.5f;
+  float base_alpha = 1.0f;         // baseColorFactor.a
+  bool double_sided = true;        // false: back faces are not hit
+  glm::vec3 emission{0.0f};        // front-face radiance, W/(m^2 sr)
+
+  bool is_specular() const { return type == MaterialType::Mirror || type == MaterialType::Glass; }
+  bool is_emissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
+};
+
+// Texels are linear RGBA, row 0 at the top (glTF/image convention).
+struct Texture {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec4> texels;
+  // Bilinear lookup with repeat wrapping; uv as in glTF (v down).
+  glm::vec4 sample(glm::vec2 uv) const;
+};
+
+enum class LightType : uint8_t { Point, Spot, Directional };
+
+struct PunctualLight {
+  LightType type = LightType::Point;
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // direction the light travels (spot, directional)
+  glm::vec3 intensity{1.0f};               // W/sr (point, spot) or W/m^2 (directional)
+  float inner_cone = 0.0f;                 // radians, spot only
+  float outer_cone = 0.785398f;            // radians, spot only
+};
+
+// Pinhole camera. The image plane's vertical field of view is vfov radians;
+// the horizontal extent follows from the image's aspect ratio.
+struct Camera {
+  glm::vec3 position{0.0f};
+  glm::vec3 forward{0.0f, 0.0f, -1.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float vfov = 0.6859f;  // 39.3 degrees
+};
+
+struct Bounds {
+  glm::vec3 lower{1e30f};
+  glm::vec3 upper{-1e30f};
+  void extend(glm::vec3 p) { lower = glm::min(lower, p); upper = glm::max(upper, p); }
+  glm::vec3 center() const { return 0.5f * (lower + upper); }
+  float diagonal() const { return glm::length(upper - lower); }
+  bool empty() const { return lower.x > upper.x; }
+};
+
+struct Scene {
+  std::string name;
+  // Per-vertex data; normals and uvs are either empty or one per position.
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> uvs;
+  std::vector<glm::uvec3> triangles;
+  std::vector<uint32_t> triangle_material;  // one per triangle
+
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<PunctualLight> lights;
+  std::optional<Camera> camera;
+
+  Bounds bounds() const;
+  bool has_light() const;
+  // A camera that frames the bounding box from the +z side, looking down -z.
+  Camera auto_camera() const;
+  Camera camera_or_auto() const { return camera ? *camera : auto_camera(); }
+  // Cheap structural checks shared by every producer of scenes; throws
+  // SceneError naming the first broken element.
+  void validate() const;
+};
+
+struct SceneError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace igi

@@ -1,0 +1,32 @@
+#pragma once
+// What shading needs to know about a ray hit, resolved once per hit.
+#include <glm/glm.hpp>
+
+#include "scene/accel.h"
+#include "scene/scene.h"
+
+namespace igi {
+
+struct SurfacePoint {
+  glm::vec3 position;
+  glm::vec3 geometric_normal;  // unit, front side (counter-clockwise winding)
+  glm::vec3 shading_normal;    // unit, interpolated; on the same side as geometric_normal
+  glm::vec2 uv{0.0f};
+  uint32_t triangle = 0;
+  const Material* material = nullptr;
+  glm::vec3 albedo{0.0f};      // base colour times texture, linear
+  bool front_face = true;      // whether the ray arrived on the front side
+
+  // Radiance leaving the surface towards -ray_direction (front face only).
+  glm::vec3 emitted() const { return front_face ? material->emission : glm::vec3(0.0f); }
+};
+
+SurfacePoint surface_at(const Scene& scene, const Hit& hit, glm::vec3 ray_direction);
+
+// A ray origin nudged off the surface, to the side `direction` leaves from,
+// so the new ray does not re-hit the triangle it starts on.
+glm::vec3 offset_origin(const SurfacePoint& sp, glm::vec3 direction);
+// tfar that stops a shadow ray just short of `target`, relative to its length.
+inline constexpr float kShadowEpsilon = 1e-4f;
+
+}  // namespace igi

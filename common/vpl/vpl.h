@@ -1,0 +1,46 @@
+#pragma once
+// Virtual point lights and the interleaved sets they come in.
+//
+// A VPL's contribution to a surface point x, seen from direction wo, is
+//   f_x(wo, wi) |cos_x| * emitted(y -> x) * V(x, y)
+// where emitted depends on its kind:
+//   Surface:     f_y(incident, -wi) cos_y / r^2 * flux   (a light-path hit)
+//   Area:        cos_y / r^2 * flux                     (a point on an emitter; flux = Le A / pdf)
+//   Point/Spot:  1 / r^2 * flux * cone(-wi)             (flux = intensity / pdf)
+//   Directional: flux, from direction -normal, at infinity
+// The geometry term cos_x cos_y / r^2 is what clamping bounds.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "lighting/lights.h"
+
+namespace igi {
+
+enum class VplKind : uint8_t { Surface, Area, Point, Spot, Directional };
+
+struct Vpl {
+  glm::vec3 position;
+  glm::vec3 normal;     // Surface/Area: front normal; Spot: axis; Directional: travel direction
+  glm::vec3 flux;       // already divided by the number of paths of its set
+  glm::vec3 incident;   // Surface: unit direction back towards the light path's previous vertex
+  glm::vec3 albedo;     // Surface: base colour at the hit
+  uint32_t material = 0;     // Surface: Scene::materials index
+  uint32_t light = 0;        // Spot: Scene::lights index (cone shape)
+  VplKind kind = VplKind::Surface;
+};
+
+// S = N x N sets; set k holds the VPLs of light paths [k M, (k+1) M).
+struct VplSets {
+  int interleave = 3;               // N
+  std::vector<Vpl> vpls;            // all sets, one after the other
+  std::vector<uint32_t> set_begin;  // S + 1 offsets into vpls
+  uint64_t hash = 0;                // content hash, equal on every worker for equal inputs
+
+  int set_count() const { return int(set_begin.size()) - 1; }
+  // The set a pixel uses, from its GLOBAL image coordinates.
+  int set_of_pixel(int x, int y) const { return (x % interleave) + interleave * (y % interleave); }
+};
+
+}  // namespace igi

@@ -1,0 +1,136 @@
+#include "vpl/vpl_generator.h"
+
+#include <cmath>
+
+#include "material/bsdf.h"
+#include "sampling/hash.h"
+#include "sampling/sobol.h"
+#include "sampling/warp.h"
+#include "scene/surface.h"
+
+namespace igi {
+namespace {
+
+// Dimensions of a light path: 6 for its start, then 8 per bounce (SampleStream
+// gives every draw a pair of dimensions).
+constexpr uint32_t kStartDims = 6;
+constexpr uint32_t kDimsPerBounce = 8;
+
+struct PathStart {
+  Ray ray;
+  glm::vec3 flux;  // carried along the ray, per path
+};
+
+// The VPL on the light itself and the first ray leaving it.
+PathStart start_path(const LightSet& lights, const Scene& scene, SampleStream& u,
+                     float inv_paths, std::vector<Vpl>& out) {
+  const float u_select = u.next_1d();
+  const glm::vec2 u_point = u.next_2d();
+  const glm::vec2 u_dir = u.next_2d();
+  EmissionSample e = lights.sample_emission(u_select, u_point);
+  Vpl v;
+  v.position = e.position;
+  v.normal = e.normal;
+  v.flux = e.power * inv_paths;
+  PathStart start;
+  switch (e.kind) {
+    case LightKind::Area: {
+      v.kind = VplKind::Area;
+      Frame frame(e.normal);
+      glm::vec3 d = frame.to_world(cosine_hemisphere(u_dir));
+      start.ray = Ray{e.position + 1e-5f * lights.scene_radius() * e.normal, d};
+      start.flux = e.power * kPi;  // Le A cos / (pdf = cos / pi)
+      break;
+    }
+    case LightKind::Directional:
+      v.kind = VplKind::Directional;
+      v.flux = e.power * (inv_paths / (kPi * lights.scene_radius() * lights.scene_radius()));  // irradiance
+      start.ray = Ray{e.position, e.normal};
+      start.flux = e.power;
+      break;
+    default: {
+      const PunctualLight& pl = scene.lights[lights.lights()[e.light].index];
+      v.kind = e.kind == LightKind::Spot ? VplKind::Spot : VplKind::Point;
+      v.normal = pl.direction;
+      v.light = lights.lights()[e.light].index;
+      glm::vec3 d;
+      float pdf;
+      if (e.kind == LightKind::Spot) {
+        float cos_max = std::cos(pl.outer_cone);
+        d = Frame(glm::normalize(pl.direction)).to_world(uniform_cone(u_dir, cos_max));
+        pdf = 1.0f / (2.0f * kPi * (1.0f - cos_max));
+        start.flux = e.power * (spot_attenuation(pl, d) / pdf);
+      } else {
+        float z = 1.0f - 2.0f * u_dir.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        d = glm::vec3(r * std::cos(2.0f * kPi * u_dir.y), r * std::sin(2.0f * kPi * u_dir.y), z);
+        start.flux = e.power * (4.0f * kPi);
+      }
+      start.ray = Ray{e.position, d};
+    }
+  }
+  out.push_back(v);
+  return start;
+}
+
+void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, uint32_t path,
+                      uint32_t seed, float inv_paths, std::vector<Vpl>& out) {
+  SampleStream start_stream(path, seed, 0);
+  PathStart start = start_path(ctx.lights, ctx.scene, start_stream, inv_paths, out);
+  Ray ray = start.ray;
+  glm::vec3 flux = start.flux;
+  for (int depth = 0; depth < settings.max_depth; ++depth) {
+    Hit hit;
+    if (!ctx.accel.intersect(ray, hit)) return;
+    SurfacePoint sp = surface_at(ctx.scene, hit, ray.direction);
+    const glm::vec3 wo = -ray.direction;
+    if (!sp.material->is_specular())
+      // The VPL reflects towards the side the light arrived from.
+      out.push_back(Vpl{sp.position, glm::dot(wo, sp.geometric_normal) >= 0.0f ? sp.shading_normal : -sp.shading_normal,
+                        flux * inv_paths, wo, sp.albedo,
+                        ctx.scene.triangle_material[hit.triangle], 0, VplKind::Surface});
+    SampleStream u(path, seed, kStartDims + kDimsPerBounce * uint32_t(depth));
+    const glm::vec2 u_dir = u.next_2d();
+    const float u_lobe = u.next_1d();
+    const float u_roulette = u.next_1d();
+    auto bs = bsdf_sample(sp, wo, u_dir, u_lobe);
+    if (!bs) return;
+    // Russian roulette by albedo: survivors carry the lost share.
+    float q = std::min(1.0f, max_component(bs->weight));
+    if (!(u_roulette < q)) return;
+    flux *= bs->weight / q;
+    ray = Ray{offset_origin(sp, bs->wi), bs->wi};
+  }
+}
+
+}  // namespace
+
+uint64_t hash_vpls(const std::vector<Vpl>& vpls) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (const Vpl& v : vpls) {
+    h = fnv1a64(&v.position, sizeof(v.position), h);
+    h = fnv1a64(&v.normal, sizeof(v.normal), h);
+    h = fnv1a64(&v.flux, sizeof(v.flux), h);
+    h = fnv1a64(&v.incident, sizeof(v.incident), h);
+    h = fnv1a64(&v.kind, sizeof(v.kind), h);
+  }
+  return h;
+}
+
+VplSets generate_vpls(const SceneContext& context, const RenderSettings& settings, uint32_t seed) {
+  VplSets sets;
+  sets.interleave = settings.interleave;
+  const int set_count = settings.interleave * settings.interleave;
+  const uint32_t paths = uint32_t(settings.paths_per_set);
+  const float inv_paths = 1.0f / float(paths);
+  const uint32_t path_seed = hash(seed, 0x76706c73u);  // "vpls": independent of pixel seeds
+  sets.set_begin.push_back(0);
+  for (int k = 0; k < set_count; ++k) {
+    for (uint32_t i = 0; i < paths; ++i)
+      trace_light_path(context, settings, uint32_t(k) * paths + i, path_seed, inv_paths, sets.vpls);
+    sets.set_begin.push_back(uint32_t(sets.vpls.size()));
+  }
+  sets.hash = hash_vpls(sets.vpls);
+  return sets;
+}
+
+}  // namespace igi

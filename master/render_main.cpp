@@ -1,0 +1,60 @@
+// igi-render: renders one image of a scene with one method, in this process.
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+#include "render_options.h"
+#include "render/offline_render.h"
+#include "scene/gltf_writer.h"
+#include "scene/load_scene.h"
+
+namespace {
+
+int run(const igi::RenderOptions& o) {
+  std::vector<std::string> warnings;
+  igi::Scene scene = igi::load_scene(o.scene, &warnings);
+  for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  if (!o.export_gltf.empty()) {
+    igi::write_gltf(scene, o.export_gltf);
+    std::printf("wrote %s\n", o.export_gltf.c_str());
+    return 0;
+  }
+  igi::Accel accel(scene);
+  igi::LightSet lights(scene);
+  igi::FrameSetup frame;
+  frame.camera = scene.camera_or_auto();
+  frame.width = o.width;
+  frame.height = o.height;
+  frame.seed = o.seed;
+
+  igi::FrameOptions options;
+  options.threads = o.threads;
+  options.tile_size = o.tile_size;
+  auto start = std::chrono::steady_clock::now();
+  if (!o.quiet)
+    options.progress = [start](float f) {
+      double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (t > 1.0) std::fprintf(stderr, "\r%5.1f%%  %.1f s", 100.0 * f, t);
+    };
+  igi::OfflineResult r = igi::render_offline({scene, accel, lights}, o.settings, frame, o.samples, options);
+  if (!o.quiet) std::fprintf(stderr, "\r                      \r");
+  igi::write_image(r.image, o.output, o.exposure);
+  std::printf("%s: %s %dx%d, %d %s, %.3f s, %.1f Mrays (%.1f Mrays/s)\n", o.output.c_str(),
+              igi::method_name(o.settings.method), o.width, o.height, o.samples,
+              o.settings.method == igi::MethodKind::PathTracer ? "spp" : "passes", r.seconds,
+              r.rays.total() * 1e-6, r.rays.total() * 1e-6 / r.seconds);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    igi::RenderOptions o = igi::parse_render_options({argv + 1, argv + argc});
+    if (o.help) { std::cout << igi::render_usage(argv[0]); return 0; }
+    return run(o);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "igi-render: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,98 @@
+#include "render_options.h"
+
+#include <stdexcept>
+
+#include "scene/builtin_scenes.h"
+
+namespace igi {
+namespace {
+
+int to_int(const std::string& option, const std::string& value, int min_value) {
+  size_t end = 0;
+  int v = 0;
+  try { v = std::stoi(value, &end); } catch (const std::exception&) { end = 0; }
+  if (end != value.size() || value.empty() || v < min_value)
+    throw std::invalid_argument(option + ": expected an integer >= " + std::to_string(min_value) + ", got '" + value + "'");
+  return v;
+}
+
+float to_float(const std::string& option, const std::string& value) {
+  size_t end = 0;
+  float v = 0;
+  try { v = std::stof(value, &end); } catch (const std::exception&) { end = 0; }
+  if (end != value.size() || value.empty() || !(v >= 0.0f))
+    throw std::invalid_argument(option + ": expected a non-negative number, got '" + value + "'");
+  return v;
+}
+
+void parse_size(const std::string& value, RenderOptions& o) {
+  size_t x = value.find('x');
+  if (x == std::string::npos) throw std::invalid_argument("--size: expected WxH, got '" + value + "'");
+  o.width = to_int("--size", value.substr(0, x), 1);
+  o.height = to_int("--size", value.substr(x + 1), 1);
+}
+
+}  // namespace
+
+std::string render_usage(const std::string& program) {
+  std::string scenes;
+  for (const std::string& n : builtin_scene_names()) scenes += " " + n;
+  return "usage: " + program + " [options]\n"
+         "  --scene NAME|FILE     built-in scene (" + scenes + " ) or .gltf/.glb file [cornell]\n"
+         "  --method pt|ir|igi    rendering method [igi]\n"
+         "  --spp N               pt: samples per pixel; ir/igi: passes with fresh VPLs [1]\n"
+         "  --size WxH            image size [640x480]\n"
+         "  -o FILE               output image: .exr/.hdr linear, .png sRGB [render.png]\n"
+         "  --exposure E          scale before writing PNG [1]\n"
+         "  --threads T           render threads, 0 = all [0]\n"
+         "  --tile T              tile size in pixels [32]\n"
+         "  --seed S              frame seed [1]\n"
+         "  --max-depth D         pt: path length; ir/igi: specular chain [16]\n"
+         "  --vpl-sets N          ir/igi: N x N interleaved VPL sets [3]\n"
+         "  --vpl-paths M         ir/igi: light paths per VPL set [16]\n"
+         "  --clamp C             ir/igi: clamp 1/r^2 below distance C x scene diagonal, 0 = off [0]\n"
+         "  --no-filter           igi: skip the discontinuity buffer\n"
+         "  --filter-normal C     igi: neighbours need normal dot above C [0.9]\n"
+         "  --filter-depth R      igi: neighbours need relative depth difference below R [0.05]\n"
+         "  --export-gltf FILE    write the scene as glTF and exit\n"
+         "  --quiet               no progress output\n";
+}
+
+RenderOptions parse_render_options(const std::vector<std::string>& args) {
+  RenderOptions o;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) throw std::invalid_argument(a + ": missing value");
+      return args[++i];
+    };
+    RenderSettings& s = o.settings;
+    if (a == "--help" || a == "-h") o.help = true;
+    else if (a == "--scene") o.scene = value();
+    else if (a == "--method") {
+      auto m = parse_method(value());
+      if (!m) throw std::invalid_argument("--method: expected pt, ir or igi, got '" + args[i] + "'");
+      s.method = *m;
+    }
+    else if (a == "--spp") o.samples = to_int(a, value(), 1);
+    else if (a == "--size") parse_size(value(), o);
+    else if (a == "-o" || a == "--output") o.output = value();
+    else if (a == "--exposure") o.exposure = to_float(a, value());
+    else if (a == "--threads") o.threads = to_int(a, value(), 0);
+    else if (a == "--tile") o.tile_size = to_int(a, value(), 1);
+    else if (a == "--seed") o.seed = uint32_t(to_int(a, value(), 0));
+    else if (a == "--max-depth") s.max_depth = to_int(a, value(), 1);
+    else if (a == "--vpl-sets") s.interleave = to_int(a, value(), 1);
+    else if (a == "--vpl-paths") s.paths_per_set = to_int(a, value(), 1);
+    else if (a == "--clamp") s.clamp = to_float(a, value());
+    else if (a == "--no-filter") s.filter = false;
+    else if (a == "--filter-normal") s.filter_normal_cos = to_float(a, value());
+    else if (a == "--filter-depth") s.filter_depth_ratio = to_float(a, value());
+    else if (a == "--export-gltf") o.export_gltf = value();
+    else if (a == "--quiet") o.quiet = true;
+    else throw std::invalid_argument("unknown option '" + a + "' (see --help)");
+  }
+  return o;
+}
+
+}  // namespace igi

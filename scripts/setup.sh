@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs what igi-cluster needs from Debian 12 packages. Idempotent: does
+# nothing (and needs no network) when every package is already present.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libembree-dev libtbb-dev
+  libopenimageio-dev openimageio-tools
+  libglfw3-dev libgl-dev libglm-dev
+  libzmq3-dev cppzmq-dev
+  libtinygltf-dev nlohmann-json3-dev libstb-dev
+  libgtest-dev
+  xvfb xauth libgl1-mesa-dri
+  python3-venv
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "setup: installing ${missing[*]}"
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

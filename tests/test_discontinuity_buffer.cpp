@@ -1,0 +1,301 @@
+// The discontinuity buffer against its definition: the constant-time filter
+// matches the brute force on scenes with edges, takes the fast path where the
+// surface is smooth, keeps edges sharp, cancels interleaved noise exactly,
+// and gives bit-identical pixels however the image is cut into tiles.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "filter/discontinuity_buffer.h"
+#include "sampling/hash.h"
+
+namespace igi {
+namespace {
+
+constexpr float kNoSurface = std::numeric_limits<float>::infinity();
+
+// What a scene holds at an image pixel; scenes are functions of image
+// coordinates, so any region of them can be cut out.
+struct Sample {
+  float depth;
+  glm::vec3 normal;
+  glm::vec3 value;
+};
+using Scene = std::function<Sample(int x, int y)>;
+
+float uniform(int x, int y, uint32_t seed) { return float(hash(uint32_t(x), uint32_t(y), seed) >> 8) * 0x1p-24f; }
+
+glm::vec3 noisy_value(int x, int y) {
+  return glm::vec3(0.5f) + glm::vec3(uniform(x, y, 1), uniform(x, y, 2), uniform(x, y, 3));
+}
+
+const glm::vec3 kUp(0.0f, 0.0f, 1.0f);
+
+// The region (x0, y0, w, h) of a scene.
+FilterInput cut(const Scene& scene, int x0, int y0, int w, int h) {
+  FilterInput in;
+  in.x0 = x0, in.y0 = y0, in.width = w, in.height = h;
+  for (int y = y0; y < y0 + h; ++y)
+    for (int x = x0; x < x0 + w; ++x) {
+      const Sample s = scene(x, y);
+      in.depth.push_back(s.depth);
+      in.normal.push_back(s.normal);
+      in.value.push_back(s.value);
+    }
+  return in;
+}
+
+// --- Scenes, 48 x 40 unless said otherwise -----------------------------
+
+// Two fronto-parallel planes at depths 4 and 8, the step at x = 20.
+Sample depth_step(int x, int y) { return {x < 20 ? 4.0f : 8.0f, kUp, noisy_value(x, y)}; }
+
+// Two planes meeting at x = 24 at an angle (cos 0.8 < 0.9), depth continuous.
+Sample crease(int x, int y) {
+  const glm::vec3 n = x < 24 ? kUp : glm::vec3(0.6f, 0.0f, 0.8f);
+  return {6.0f + 0.01f * float(std::abs(x - 24)), n, noisy_value(x, y)};
+}
+
+// A disc of surface in front of background (no surface).
+Sample disc(int x, int y) {
+  const float dx = float(x) - 22.5f, dy = float(y) - 18.5f;
+  if (dx * dx + dy * dy > 15.0f * 15.0f) return {kNoSurface, glm::vec3(0.0f), glm::vec3(0.2f, 0.3f, 0.4f)};
+  return {5.0f, kUp, noisy_value(x, y)};
+}
+
+// A gently curved surface: depth and normal vary slowly, the value smoothly.
+Sample smooth(int x, int y) {
+  const float u = 0.07f * float(x), v = 0.05f * float(y);
+  const glm::vec3 n = glm::normalize(glm::vec3(0.15f * std::sin(u), 0.15f * std::cos(v), 1.0f));
+  return {5.0f + 0.3f * std::sin(u) * std::cos(v), n, glm::vec3(1.0f + 0.5f * std::sin(u + v))};
+}
+
+// Random depth jitter and normals, often incompatible with neighbours.
+Sample rough(int x, int y) {
+  const glm::vec3 n = glm::normalize(glm::vec3(uniform(x, y, 4) - 0.5f, uniform(x, y, 5) - 0.5f, 1.2f));
+  return {5.0f + 0.6f * uniform(x, y, 6), n, noisy_value(x, y)};
+}
+
+// All of the above in one image: quadrants, a disc of background.
+Sample combined(int x, int y) {
+  const float dx = float(x) - 50.0f, dy = float(y) - 12.0f;
+  if (dx * dx + dy * dy < 8.0f * 8.0f) return disc(1000, 1000);  // background
+  if (y >= 30 && x >= 40) return rough(x, y);
+  if (x < 25) return depth_step(x, y);
+  if (y < 30) return smooth(x, y);
+  return crease(x - 8, y);
+}
+
+// --- Helpers -------------------------------------------------------------
+
+struct Tile {
+  int x, y, w, h;
+};
+
+// Filters `tile` of an image_w x image_h image: the region is the tile
+// grown by r on every side, clipped to the image, as the renderer cuts it.
+using Filter = std::function<void(const FilterInput&, const FilterSettings&, Rect, std::span<glm::vec3>)>;
+
+std::vector<glm::vec3> filter_tile(const Filter& filter, const Scene& scene, int image_w, int image_h, Tile tile,
+                                   const FilterSettings& s) {
+  const int r = s.radius;
+  const int x0 = std::max(tile.x - r, 0), y0 = std::max(tile.y - r, 0);
+  const int x1 = std::min(tile.x + tile.w + r, image_w), y1 = std::min(tile.y + tile.h + r, image_h);
+  const FilterInput in = cut(scene, x0, y0, x1 - x0, y1 - y0);
+  std::vector<glm::vec3> out(size_t(tile.w) * tile.h);
+  filter(in, s, Rect{tile.x, tile.y, tile.w, tile.h}, out);
+  return out;
+}
+
+Filter fast(FilterStats* stats = nullptr) {
+  return [stats](const FilterInput& in, const FilterSettings& s, Rect inner, std::span<glm::vec3> out) {
+    filter_discontinuity(in, s, inner, out, stats);
+  };
+}
+const Filter brute = filter_brute_force;
+
+FilterSettings with_radius(int r) {
+  FilterSettings s;
+  s.radius = r;
+  return s;
+}
+
+// |a - b| <= 1e-5 |b| + one fixed-point quantum, per channel.
+::testing::AssertionResult agree(const std::vector<glm::vec3>& fast_out, const std::vector<glm::vec3>& reference,
+                                 double fixed_scale) {
+  for (size_t i = 0; i < reference.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double a = fast_out[i][c], b = reference[i][c];
+      if (std::abs(a - b) > 1e-5 * std::abs(b) + 1.0 / fixed_scale)
+        return ::testing::AssertionFailure() << "pixel " << i << " channel " << c << ": fast " << a
+                                             << ", brute force " << b;
+    }
+  return ::testing::AssertionSuccess();
+}
+
+// --- Tests ---------------------------------------------------------------
+
+TEST(DiscontinuityBuffer, FastMatchesBruteForceOnScenesWithEdges) {
+  const struct {
+    const char* name;
+    Scene scene;
+  } scenes[] = {{"depth step", depth_step}, {"crease", crease}, {"disc on background", disc},
+                {"smooth", smooth},         {"rough", rough},   {"combined", combined}};
+  // The whole image (every window clipped somewhere), tiles at the corners
+  // (clipped on two sides) and one inside.
+  const Tile tiles[] = {{0, 0, 48, 40}, {0, 0, 16, 16}, {13, 9, 20, 17}, {30, 25, 18, 15}, {0, 20, 9, 20}};
+  for (const auto& [name, scene] : scenes)
+    for (int r = 1; r <= 4; ++r)
+      for (const Tile& tile : tiles) {
+        SCOPED_TRACE(::testing::Message() << name << ", r " << r << ", tile at " << tile.x << "," << tile.y);
+        const FilterSettings s = with_radius(r);
+        FilterStats stats;
+        const auto out = filter_tile(fast(&stats), scene, 48, 40, tile, s);
+        EXPECT_TRUE(agree(out, filter_tile(brute, scene, 48, 40, tile, s), s.fixed_scale));
+        EXPECT_EQ(stats.fast_pixels + stats.exact_pixels, uint64_t(tile.w) * tile.h);
+      }
+}
+
+TEST(DiscontinuityBuffer, FastMatchesBruteForceWithAFrameScale) {
+  // Large values with the scale chosen for them: quanta stay relative.
+  const Scene bright = [](int x, int y) {
+    Sample s = combined(x, y);
+    s.value *= 3.0e6f;
+    return s;
+  };
+  for (int r = 1; r <= 4; ++r) {
+    FilterSettings s = with_radius(r);
+    s.fixed_scale = filter_fixed_scale(3.0e6);
+    const Tile all{0, 0, 70, 52};
+    const auto out = filter_tile(fast(), bright, 70, 52, all, s);
+    EXPECT_TRUE(agree(out, filter_tile(brute, bright, 70, 52, all, s), s.fixed_scale)) << "r " << r;
+  }
+}
+
+TEST(DiscontinuityBuffer, FastPathIsTakenOnAPlaneAndExactPathAtEdges) {
+  const Scene plane = [](int x, int y) {
+    return Sample{5.0f + 0.01f * float(x) + 0.02f * float(y), kUp, noisy_value(x, y)};
+  };
+  const Scene step = [](int x, int y) { return Sample{x < 32 ? 4.0f : 8.0f, kUp, noisy_value(x, y)}; };
+  for (int r = 1; r <= 4; ++r) {
+    FilterStats stats;
+    filter_tile(fast(&stats), plane, 64, 48, {0, 0, 64, 48}, with_radius(r));
+    EXPECT_GT(double(stats.fast_pixels), 0.9 * 64 * 48) << "r " << r;
+    // Exactly the 2r columns whose windows straddle the step need the exact path.
+    filter_tile(fast(&stats), step, 64, 48, {0, 0, 64, 48}, with_radius(r));
+    EXPECT_EQ(stats.exact_pixels, uint64_t(2 * r * 48)) << "r " << r;
+    EXPECT_EQ(stats.fast_pixels, uint64_t((64 - 2 * r) * 48)) << "r " << r;
+  }
+}
+
+TEST(DiscontinuityBuffer, StepBetweenPlanesStaysSharp) {
+  // Interleaved noise of the N x N VPL sets (N = 2r + 1) whose every column
+  // sums to zero, so any window spanning N rows averages it away, however
+  // many of its columns lie on this side of the step.
+  for (int r = 1; r <= 2; ++r) {
+    const int n = 2 * r + 1;
+    const Scene step = [n, r](int x, int y) {
+      const float noise = 0.1f * float(y % n - r) * float(1 + x % n);
+      return Sample{x < 20 ? 4.0f : 8.0f, kUp, glm::vec3((x < 20 ? 1.0f : 5.0f) + noise)};
+    };
+    for (const Filter& filter : {fast(), brute}) {
+      const auto out = filter_tile(filter, step, 40, 30, {0, 0, 40, 30}, with_radius(r));
+      for (int y = r; y < 30 - r; ++y)
+        for (int x = 0; x < 40; ++x) {
+          const float side_mean = x < 20 ? 1.0f : 5.0f;
+          const glm::vec3 v = out[size_t(y) * 40 + x];
+          for (int c = 0; c < 3; ++c)
+            ASSERT_NEAR(v[c], side_mean, 1e-5 * side_mean) << "r " << r << " at " << x << "," << y;
+        }
+    }
+  }
+}
+
+TEST(DiscontinuityBuffer, InterleavedNoiseOnAPlaneBecomesFlat) {
+  // value = base + noise(x mod 3, y mod 3), the 9 noise values summing to 0.
+  float noise[9];
+  float total = 0.0f;
+  for (int i = 0; i < 8; ++i) total += noise[i] = 0.8f * (uniform(i, 0, 7) - 0.5f);
+  noise[8] = -total;
+  const glm::vec3 base(1.0f, 2.0f, 0.5f);
+  const Scene plane = [&](int x, int y) { return Sample{5.0f, kUp, base + noise[(y % 3) * 3 + x % 3]}; };
+  const FilterSettings s = with_radius(1);
+  FilterStats stats;
+  const auto out = filter_tile(fast(&stats), plane, 30, 30, {0, 0, 30, 30}, s);
+  EXPECT_EQ(stats.exact_pixels, 0u);
+  for (int y = 1; y < 29; ++y)  // windows not clipped by the image
+    for (int x = 1; x < 29; ++x)
+      for (int c = 0; c < 3; ++c)
+        ASSERT_NEAR(out[size_t(y) * 30 + x][c], base[c], 1e-6 * base[c] + 1.0 / s.fixed_scale) << x << "," << y;
+}
+
+TEST(DiscontinuityBuffer, TilesOfAnySizeGiveBitIdenticalPixels) {
+  const int w = 70, h = 52;
+  for (int r = 1; r <= 3; ++r) {
+    const FilterSettings s = with_radius(r);
+    FilterStats stats;
+    const std::vector<glm::vec3> whole = filter_tile(fast(&stats), combined, w, h, {0, 0, w, h}, s);
+    ASSERT_GT(stats.fast_pixels, 0u);
+    ASSERT_GT(stats.exact_pixels, 0u);
+    // Tilings of different tile sizes, the first row and column of tiles cut short.
+    const Tile tilings[] = {{0, 0, 16, 16}, {5, 3, 23, 11}, {2, 9, 7, 30}, {0, 0, 41, 52}};
+    for (const Tile& t : tilings) {
+      std::vector<glm::vec3> assembled(whole.size(), glm::vec3(-1.0f));
+      for (int ty = -t.y; ty < h; ty += t.h)
+        for (int tx = -t.x; tx < w; tx += t.w) {
+          const Tile tile{std::max(tx, 0), std::max(ty, 0), std::min(tx + t.w, w) - std::max(tx, 0),
+                          std::min(ty + t.h, h) - std::max(ty, 0)};
+          const auto out = filter_tile(fast(), combined, w, h, tile, s);
+          for (int y = 0; y < tile.h; ++y)
+            std::copy_n(&out[size_t(y) * tile.w], tile.w, &assembled[size_t(tile.y + y) * w + tile.x]);
+        }
+      EXPECT_EQ(std::memcmp(assembled.data(), whole.data(), whole.size() * sizeof(glm::vec3)), 0)
+          << "r " << r << ", tiles " << t.w << "x" << t.h;
+    }
+  }
+}
+
+TEST(DiscontinuityBuffer, PixelsWithoutSurfaceAreCopied) {
+  const Tile all{0, 0, 48, 40};
+  for (const Filter& filter : {fast(), brute}) {
+    const auto out = filter_tile(filter, disc, 48, 40, all, with_radius(2));
+    for (int y = 0; y < 40; ++y)
+      for (int x = 0; x < 48; ++x)
+        if (disc(x, y).depth == kNoSurface) {
+          ASSERT_EQ(out[size_t(y) * 48 + x], disc(x, y).value) << x << "," << y;
+        }
+  }
+}
+
+TEST(DiscontinuityBuffer, FixedScaleKeeps24BitsOfATypicalValue) {
+  EXPECT_EQ(filter_fixed_scale(1.0), 0x1p24);
+  EXPECT_EQ(filter_fixed_scale(3.0), 0x1p22);  // log2 3 = 1.58 rounds to 2
+  EXPECT_EQ(filter_fixed_scale(0.1), 0x1p27);  // log2 0.1 = -3.32 rounds to -3
+  EXPECT_EQ(filter_fixed_scale(1e-30), 0x1p64);
+  EXPECT_EQ(filter_fixed_scale(1e30), 0x1p-32);
+  EXPECT_EQ(filter_fixed_scale(0.0), 0x1p32);
+  EXPECT_EQ(filter_fixed_scale(std::nan("")), 0x1p32);
+}
+
+TEST(DiscontinuityBuffer, RejectsMalformedArguments) {
+  const FilterInput in = cut(smooth, 10, 10, 8, 8);
+  std::vector<glm::vec3> out(64);
+  const FilterSettings s;
+  EXPECT_THROW(filter_discontinuity(in, s, Rect{9, 10, 8, 8}, out), std::invalid_argument);   // outside
+  EXPECT_THROW(filter_discontinuity(in, s, Rect{10, 10, 8, 9}, out), std::invalid_argument);  // too tall
+  EXPECT_THROW(filter_brute_force(in, s, Rect{10, 10, 8, 8}, std::span(out).first(63)), std::invalid_argument);
+  FilterInput short_depth = in;
+  short_depth.depth.pop_back();
+  EXPECT_THROW(filter_discontinuity(short_depth, s, Rect{10, 10, 8, 8}, out), std::invalid_argument);
+  EXPECT_NO_THROW(filter_discontinuity(in, s, Rect{12, 11, 3, 4}, out));
+}
+
+}  // namespace
+}  // namespace igi

@@ -1,0 +1,494 @@
+// load_gltf on small files built here: JSON written with nlohmann::json,
+// binary data packed by hand. Valid files check the mapping (counts, world
+// positions, materials, lights, camera); broken files must give a SceneError
+// naming the file and the offending element, never a crash.
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <OpenImageIO/imageio.h>
+
+#include "scene/gltf_loader.h"
+
+namespace igi {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+constexpr int kFloat = 5126, kUnsignedInt = 5125;
+
+// A fresh folder per test, under the build tree.
+fs::path test_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::path(IGI_TEST_OUTPUT_DIR) / "gltf_loader" / info->name();
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void write_bytes(const fs::path& path, const std::vector<unsigned char>& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
+// Builds a glTF document and its single binary buffer.
+class GltfBuilder {
+ public:
+  GltfBuilder() {
+    doc["asset"] = {{"version", "2.0"}};
+    doc["scenes"] = json::array({{{"nodes", json::array()}}});
+    doc["scene"] = 0;
+  }
+
+  int add(const char* array, json value) {
+    doc[array].push_back(std::move(value));
+    return int(doc[array].size()) - 1;
+  }
+
+  int add_view(const void* data, size_t bytes) {
+    bin.resize((bin.size() + 3) / 4 * 4, 0);
+    const size_t offset = bin.size();
+    const auto* first = static_cast<const unsigned char*>(data);
+    bin.insert(bin.end(), first, first + bytes);
+    return add("bufferViews", {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}});
+  }
+
+  int add_floats(const std::vector<float>& values, const std::string& type) {
+    const size_t components = type == "VEC3" ? 3 : type == "VEC2" ? 2 : 1;
+    const int view = add_view(values.data(), values.size() * sizeof(float));
+    return add("accessors", {{"bufferView", view}, {"componentType", kFloat},
+                             {"count", values.size() / components}, {"type", type}});
+  }
+
+  int add_indices(const std::vector<uint32_t>& indices) {
+    const int view = add_view(indices.data(), indices.size() * sizeof(uint32_t));
+    return add("accessors", {{"bufferView", view}, {"componentType", kUnsignedInt},
+                             {"count", indices.size()}, {"type", "SCALAR"}});
+  }
+
+  // Unit quad in the z = 0 plane facing +z; accessors POSITION, NORMAL,
+  // TEXCOORD_0, indices are added in that order.
+  int add_quad_mesh(int material = -1, std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3}) {
+    json primitive = {{"attributes",
+                       {{"POSITION", add_floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3")},
+                        {"NORMAL", add_floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3")},
+                        {"TEXCOORD_0", add_floats({0, 0, 1, 0, 1, 1, 0, 1}, "VEC2")}}},
+                      {"indices", add_indices(indices)}};
+    if (material >= 0) primitive["material"] = material;
+    return add("meshes", {{"primitives", json::array({primitive})}});
+  }
+
+  int add_root(json node) {
+    const int index = add("nodes", std::move(node));
+    doc["scenes"][0]["nodes"].push_back(index);
+    return index;
+  }
+
+  int add_light(json light) {
+    doc["extensionsUsed"].push_back("KHR_lights_punctual");
+    json& lights = doc["extensions"]["KHR_lights_punctual"]["lights"];
+    lights.push_back(std::move(light));
+    return int(lights.size()) - 1;
+  }
+
+  fs::path write_gltf(const fs::path& dir, const std::string& stem) {
+    if (!bin.empty()) doc["buffers"] = json::array({{{"byteLength", bin.size()}, {"uri", stem + ".bin"}}});
+    const fs::path path = dir / (stem + ".gltf");
+    std::ofstream(path) << doc.dump(2);
+    if (!bin.empty()) write_bytes(dir / (stem + ".bin"), bin);
+    return path;
+  }
+
+  fs::path write_glb(const fs::path& dir, const std::string& stem) {
+    doc["buffers"] = json::array({{{"byteLength", bin.size()}}});
+    std::string text = doc.dump();
+    text.resize((text.size() + 3) / 4 * 4, ' ');
+    std::vector<unsigned char> chunk = bin;
+    chunk.resize((chunk.size() + 3) / 4 * 4, 0);
+    std::vector<unsigned char> out;
+    auto u32 = [&out](uint32_t v) { for (int i = 0; i < 4; ++i) out.push_back((v >> (8 * i)) & 0xff); };
+    u32(0x46546C67), u32(2), u32(uint32_t(12 + 8 + text.size() + 8 + chunk.size()));
+    u32(uint32_t(text.size())), u32(0x4E4F534A);
+    out.insert(out.end(), text.begin(), text.end());
+    u32(uint32_t(chunk.size())), u32(0x004E4942);
+    out.insert(out.end(), chunk.begin(), chunk.end());
+    const fs::path path = dir / (stem + ".glb");
+    write_bytes(path, out);
+    return path;
+  }
+
+  json doc;
+  std::vector<unsigned char> bin;
+};
+
+json emissive_material() {
+  return {{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.6, 0.7, 1.0}}, {"metallicFactor", 0.0}}},
+          {"emissiveFactor", {1.0, 0.5, 0.25}},
+          {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}}}};
+}
+
+// One emissive quad on one node: the smallest scene that must load.
+GltfBuilder lit_quad() {
+  GltfBuilder b;
+  b.doc["extensionsUsed"] = json::array({"KHR_materials_emissive_strength"});
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", emissive_material()))}});
+  return b;
+}
+
+void expect_near(glm::vec3 actual, glm::vec3 expected, float tolerance = 1e-5f) {
+  EXPECT_NEAR(actual.x, expected.x, tolerance);
+  EXPECT_NEAR(actual.y, expected.y, tolerance);
+  EXPECT_NEAR(actual.z, expected.z, tolerance);
+}
+
+size_t warnings_with(const LoadedScene& loaded, const std::string& text) {
+  size_t count = 0;
+  for (const std::string& w : loaded.warnings) count += w.find(text) != std::string::npos;
+  return count;
+}
+
+// load_gltf must throw SceneError naming the file and every fragment.
+void expect_scene_error(const fs::path& path, const std::vector<std::string>& fragments) {
+  try {
+    load_gltf(path.string());
+    ADD_FAILURE() << "expected SceneError loading " << path;
+  } catch (const SceneError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(path.filename().string()), std::string::npos) << message;
+    for (const std::string& fragment : fragments)
+      EXPECT_NE(message.find(fragment), std::string::npos) << "'" << fragment << "' missing in: " << message;
+  }
+}
+
+TEST(GltfLoader, MinimalEmissiveQuad) {
+  const LoadedScene loaded = load_gltf(lit_quad().write_gltf(test_dir(), "quad").string());
+  const Scene& scene = loaded.scene;
+  EXPECT_TRUE(loaded.warnings.empty()) << loaded.warnings.front();
+  ASSERT_EQ(scene.positions.size(), 4u);
+  ASSERT_EQ(scene.normals.size(), 4u);
+  ASSERT_EQ(scene.uvs.size(), 4u);
+  ASSERT_EQ(scene.triangles.size(), 2u);
+  ASSERT_EQ(scene.materials.size(), 1u);
+  EXPECT_EQ(scene.triangles[1], glm::uvec3(0, 2, 3));
+  EXPECT_EQ(scene.triangle_material, std::vector<uint32_t>({0, 0}));
+  const Material& m = scene.materials[0];
+  EXPECT_EQ(m.type, MaterialType::Diffuse);
+  expect_near(m.base_color, {0.5f, 0.6f, 0.7f});
+  expect_near(m.emission, {4.0f, 2.0f, 1.0f});
+  EXPECT_FALSE(m.double_sided);
+  expect_near(scene.positions[2], {1, 1, 0});
+  expect_near(scene.normals[2], {0, 0, 1});
+  EXPECT_EQ(scene.uvs[2], glm::vec2(1, 1));
+  EXPECT_TRUE(scene.lights.empty());
+  EXPECT_FALSE(scene.camera.has_value());
+}
+
+TEST(GltfLoader, GlbLoads) {
+  const LoadedScene loaded = load_gltf(lit_quad().write_glb(test_dir(), "quad").string());
+  EXPECT_EQ(loaded.scene.positions.size(), 4u);
+  EXPECT_EQ(loaded.scene.triangles.size(), 2u);
+  expect_near(loaded.scene.materials.at(0).emission, {4.0f, 2.0f, 1.0f});
+}
+
+TEST(GltfLoader, NestedAndSharedNodesGiveWorldPositions) {
+  GltfBuilder b = lit_quad();  // node 0: the quad at the origin
+  const int mesh = 0;
+  b.doc["nodes"][0]["translation"] = {10, 0, 0};
+  const double s = std::sqrt(0.5);
+  const int child = 2;  // added after its parent
+  b.add_root({{"translation", {0, 5, 0}}, {"rotation", {0, 0, s, s}}, {"children", json::array({child})}});
+  b.add("nodes", {{"mesh", mesh}, {"scale", {2, 2, 2}}});
+  b.add_root({{"mesh", mesh}, {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -7, 1}}});
+  const Scene scene = load_gltf(b.write_gltf(test_dir(), "nodes").string()).scene;
+  ASSERT_EQ(scene.positions.size(), 12u);
+  ASSERT_EQ(scene.triangles.size(), 6u);
+  // Depth first in file order: node 0, node 1's child, node 3.
+  expect_near(scene.positions[1], {11, 0, 0});
+  expect_near(scene.positions[2], {11, 1, 0});
+  expect_near(scene.positions[5], {0, 7, 0});   // R_z(90) * 2 * (1,0,0) + (0,5,0)
+  expect_near(scene.positions[6], {-2, 7, 0});  // R_z(90) * 2 * (1,1,0) + (0,5,0)
+  expect_near(scene.normals[6], {0, 0, 1});
+  expect_near(scene.positions[10], {1, 1, -7});
+}
+
+TEST(GltfLoader, MirroringNodeFlipsWindingAndKeepsNormals) {
+  GltfBuilder b = lit_quad();
+  b.doc["nodes"][0]["scale"] = {-1, 1, 1};
+  const Scene scene = load_gltf(b.write_gltf(test_dir(), "mirror").string()).scene;
+  ASSERT_EQ(scene.triangles.size(), 2u);
+  expect_near(scene.positions[1], {-1, 0, 0});
+  for (const glm::uvec3& t : scene.triangles) {
+    const glm::vec3 geometric = glm::cross(scene.positions[t.y] - scene.positions[t.x],
+                                           scene.positions[t.z] - scene.positions[t.x]);
+    EXPECT_GT(glm::dot(geometric, scene.normals[t.x]), 0.0f) << "front face must stay on the normal's side";
+  }
+}
+
+TEST(GltfLoader, PunctualLightsAndCameraAreRead) {
+  GltfBuilder b;
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", json{{"pbrMetallicRoughness", {{"metallicFactor", 0}}}}))}});
+  const double s = std::sqrt(0.5);
+  const int point = b.add_light({{"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 8.0}});
+  const int spot = b.add_light({{"type", "spot"}, {"intensity", 2.0}, {"range", 10.0},
+                                {"spot", {{"innerConeAngle", 0.1}, {"outerConeAngle", 0.5}}}});
+  b.add_root({{"translation", {1, 2, 3}}, {"extensions", {{"KHR_lights_punctual", {{"light", point}}}}}});
+  b.add_root({{"translation", {0, 4, 0}}, {"rotation", {-s, 0, 0, s}},  // -Z onto -Y
+              {"extensions", {{"KHR_lights_punctual", {{"light", spot}}}}}});
+  b.add("cameras", {{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.01}}}});
+  b.add_root({{"camera", 0}, {"translation", {1, 2, 3}}, {"rotation", {0, s, 0, s}}});  // -Z onto -X
+  const LoadedScene loaded = load_gltf(b.write_gltf(test_dir(), "lights").string());
+  const Scene& scene = loaded.scene;
+  ASSERT_EQ(scene.lights.size(), 2u);
+  EXPECT_EQ(scene.lights[0].type, LightType::Point);
+  expect_near(scene.lights[0].position, {1, 2, 3});
+  expect_near(scene.lights[0].intensity, {8, 4, 2});
+  EXPECT_EQ(scene.lights[1].type, LightType::Spot);
+  expect_near(scene.lights[1].position, {0, 4, 0});
+  expect_near(scene.lights[1].direction, {0, -1, 0});
+  expect_near(scene.lights[1].intensity, {2, 2, 2});
+  EXPECT_FLOAT_EQ(scene.lights[1].inner_cone, 0.1f);
+  EXPECT_FLOAT_EQ(scene.lights[1].outer_cone, 0.5f);
+  EXPECT_EQ(warnings_with(loaded, "range"), 1u);
+  ASSERT_TRUE(scene.camera.has_value());
+  expect_near(scene.camera->position, {1, 2, 3});
+  expect_near(scene.camera->forward, {-1, 0, 0});
+  expect_near(scene.camera->up, {0, 1, 0});
+  EXPECT_FLOAT_EQ(scene.camera->vfov, 0.8f);
+}
+
+TEST(GltfLoader, OrthographicCameraIsIgnoredWithAWarning) {
+  GltfBuilder b = lit_quad();
+  b.add("cameras", {{"type", "orthographic"},
+                    {"orthographic", {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", 0.1}, {"zfar", 10.0}}}});
+  b.add_root({{"camera", 0}});
+  const LoadedScene loaded = load_gltf(b.write_gltf(test_dir(), "ortho").string());
+  EXPECT_FALSE(loaded.scene.camera.has_value());
+  EXPECT_EQ(warnings_with(loaded, "orthographic camera"), 1u);
+}
+
+TEST(GltfLoader, MaterialsMapOntoTheFourModels) {
+  GltfBuilder b = lit_quad();
+  auto quad_with = [&b](json material) { b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", material))}}); };
+  quad_with({{"pbrMetallicRoughness", {{"baseColorFactor", {0.9, 0.8, 0.7, 1}}, {"roughnessFactor", 0.5}}}});
+  quad_with({{"pbrMetallicRoughness", {{"roughnessFactor", 0.0}}}});
+  quad_with({{"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                             {"KHR_materials_ior", {{"ior", 1.33}}}}}});
+  quad_with(json::object());  // no pbrMetallicRoughness: glTF defaults
+  quad_with({{"pbrMetallicRoughness", {{"metallicFactor", 0.7}}}});
+  quad_with({{"pbrMetallicRoughness", {{"metallicFactor", 0.3}}}});
+  quad_with({{"alphaMode", "BLEND"}});
+  quad_with({{"alphaMode", "MASK"}, {"alphaCutoff", 0.3}, {"doubleSided", true}});
+  b.add_root({{"mesh", b.add_quad_mesh()}});  // no material
+  const LoadedScene loaded = load_gltf(b.write_gltf(test_dir(), "materials").string());
+  const std::vector<Material>& m = loaded.scene.materials;
+  ASSERT_EQ(m.size(), 10u);  // nine from the file, then the default
+  EXPECT_EQ(m[1].type, MaterialType::Conductor);
+  EXPECT_FLOAT_EQ(m[1].alpha, 0.25f);
+  expect_near(m[1].base_color, {0.9f, 0.8f, 0.7f});
+  EXPECT_EQ(m[2].type, MaterialType::Mirror);
+  EXPECT_EQ(m[3].type, MaterialType::Glass);
+  EXPECT_FLOAT_EQ(m[3].ior, 1.33f);
+  EXPECT_EQ(m[4].type, MaterialType::Conductor);
+  EXPECT_FLOAT_EQ(m[4].alpha, 1.0f);
+  expect_near(m[4].base_color, {1, 1, 1});
+  EXPECT_EQ(m[5].type, MaterialType::Conductor);
+  EXPECT_EQ(m[6].type, MaterialType::Diffuse);
+  EXPECT_EQ(warnings_with(loaded, "metallicFactor between 0 and 1"), 1u);
+  EXPECT_TRUE(m[7].alpha_mask);
+  EXPECT_FLOAT_EQ(m[7].alpha_cutoff, 0.5f);
+  EXPECT_EQ(warnings_with(loaded, "BLEND"), 1u);
+  EXPECT_TRUE(m[8].alpha_mask);
+  EXPECT_FLOAT_EQ(m[8].alpha_cutoff, 0.3f);
+  EXPECT_TRUE(m[8].double_sided);
+  EXPECT_EQ(m[9].type, MaterialType::Conductor);
+  EXPECT_FALSE(m[9].double_sided);
+  EXPECT_EQ(loaded.scene.triangle_material.back(), 9u);
+}
+
+// 2x1 RGBA PNG: (128, 0, 255, 255) then (0, 64, 0, 128).
+fs::path write_png(const fs::path& path) {
+  const unsigned char pixels[8] = {128, 0, 255, 255, 0, 64, 0, 128};
+  auto out = OIIO::ImageOutput::create(path.string());
+  OIIO::ImageSpec spec(2, 1, 4, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:UnassociatedAlpha", 1);  // store the bytes as given
+  EXPECT_TRUE(out && out->open(path.string(), spec));
+  EXPECT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels));
+  out->close();
+  return path;
+}
+
+float srgb(float c) { return std::pow((c + 0.055f) / 1.055f, 2.4f); }
+
+void expect_decoded_png(const LoadedScene& loaded) {
+  ASSERT_EQ(loaded.scene.textures.size(), 1u);
+  const Texture& t = loaded.scene.textures[0];
+  ASSERT_EQ(t.width, 2);
+  ASSERT_EQ(t.height, 1);
+  EXPECT_NEAR(t.texels[0].r, srgb(128.0f / 255.0f), 1e-4f);  // sRGB decoded
+  EXPECT_NEAR(t.texels[0].b, 1.0f, 1e-6f);
+  EXPECT_NEAR(t.texels[1].a, 128.0f / 255.0f, 1e-6f);  // alpha stays linear
+  EXPECT_EQ(loaded.scene.materials[1].base_color_texture, 0);
+}
+
+json textured_material() {
+  return {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0}}},
+          {"normalTexture", {{"index", 0}}}};
+}
+
+TEST(GltfLoader, BaseColorTextureFromFileIsLinear) {
+  const fs::path dir = test_dir();
+  GltfBuilder b = lit_quad();
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", textured_material()))}});
+  b.add("images", {{"uri", write_png(dir / "texture.png").filename().string()}});
+  b.add("samplers", {{"magFilter", 9728}});  // NEAREST
+  b.add("textures", {{"source", 0}, {"sampler", 0}});
+  const LoadedScene loaded = load_gltf(b.write_gltf(dir, "textured").string());
+  expect_decoded_png(loaded);
+  EXPECT_EQ(warnings_with(loaded, "filter"), 1u);
+  EXPECT_EQ(warnings_with(loaded, "normalTexture ignored"), 1u);
+}
+
+TEST(GltfLoader, BaseColorTextureInGlbBufferView) {
+  const fs::path dir = test_dir();
+  std::ifstream in(write_png(dir / "texture.png"), std::ios::binary);
+  const std::vector<unsigned char> png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  GltfBuilder b = lit_quad();
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", textured_material()))}});
+  b.add("images", {{"bufferView", b.add_view(png.data(), png.size())}, {"mimeType", "image/png"}});
+  b.add("textures", {{"source", 0}});
+  expect_decoded_png(load_gltf(b.write_glb(dir, "textured").string()));
+}
+
+TEST(GltfLoader, UnknownExtensionWarnsOnceByName) {
+  GltfBuilder b = lit_quad();
+  b.doc["extensionsUsed"].push_back("EXT_made_up");
+  b.doc["materials"][0]["extensions"]["EXT_made_up"] = json::object();
+  b.doc["nodes"][0]["extensions"]["EXT_made_up"] = {{"x", 1}};
+  const LoadedScene loaded = load_gltf(b.write_gltf(test_dir(), "extension").string());
+  EXPECT_EQ(warnings_with(loaded, "EXT_made_up"), 1u);
+  EXPECT_EQ(loaded.warnings.size(), 1u) << "known extensions must not warn";
+}
+
+TEST(GltfLoader, IgnoredFeaturesWarnOncePerFeature) {
+  GltfBuilder b = lit_quad();
+  const int uv1 = b.add_floats({0, 0, 1, 0, 1, 1, 0, 1}, "VEC2");
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = uv1;
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_2"] = uv1;
+  json lines = b.doc["meshes"][0]["primitives"][0];
+  lines["mode"] = 1;
+  b.doc["meshes"][0]["primitives"].push_back(lines);
+  b.doc["meshes"][0]["primitives"].push_back(lines);
+  const LoadedScene loaded = load_gltf(b.write_gltf(test_dir(), "features").string());
+  EXPECT_EQ(loaded.scene.triangles.size(), 2u);
+  EXPECT_EQ(warnings_with(loaded, "TEXCOORD_n"), 1u);
+  EXPECT_EQ(warnings_with(loaded, "LINES"), 1u);
+}
+
+TEST(GltfLoader, ZeroAreaTrianglesAreDroppedWithOneWarning) {
+  GltfBuilder b;
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", emissive_material()), {0, 1, 2, 1, 1, 2, 0, 2, 3, 3, 3, 3})}});
+  const LoadedScene loaded = load_gltf(b.write_gltf(test_dir(), "degenerate").string());
+  EXPECT_EQ(loaded.scene.triangles.size(), 2u);
+  EXPECT_EQ(warnings_with(loaded, "dropped 2 zero-area triangles"), 1u);
+}
+
+TEST(GltfLoader, NonFiniteNormalIsReplacedByGeometricNormal) {
+  GltfBuilder b = lit_quad();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(b.bin.data() + 48, &nan, sizeof(float));  // NORMAL[0].x
+  const LoadedScene loaded = load_gltf(b.write_gltf(test_dir(), "normals").string());
+  expect_near(loaded.scene.normals[0], {0, 0, 1});
+  EXPECT_EQ(warnings_with(loaded, "replaced 1 non-finite"), 1u);
+}
+
+TEST(GltfLoader, MissingFileIsAnError) {
+  expect_scene_error(test_dir() / "absent.gltf", {"no such file"});
+}
+
+TEST(GltfLoader, JsonSyntaxErrorIsAnError) {
+  const fs::path path = test_dir() / "broken.gltf";
+  std::ofstream(path) << "{ \"asset\": { \"version\": \"2.0\" }, ";
+  expect_scene_error(path, {"parse error"});
+}
+
+TEST(GltfLoader, TruncatedGlbIsAnError) {
+  const fs::path dir = test_dir();
+  const fs::path path = lit_quad().write_glb(dir, "truncated");
+  fs::resize_file(path, fs::file_size(path) - 16);
+  expect_scene_error(path, {"GLB header", "truncated"});
+  fs::resize_file(path, 10);
+  expect_scene_error(path, {"GLB header", "truncated"});
+}
+
+TEST(GltfLoader, MissingBinIsAnError) {
+  const fs::path dir = test_dir();
+  const fs::path path = lit_quad().write_gltf(dir, "nobin");
+  fs::remove(dir / "nobin.bin");
+  expect_scene_error(path, {"nobin.bin"});
+}
+
+TEST(GltfLoader, AccessorBeyondItsBufferViewIsAnError) {
+  GltfBuilder b = lit_quad();
+  b.doc["accessors"][1]["count"] = 1000;
+  expect_scene_error(b.write_gltf(test_dir(), "accessor"), {"accessors[1]", "NORMAL", "count 1000", "bufferView 1"});
+}
+
+TEST(GltfLoader, HugeAccessorCountIsRejectedBeforeAllocating) {
+  const fs::path dir = test_dir();
+  for (uint64_t count : {uint64_t(1) << 30, uint64_t(1) << 61}) {
+    GltfBuilder b = lit_quad();
+    b.doc["accessors"][0]["count"] = count;
+    expect_scene_error(b.write_gltf(dir, "huge"), {"accessors[0]", "POSITION", "count " + std::to_string(count)});
+  }
+}
+
+TEST(GltfLoader, IndexPastVertexCountIsAnError) {
+  GltfBuilder b;
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", emissive_material()), {0, 1, 2, 0, 2, 7})}});
+  expect_scene_error(b.write_gltf(test_dir(), "indices"), {"accessors[3]", "indices", "index 7", "4 vertices"});
+}
+
+TEST(GltfLoader, NanPositionIsAnError) {
+  GltfBuilder b = lit_quad();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(b.bin.data() + 12, &nan, sizeof(float));  // POSITION[1].x
+  expect_scene_error(b.write_gltf(test_dir(), "nan"), {"accessors[0]", "POSITION", "element 1 is not finite"});
+}
+
+TEST(GltfLoader, WrongPositionTypeIsAnError) {
+  GltfBuilder b = lit_quad();
+  b.doc["accessors"][0]["type"] = "VEC2";
+  expect_scene_error(b.write_gltf(test_dir(), "type"), {"accessors[0]", "POSITION", "VEC2", "expected VEC3"});
+  b.doc["accessors"][0]["type"] = "VEC3";
+  b.doc["accessors"][0]["componentType"] = 5123;  // UNSIGNED_SHORT
+  expect_scene_error(b.write_gltf(test_dir(), "type"), {"accessors[0]", "UNSIGNED_SHORT", "expected FLOAT"});
+}
+
+TEST(GltfLoader, BufferViewBeyondItsBufferIsAnError) {
+  GltfBuilder b = lit_quad();
+  b.doc["bufferViews"][2]["byteLength"] = 4096;
+  expect_scene_error(b.write_gltf(test_dir(), "view"), {"bufferViews[2]", "exceeds buffer 0"});
+}
+
+TEST(GltfLoader, SceneWithoutLightIsAnError) {
+  GltfBuilder b;
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", json{{"pbrMetallicRoughness", {{"metallicFactor", 0}}}}))}});
+  expect_scene_error(b.write_gltf(test_dir(), "dark"), {"no light"});
+}
+
+TEST(GltfLoader, SceneWithoutGeometryIsAnError) {
+  GltfBuilder b;
+  b.add_root({{"extensions", {{"KHR_lights_punctual", {{"light", b.add_light({{"type", "point"}})}}}}}});
+  expect_scene_error(b.write_gltf(test_dir(), "empty"), {"no geometry"});
+}
+
+}  // namespace
+}  // namespace igi

@@ -1,0 +1,114 @@
+// The reference path tracer against answers known in closed form.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "image/metrics.h"
+#include "render/offline_render.h"
+#include "scene/builtin_scenes.h"
+#include "support/image_compare.h"
+
+namespace igi {
+namespace {
+
+struct Rendered {
+  Image image;
+  RayCounts rays;
+};
+
+Rendered render_pt(const Scene& scene, int size, int spp, uint32_t seed = 1, int max_depth = 16) {
+  Accel accel(scene);
+  LightSet lights(scene);
+  RenderSettings settings;
+  settings.method = MethodKind::PathTracer;
+  settings.max_depth = max_depth;
+  FrameSetup frame;
+  frame.camera = scene.camera_or_auto();
+  frame.width = frame.height = size;
+  frame.seed = seed;
+  OfflineResult r = render_offline({scene, accel, lights}, settings, frame, spp, FrameOptions{});
+  return {r.image, r.rays};
+}
+
+// Mean over pixels and channels with the standard error of that mean.
+std::pair<double, double> mean_and_error(const Image& image) {
+  double sum = 0, sum2 = 0;
+  const double n = double(image.pixels.size());
+  for (const glm::vec3& p : image.pixels) {
+    double v = (p.x + p.y + p.z) / 3.0;
+    sum += v; sum2 += v * v;
+  }
+  double mean = sum / n;
+  return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n)};
+}
+
+class WhiteFurnace : public ::testing::TestWithParam<float> {};
+
+TEST_P(WhiteFurnace, ClosedSphereGivesEmissionOverOneMinusAlbedo) {
+  const float albedo = GetParam(), emission = 1.0f;
+  Rendered r = render_pt(make_furnace(albedo, emission), 24, 32, 1, 256);
+  auto [mean, error] = mean_and_error(r.image);
+  const double expected = emission / (1.0 - albedo);
+  // Statistical tolerance: five standard errors, plus 0.5 % for the sphere's facets.
+  EXPECT_NEAR(mean, expected, 5.0 * error + 0.005 * expected) << "standard error " << error;
+}
+
+INSTANTIATE_TEST_SUITE_P(PathTracer, WhiteFurnace, ::testing::Values(0.0f, 0.5f, 0.8f));
+
+TEST(PathTracer, DiffusePlaneUnderPointLightMatchesInverseSquareLaw) {
+  // Lambertian plane y = 0 of albedo a, point light of intensity I at height h:
+  // radiance below the light is a/pi * I / h^2, whatever the view direction.
+  Scene s;
+  Material m;
+  m.base_color = glm::vec3(0.5f);
+  add_material(s, m);
+  add_quad(s, {-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}, {10, 0, -10}, 0);
+  PunctualLight light;
+  light.position = {0.0f, 2.0f, 0.0f};
+  light.intensity = glm::vec3(8.0f);
+  s.lights.push_back(light);
+  Camera cam;
+  cam.position = {0.0f, 1.0f, 0.0f};
+  cam.forward = {0.0f, -1.0f, 0.0f};
+  cam.up = {0.0f, 0.0f, 1.0f};
+  cam.vfov = 0.02f;  // a narrow view of the point straight below the light
+  s.camera = cam;
+  Rendered r = render_pt(s, 4, 4);
+  const float expected = 0.5f / 3.14159265f * 8.0f / 4.0f;
+  for (const glm::vec3& p : r.image.pixels) EXPECT_NEAR(p.x, expected, 2e-3f * expected);
+}
+
+TEST(PathTracer, SameSeedIsBitIdenticalAndThreadCountDoesNotMatter) {
+  Scene scene = make_cornell_box();
+  Accel accel(scene);
+  LightSet lights(scene);
+  RenderSettings settings;
+  settings.method = MethodKind::PathTracer;
+  FrameSetup frame;
+  frame.camera = scene.camera_or_auto();
+  frame.width = 48;
+  frame.height = 40;
+  FrameOptions one, two;
+  one.threads = 1; one.tile_size = 7;
+  two.threads = 2; two.tile_size = 16;
+  Image a = render_offline({scene, accel, lights}, settings, frame, 4, one).image;
+  Image b = render_offline({scene, accel, lights}, settings, frame, 4, two).image;
+  EXPECT_TRUE(test::images_identical("pt-threads", a, b));
+}
+
+TEST(PathTracer, CornellMeanMatchesHighSampleRunAndErrorFallsWithSamples) {
+  Scene scene = make_cornell_box();
+  Image reference = render_pt(scene, 32, 1024, 7).image;
+  Image low = render_pt(scene, 32, 16, 1).image;
+  Image mid = render_pt(scene, 32, 128, 1).image;
+  glm::vec3 mr = reference.mean(), ml = low.mean();
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(ml[c], mr[c], 0.03 * mr[c]) << "channel " << c;
+  double e_low = rel_mse(low, reference), e_mid = rel_mse(mid, reference);
+  EXPECT_LT(e_mid, 0.5 * e_low) << "relMSE 16 spp " << e_low << ", 128 spp " << e_mid;
+  // The Cornell box is lit: the image is neither black nor blown out.
+  EXPECT_GT(mr.x, 0.05f);
+  EXPECT_LT(mr.x, 2.0f);
+}
+
+}  // namespace
+}  // namespace igi
