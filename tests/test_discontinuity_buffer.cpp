@@ -188,10 +188,14 @@ TEST(DiscontinuityBuffer, FastPathIsTakenOnAPlaneAndExactPathAtEdges) {
     FilterStats stats;
     filter_tile(fast(&stats), plane, 64, 48, {0, 0, 64, 48}, with_radius(r));
     EXPECT_GT(double(stats.fast_pixels), 0.9 * 64 * 48) << "r " << r;
-    // Exactly the 2r columns whose windows straddle the step need the exact path.
-    filter_tile(fast(&stats), step, 64, 48, {0, 0, 64, 48}, with_radius(r));
+    // Exactly the 2r columns whose windows straddle the step need the exact
+    // path, and there the result is the brute force's, bit for bit.
+    const auto out = filter_tile(fast(&stats), step, 64, 48, {0, 0, 64, 48}, with_radius(r));
     EXPECT_EQ(stats.exact_pixels, uint64_t(2 * r * 48)) << "r " << r;
     EXPECT_EQ(stats.fast_pixels, uint64_t((64 - 2 * r) * 48)) << "r " << r;
+    const auto reference = filter_tile(brute, step, 64, 48, {0, 0, 64, 48}, with_radius(r));
+    for (int y = 0; y < 48; ++y)
+      for (int x = 32 - r; x < 32 + r; ++x) ASSERT_EQ(out[size_t(y) * 64 + x], reference[size_t(y) * 64 + x]);
   }
 }
 
@@ -271,6 +275,43 @@ TEST(DiscontinuityBuffer, PixelsWithoutSurfaceAreCopied) {
         if (disc(x, y).depth == kNoSurface) {
           ASSERT_EQ(out[size_t(y) * 48 + x], disc(x, y).value) << x << "," << y;
         }
+  }
+}
+
+TEST(DiscontinuityBuffer, PixelAlwaysCountsItselfUnderStrictThresholds) {
+  // With normal_cos = 1 no two distinct random normals agree, and rounding
+  // puts dot(n_p, n_p) below 1 for many; p must still average over itself.
+  FilterSettings s = with_radius(2);
+  s.normal_cos = 1.0f;
+  s.depth_ratio = 0.0f;
+  int self_dot_below_one = 0;
+  for (int y = 0; y < 20; ++y)
+    for (int x = 0; x < 20; ++x) {
+      const glm::vec3 n = rough(x, y).normal;
+      self_dot_below_one += n.x * n.x + n.y * n.y + n.z * n.z < 1.0f;
+    }
+  ASSERT_GT(self_dot_below_one, 0);
+  for (const Filter& filter : {fast(), brute}) {
+    const auto out = filter_tile(filter, rough, 20, 20, {0, 0, 20, 20}, s);
+    for (int y = 0; y < 20; ++y)
+      for (int x = 0; x < 20; ++x) ASSERT_EQ(out[size_t(y) * 20 + x], rough(x, y).value) << x << "," << y;
+  }
+}
+
+TEST(DiscontinuityBuffer, FastPathRoundsValuesToTheNearestQuantum) {
+  // With fixed_scale 4 the quantum is 0.25: a constant value v comes out as
+  // llround(4 v) / 4 (halves away from zero).
+  const struct {
+    float value, quantised;
+  } cases[] = {{0.3f, 0.25f}, {0.4f, 0.5f}, {0.375f, 0.5f}, {0.6f, 0.5f}, {2.0f, 2.0f}};
+  for (const auto& [value, quantised] : cases) {
+    const Scene plane = [value](int, int) { return Sample{5.0f, kUp, glm::vec3(value)}; };
+    FilterSettings s = with_radius(1);
+    s.fixed_scale = 4.0;
+    FilterStats stats;
+    const auto out = filter_tile(fast(&stats), plane, 8, 8, {0, 0, 8, 8}, s);
+    EXPECT_EQ(stats.fast_pixels, 64u);
+    for (const glm::vec3& v : out) ASSERT_EQ(v, glm::vec3(quantised)) << "value " << value;
   }
 }
 

@@ -129,6 +129,8 @@ class GltfBuilder {
   std::vector<unsigned char> bin;
 };
 
+json diffuse_material() { return {{"pbrMetallicRoughness", {{"metallicFactor", 0}}}}; }
+
 json emissive_material() {
   return {{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.6, 0.7, 1.0}}, {"metallicFactor", 0.0}}},
           {"emissiveFactor", {1.0, 0.5, 0.25}},
@@ -232,9 +234,19 @@ TEST(GltfLoader, MirroringNodeFlipsWindingAndKeepsNormals) {
   }
 }
 
+TEST(GltfLoader, NonUniformScaleTransformsNormalsByInverseTranspose) {
+  GltfBuilder b = lit_quad();
+  const float tilted[3] = {0.0f, std::sqrt(0.5f), std::sqrt(0.5f)};
+  for (int v = 0; v < 4; ++v) std::memcpy(b.bin.data() + 48 + 12 * v, tilted, sizeof(tilted));  // NORMAL
+  b.doc["nodes"][0]["scale"] = {1, 2, 1};
+  const Scene scene = load_gltf(b.write_gltf(test_dir(), "scaled").string()).scene;
+  // (M^-1)^T n = (0, 1/2, 1) / sqrt(2), normalised; M n would lean the other way.
+  expect_near(scene.normals[0], glm::normalize(glm::vec3(0, 0.5f, 1)));
+}
+
 TEST(GltfLoader, PunctualLightsAndCameraAreRead) {
   GltfBuilder b;
-  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", json{{"pbrMetallicRoughness", {{"metallicFactor", 0}}}}))}});
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", diffuse_material()))}});
   const double s = std::sqrt(0.5);
   const int point = b.add_light({{"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 8.0}});
   const int spot = b.add_light({{"type", "spot"}, {"intensity", 2.0}, {"range", 10.0},
@@ -242,7 +254,8 @@ TEST(GltfLoader, PunctualLightsAndCameraAreRead) {
   b.add_root({{"translation", {1, 2, 3}}, {"extensions", {{"KHR_lights_punctual", {{"light", point}}}}}});
   b.add_root({{"translation", {0, 4, 0}}, {"rotation", {-s, 0, 0, s}},  // -Z onto -Y
               {"extensions", {{"KHR_lights_punctual", {{"light", spot}}}}}});
-  b.add("cameras", {{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.01}}}});
+  b.add("cameras", {{"type", "perspective"},
+                    {"perspective", {{"yfov", 0.8}, {"znear", 0.01}, {"aspectRatio", 1.5}}}});
   b.add_root({{"camera", 0}, {"translation", {1, 2, 3}}, {"rotation", {0, s, 0, s}}});  // -Z onto -X
   const LoadedScene loaded = load_gltf(b.write_gltf(test_dir(), "lights").string());
   const Scene& scene = loaded.scene;
@@ -262,6 +275,15 @@ TEST(GltfLoader, PunctualLightsAndCameraAreRead) {
   expect_near(scene.camera->forward, {-1, 0, 0});
   expect_near(scene.camera->up, {0, 1, 0});
   EXPECT_FLOAT_EQ(scene.camera->vfov, 0.8f);
+  EXPECT_EQ(warnings_with(loaded, "aspectRatio"), 1u);
+}
+
+TEST(GltfLoader, SpotConesOutOfOrderAreAnError) {
+  GltfBuilder b = lit_quad();
+  const json cones = {{"innerConeAngle", 0.6}, {"outerConeAngle", 0.5}};
+  const int spot = b.add_light({{"type", "spot"}, {"spot", cones}});
+  b.add_root({{"extensions", {{"KHR_lights_punctual", {{"light", spot}}}}}});
+  expect_scene_error(b.write_gltf(test_dir(), "cones"), {"lights[0]", "inner < outer"});
 }
 
 TEST(GltfLoader, OrthographicCameraIsIgnoredWithAWarning) {
@@ -276,7 +298,9 @@ TEST(GltfLoader, OrthographicCameraIsIgnoredWithAWarning) {
 
 TEST(GltfLoader, MaterialsMapOntoTheFourModels) {
   GltfBuilder b = lit_quad();
-  auto quad_with = [&b](json material) { b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", material))}}); };
+  auto quad_with = [&b](json material) {
+    b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", material))}});
+  };
   quad_with({{"pbrMetallicRoughness", {{"baseColorFactor", {0.9, 0.8, 0.7, 1}}, {"roughnessFactor", 0.5}}}});
   quad_with({{"pbrMetallicRoughness", {{"roughnessFactor", 0.0}}}});
   quad_with({{"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
@@ -359,7 +383,8 @@ TEST(GltfLoader, BaseColorTextureFromFileIsLinear) {
 TEST(GltfLoader, BaseColorTextureInGlbBufferView) {
   const fs::path dir = test_dir();
   std::ifstream in(write_png(dir / "texture.png"), std::ios::binary);
-  const std::vector<unsigned char> png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::vector<unsigned char> png((std::istreambuf_iterator<char>(in)),
+                                       std::istreambuf_iterator<char>());
   GltfBuilder b = lit_quad();
   b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", textured_material()))}});
   b.add("images", {{"bufferView", b.add_view(png.data(), png.size())}, {"mimeType", "image/png"}});
@@ -394,7 +419,8 @@ TEST(GltfLoader, IgnoredFeaturesWarnOncePerFeature) {
 
 TEST(GltfLoader, ZeroAreaTrianglesAreDroppedWithOneWarning) {
   GltfBuilder b;
-  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", emissive_material()), {0, 1, 2, 1, 1, 2, 0, 2, 3, 3, 3, 3})}});
+  const std::vector<uint32_t> indices = {0, 1, 2, 1, 1, 2, 0, 2, 3, 3, 3, 3};
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", emissive_material()), indices)}});
   const LoadedScene loaded = load_gltf(b.write_gltf(test_dir(), "degenerate").string());
   EXPECT_EQ(loaded.scene.triangles.size(), 2u);
   EXPECT_EQ(warnings_with(loaded, "dropped 2 zero-area triangles"), 1u);
@@ -438,7 +464,8 @@ TEST(GltfLoader, MissingBinIsAnError) {
 TEST(GltfLoader, AccessorBeyondItsBufferViewIsAnError) {
   GltfBuilder b = lit_quad();
   b.doc["accessors"][1]["count"] = 1000;
-  expect_scene_error(b.write_gltf(test_dir(), "accessor"), {"accessors[1]", "NORMAL", "count 1000", "bufferView 1"});
+  expect_scene_error(b.write_gltf(test_dir(), "accessor"),
+                     {"accessors[1]", "NORMAL", "count 1000", "bufferView 1"});
 }
 
 TEST(GltfLoader, HugeAccessorCountIsRejectedBeforeAllocating) {
@@ -446,21 +473,24 @@ TEST(GltfLoader, HugeAccessorCountIsRejectedBeforeAllocating) {
   for (uint64_t count : {uint64_t(1) << 30, uint64_t(1) << 61}) {
     GltfBuilder b = lit_quad();
     b.doc["accessors"][0]["count"] = count;
-    expect_scene_error(b.write_gltf(dir, "huge"), {"accessors[0]", "POSITION", "count " + std::to_string(count)});
+    expect_scene_error(b.write_gltf(dir, "huge"),
+                       {"accessors[0]", "POSITION", "count " + std::to_string(count)});
   }
 }
 
 TEST(GltfLoader, IndexPastVertexCountIsAnError) {
   GltfBuilder b;
   b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", emissive_material()), {0, 1, 2, 0, 2, 7})}});
-  expect_scene_error(b.write_gltf(test_dir(), "indices"), {"accessors[3]", "indices", "index 7", "4 vertices"});
+  expect_scene_error(b.write_gltf(test_dir(), "indices"),
+                     {"accessors[3]", "indices", "index 7", "4 vertices"});
 }
 
 TEST(GltfLoader, NanPositionIsAnError) {
   GltfBuilder b = lit_quad();
   const float nan = std::numeric_limits<float>::quiet_NaN();
   std::memcpy(b.bin.data() + 12, &nan, sizeof(float));  // POSITION[1].x
-  expect_scene_error(b.write_gltf(test_dir(), "nan"), {"accessors[0]", "POSITION", "element 1 is not finite"});
+  expect_scene_error(b.write_gltf(test_dir(), "nan"),
+                     {"accessors[0]", "POSITION", "element 1 is not finite"});
 }
 
 TEST(GltfLoader, WrongPositionTypeIsAnError) {
@@ -480,7 +510,7 @@ TEST(GltfLoader, BufferViewBeyondItsBufferIsAnError) {
 
 TEST(GltfLoader, SceneWithoutLightIsAnError) {
   GltfBuilder b;
-  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", json{{"pbrMetallicRoughness", {{"metallicFactor", 0}}}}))}});
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", diffuse_material()))}});
   expect_scene_error(b.write_gltf(test_dir(), "dark"), {"no light"});
 }
 

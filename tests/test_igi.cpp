@@ -1,5 +1,7 @@
 // The ir and igi methods: tiles independent of tiling and threads, and
 // convergence to the path-traced reference.
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "image/metrics.h"
@@ -76,34 +78,50 @@ const Image& cornell_reference() {
   return reference;
 }
 
-TEST(IgiAccuracy, InstantRadiosityConvergesToPathTracerWithoutClamping) {
+// Unclamped VPL estimates have infinite variance (a VPL at distance r adds
+// 1/r^2 and P(r < d) ~ d^2 on a surface, so E[(1/r^2)^2] diverges): one run's
+// relMSE is ruled by rare spikes. Each point is therefore the median over
+// three seeds, and each run averages 8 progressive passes (fresh VPLs and a
+// new sub-pixel position each, which antialiases like pt's jittered samples).
+constexpr int kPasses = 8;
+
+double median_rel_mse(MethodKind kind, int paths, const Image& ref, Image* last) {
+  std::vector<double> errors;
+  for (uint32_t seed : {1u, 101u, 201u}) {
+    Image image = cornell().render(vpl_settings(kind, paths), 64, 48, kPasses, seed);
+    errors.push_back(rel_mse(image, ref));
+    *last = std::move(image);
+  }
+  std::sort(errors.begin(), errors.end());
+  return errors[1];
+}
+
+void expect_convergence(MethodKind kind, double bound) {
   const Image& ref = cornell_reference();
   double previous = 1e30;
-  for (int m : {8, 64, 256}) {
-    Image ir = cornell().render(vpl_settings(MethodKind::InstantRadiosity, m), 64, 48, 1);
-    double e = rel_mse(ir, ref);
-    std::printf("ir  M=%3d (%4d VPL paths): relMSE %.4f\n", m, 9 * m, e);
-    EXPECT_LT(e, previous) << "relMSE must fall as M grows";
+  for (int m : {2, 8, 32}) {
+    Image image;
+    double e = median_rel_mse(kind, m, ref, &image);
+    std::printf("%-3s M=%2d x %d passes: median relMSE %.5f\n", method_name(kind), m, kPasses, e);
+    EXPECT_LT(e, previous) << "relMSE must fall as M grows (M=" << m << ")";
     previous = e;
+    if (m == 32 && e > bound) {
+      test::write_failure_images(std::string("converge-") + method_name(kind), image, ref);
+      ADD_FAILURE() << "median relMSE " << e << " above the bound " << bound << " at M=32";
+    }
   }
-  EXPECT_LT(previous, 0.05) << "bound at M=256";
-  Image ir = cornell().render(vpl_settings(MethodKind::InstantRadiosity, 256), 64, 48, 1);
-  glm::vec3 mi = ir.mean(), mr = ref.mean();
+}
+
+TEST(IgiAccuracy, InstantRadiosityConvergesToPathTracerWithoutClamping) {
+  expect_convergence(MethodKind::InstantRadiosity, 0.015);
+  // The mean is ruled by the light's edge pixels (radiance 17 against ~0.15):
+  // 16 jittered passes cover them like pt's samples do.
+  Image ir = cornell().render(vpl_settings(MethodKind::InstantRadiosity, 16), 64, 48, 16);
+  glm::vec3 mi = ir.mean(), mr = cornell_reference().mean();
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(mi[c], mr[c], 0.02 * mr[c]) << "mean brightness, channel " << c;
 }
 
-TEST(IgiAccuracy, IgiConvergesToPathTracerWithoutClamping) {
-  const Image& ref = cornell_reference();
-  double previous = 1e30;
-  for (int m : {4, 32, 256}) {
-    Image igi = cornell().render(vpl_settings(MethodKind::Igi, m), 64, 48, 1);
-    double e = rel_mse(igi, ref);
-    std::printf("igi M=%3d: relMSE %.4f\n", m, e);
-    EXPECT_LT(e, previous) << "relMSE must fall as M grows";
-    previous = e;
-  }
-  EXPECT_LT(previous, 0.05) << "bound at M=256";
-}
+TEST(IgiAccuracy, IgiConvergesToPathTracerWithoutClamping) { expect_convergence(MethodKind::Igi, 0.015); }
 
 }  // namespace
 }  // namespace igi

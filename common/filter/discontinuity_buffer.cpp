@@ -12,10 +12,15 @@
 // The running sums are int64 fixed point, not float: a float running sum's
 // rounding depends on where its row began, so a pixel would come out
 // differently in differently cut tiles. Integer adds are exact, so a box sum
-// depends only on the values in the box.
+// depends only on the values in the box. The inner rect is processed in bands
+// of rows (cache), which for the same reason changes no bit.
+//
+// Float expressions here are written for -ffp-contract=off (set for the whole
+// project): the step 2 test is conservative only if dot3 is not fused.
 #include "filter/discontinuity_buffer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -23,8 +28,6 @@
 
 namespace igi {
 namespace {
-
-static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "normal components are read with a stride of 3 floats");
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
@@ -94,119 +97,151 @@ glm::vec3 exact_pixel(const FilterInput& in, const FilterSettings& s, int px, in
 // ---------------------------------------------------------------------------
 // Sliding extrema (van Herk / Gil-Werman).
 
+// A pixel's geometry, (depth, normal x, y, z), as one SIMD value (a GCC and
+// Clang vector extension), so min and max take all four channels at once.
+using Float4 = float __attribute__((vector_size(16)));
+// A pixel's value in fixed point, (r, g, b, 0), likewise, and the doubles
+// it is converted from.
+using Fixed4 = int64_t __attribute__((vector_size(32)));
+using Double4 = double __attribute__((vector_size(32)));
+
 struct Min {
-  float operator()(float a, float b) const { return b < a ? b : a; }
+  Float4 operator()(Float4 a, Float4 b) const { return b < a ? b : a; }
   static constexpr float identity = kInfinity;
 };
 struct Max {
-  float operator()(float a, float b) const { return a < b ? b : a; }
+  Float4 operator()(Float4 a, Float4 b) const { return a < b ? b : a; }
   static constexpr float identity = -kInfinity;
 };
 
-// A 1-D sequence of n entries, entry k being `lanes` floats at
-// data + k * stride. Lanes are contiguous, so a column pass (one lane per
-// column) runs over whole rows.
+// A 1-D sequence of n entries, entry k being `lanes` values at
+// data + k * stride. Lanes are contiguous: a row pass has one lane (the
+// pixel), a column pass a lane per column.
+template <class T>
 struct Sequence {
-  const float* data;
+  const T* data;
   size_t stride;
   int n, lanes;
+  const T* entry(int k) const { return data + size_t(k) * stride; }
 };
 
-struct SlidingScratch {
-  std::vector<float> suffix, prefix, identity_entry;
+// Per-lane working values: on the stack when the lane count is a
+// compile-time constant (kLanes > 0: the row passes), else on the heap.
+template <class T, int kLanes>
+struct Lanes {
+  explicit Lanes(int) {}
+  T* data() { return values.data(); }
+  std::array<T, kLanes> values{};
+};
+template <class T>
+struct Lanes<T, 0> {
+  explicit Lanes(int lanes) : values(size_t(lanes)) {}
+  T* data() { return values.data(); }
+  std::vector<T> values;
 };
 
 // out entry i, for i in [o0, o1), = op over entries [i - r, i + r] (clipped).
 // Pad the sequence with r identity entries at each end and cut it into
 // blocks of w = 2r + 1; padded window [i, i + w - 1] then spans at most two
 // blocks, and its extremum is op(suffix of i's block from i, prefix of the
-// next block up to i + w - 1): three op per entry whatever r.
-template <class Op>
-void sliding_extremum(Op op, int r, Sequence in, int o0, int o1, float* out, size_t out_stride,
-                      SlidingScratch& scratch) {
+// next block up to i + w - 1): three op per entry whatever r. kLanes > 0
+// fixes in.lanes at compile time.
+template <int kLanes, class Op>
+void sliding_extremum(Op op, int r, Sequence<Float4> in, int o0, int o1, Float4* out, size_t out_stride,
+                      std::vector<Float4>& suffixes) {
   if (o0 >= o1) return;
-  const int w = 2 * r + 1, lanes = in.lanes;
-  scratch.identity_entry.assign(lanes, Op::identity);
+  const int w = 2 * r + 1, lanes = kLanes > 0 ? kLanes : in.lanes;
+  Lanes<Float4, kLanes> identity(lanes), prefix(lanes);
+  std::fill_n(identity.data(), lanes, Float4{} + Op::identity);
   auto entry = [&](int k) {  // padded index k
     const int j = k - r;
-    return j >= 0 && j < in.n ? in.data + size_t(j) * in.stride : scratch.identity_entry.data();
+    return j >= 0 && j < in.n ? in.entry(j) : identity.data();
   };
-  // Backward: suffix[k] = op(entries k .. end of k's block).
+  auto combine = [&](Float4* dst, const Float4* a, const Float4* b) {  // dst may be a or b
+    for (int l = 0; l < lanes; ++l) dst[l] = op(a[l], b[l]);
+  };
+  // Backward from a block end: suffix[k] = op(entries k .. end of k's block).
   const int top = (o1 - 1) / w * w + w - 1;
-  scratch.suffix.resize(size_t(top - o0 + 1) * lanes);
-  for (int k = top; k >= o0; --k) {
-    float* suffix = &scratch.suffix[size_t(k - o0) * lanes];
-    const float* e = entry(k);
-    if ((k + 1) % w == 0) std::copy(e, e + lanes, suffix);
-    else for (int l = 0; l < lanes; ++l) suffix[l] = op(e[l], suffix[l + lanes]);
+  suffixes.resize(size_t(top - o0 + 1) * lanes);
+  for (int k = top, to_end = 0; k >= o0; --k, to_end = to_end == w - 1 ? 0 : to_end + 1) {
+    Float4* suffix = &suffixes[size_t(k - o0) * lanes];
+    const Float4* e = entry(k);
+    combine(suffix, e, to_end == 0 ? e : suffix + lanes);
   }
-  // Forward: prefix = op(entries from the start of k's block .. k); window i ends at k.
-  scratch.prefix.resize(lanes);
-  float* prefix = scratch.prefix.data();
-  for (int k = (o0 + w - 1) / w * w; k < o1 + w - 1; ++k) {
-    const float* e = entry(k);
-    if (k % w == 0) std::copy(e, e + lanes, prefix);
-    else for (int l = 0; l < lanes; ++l) prefix[l] = op(prefix[l], e[l]);
+  // Forward from a block start: prefix = op(entries from the start of k's
+  // block .. k); window i ends at k.
+  for (int k = (o0 + w - 1) / w * w, from_start = 0; k < o1 + w - 1;
+       ++k, from_start = from_start == w - 1 ? 0 : from_start + 1) {
+    const Float4* e = entry(k);
+    combine(prefix.data(), from_start == 0 ? e : prefix.data(), e);
     const int i = k - (w - 1);
-    if (i < o0) continue;
-    const float* suffix = &scratch.suffix[size_t(i - o0) * lanes];
-    float* o = out + size_t(i - o0) * out_stride;
-    for (int l = 0; l < lanes; ++l) o[l] = op(suffix[l], prefix[l]);
+    if (i >= o0) combine(out + size_t(i - o0) * out_stride, &suffixes[size_t(i - o0) * lanes], prefix.data());
   }
 }
 
-// Per inner pixel (row-major over the box), lo/hi over its window of
-// channel 0: depth, channels 1..3: normal x, y, z.
-struct WindowExtrema {
-  std::vector<float> lo[4], hi[4];
+// The inner rect is filtered in blocks so that the intermediate planes stay
+// in cache; a block reads the r pixels around it again.
+constexpr int kBlockRows = 32, kBlockColumns = 64;
+
+// Working memory of one call, reused from block to block.
+struct BlockScratch {
+  std::vector<Float4> geometry;  // per pixel of the block's reach
+  std::vector<Float4> along_rows, lo, hi, suffixes;
+  std::vector<Fixed4> fixed, row_sums, sums;
 };
 
-// Rows of the region that windows of box rows reach.
-int rows_begin(const Box& box, int r) { return std::max(box.y0 - r, 0); }
-int rows_end(const Box& box, int r, int height) { return std::min(box.y1 + r, height); }
+// The pixels that windows of a block's pixels reach, clipped to the region.
+// Sequences over the reach are clipped where the region is, and no window
+// of the block leaves the reach elsewhere.
+Box reach(const Box& block, int r, const FilterInput& in) {
+  return {std::max(block.x0 - r, 0), std::max(block.y0 - r, 0), std::min(block.x1 + r, in.width),
+          std::min(block.y1 + r, in.height)};
+}
 
-// Rows first (over the region rows the box's windows reach, box columns
-// only), then columns (box rows only).
+// Per block pixel, row-major: lo (Min) or hi (Max) of the geometry over its
+// window. Rows first, then columns.
 template <class Op>
-std::vector<float> window_extremum(Op op, const FilterInput& in, int channel, int r, const Box& box,
-                                   SlidingScratch& scratch) {
-  const float* data = channel == 0 ? in.depth.data() : &in.normal[0].x + (channel - 1);
-  const size_t stride = channel == 0 ? 1 : 3;
-  const int ry0 = rows_begin(box, r), ry1 = rows_end(box, r, in.height), bw = box.width();
-  std::vector<float> along_rows(size_t(ry1 - ry0) * bw);
-  for (int y = ry0; y < ry1; ++y) {
-    const Sequence row{data + size_t(y) * in.width * stride, stride, in.width, 1};
-    sliding_extremum(op, r, row, box.x0, box.x1, &along_rows[size_t(y - ry0) * bw], 1, scratch);
+void window_extremum(Op op, int r, const Box& block, const Box& reach, BlockScratch& scratch,
+                     std::vector<Float4>& result) {
+  const int bw = block.width(), rw = reach.width(), rh = reach.height();
+  scratch.along_rows.resize(size_t(rh) * bw);
+  for (int y = 0; y < rh; ++y) {
+    const Sequence<Float4> row{&scratch.geometry[size_t(y) * rw], 1, rw, 1};
+    sliding_extremum<1>(op, r, row, block.x0 - reach.x0, block.x1 - reach.x0, &scratch.along_rows[size_t(y) * bw],
+                        1, scratch.suffixes);
   }
-  std::vector<float> result(size_t(box.height()) * bw);
-  const Sequence columns{along_rows.data(), size_t(bw), ry1 - ry0, bw};
-  sliding_extremum(op, r, columns, box.y0 - ry0, box.y1 - ry0, result.data(), bw, scratch);
-  return result;
+  result.resize(size_t(block.height()) * bw);
+  const Sequence<Float4> columns{scratch.along_rows.data(), size_t(bw), rh, bw};
+  sliding_extremum<0>(op, r, columns, block.y0 - reach.y0, block.y1 - reach.y0, result.data(), bw,
+                      scratch.suffixes);
 }
 
-WindowExtrema window_extrema(const FilterInput& in, int r, const Box& box) {
-  if (in.normal.empty()) return {};
-  WindowExtrema e;
-  SlidingScratch scratch;
-  for (int c = 0; c < 4; ++c) {
-    e.lo[c] = window_extremum(Min{}, in, c, r, box, scratch);
-    e.hi[c] = window_extremum(Max{}, in, c, r, box, scratch);
-  }
-  return e;
+// Fills scratch.lo and scratch.hi for the block.
+void window_extrema(const FilterInput& in, int r, const Box& block, BlockScratch& scratch) {
+  const Box from = reach(block, r, in);
+  scratch.geometry.resize(size_t(from.width()) * from.height());
+  Float4* g = scratch.geometry.data();
+  for (int y = from.y0; y < from.y1; ++y)
+    for (int x = from.x0; x < from.x1; ++x) {
+      const size_t p = size_t(y) * in.width + x;
+      *g++ = Float4{in.depth[p], in.normal[p].x, in.normal[p].y, in.normal[p].z};
+    }
+  window_extremum(Min{}, r, block, from, scratch, scratch.lo);
+  window_extremum(Max{}, r, block, from, scratch, scratch.hi);
 }
 
-// True when every pixel of p's window (extremum index i) passes
-// same_surface, judged from the extrema alone. Conservative in floats too,
-// because rounding is monotone: d_p - d_min >= d_p - d_q, and each
+// True when every pixel of p's window (block pixel i) passes same_surface,
+// judged from the extrema alone. Conservative in floats too, because
+// rounding is monotone: d_p - d_min >= d_p - d_q, and each
 // min(n_p.c * lo.c, n_p.c * hi.c) <= n_p.c * n_q.c, so the sum in dot3's
 // order bounds dot3(n_p, n_q) from below.
-bool window_on_one_surface(const FilterSettings& s, float d_p, const glm::vec3& n_p, const WindowExtrema& e,
+bool window_on_one_surface(const FilterSettings& s, float d_p, const glm::vec3& n_p, const BlockScratch& scratch,
                            size_t i) {
-  const float d_min = e.lo[0][i], d_max = e.hi[0][i];
-  if (!is_valid(d_max)) return false;
+  const Float4 lo = scratch.lo[i], hi = scratch.hi[i];
+  if (!is_valid(hi[0])) return false;
   const float tolerance = s.depth_ratio * d_p;
-  if (d_p - d_min > tolerance || d_max - d_p > tolerance) return false;
-  auto lower = [&](int c) { return std::min(n_p[c] * e.lo[c + 1][i], n_p[c] * e.hi[c + 1][i]); };
+  if (d_p - lo[0] > tolerance || hi[0] - d_p > tolerance) return false;
+  auto lower = [&](int c) { return std::min(n_p[c] * lo[c + 1], n_p[c] * hi[c + 1]); };
   return lower(0) + lower(1) + lower(2) >= s.normal_cos;
 }
 
@@ -217,44 +252,54 @@ bool window_on_one_surface(const FilterSettings& s, float d_p, const glm::vec3& 
 // so no window sum (nor a running sum mid-update) can overflow.
 double fixed_cap(int r) { return 0x1p55 / (double(2 * r + 1) * double(2 * r + 1)); }
 
-int64_t to_fixed(float v, double scale, double cap) { return std::llround(std::clamp(double(v) * scale, -cap, cap)); }
+// llround(clamp(v * scale, -cap, cap)) for the three channels at once.
+// llround is done as truncation, then rounding the remainder half away from
+// zero; the remainder is exact, x and its truncation being within a factor 2
+// (or equal). Vector comparisons give -1 for true.
+Fixed4 to_fixed(const glm::vec3& v, double scale, double cap) {
+  const Double4 lo = Double4{} - cap, hi = Double4{} + cap;
+  Double4 x = Double4{v.x, v.y, v.z, 0.0} * scale;
+  x = x < lo ? lo : x > hi ? hi : x;
+  const Fixed4 truncated = __builtin_convertvector(x, Fixed4);
+  const Double4 rest = x - __builtin_convertvector(truncated, Double4);
+  return truncated - (rest >= 0.5) + (rest <= -0.5);
+}
 
-// out entry i, for i in [o0, o1), = sum of entries [i - r, i + r] (clipped);
-// entry k is `lanes` int64 at in + k * stride. Each step adds the entering
-// entry and subtracts the leaving one.
-void running_box_sum(int r, const int64_t* in, size_t stride, int n, int lanes, int o0, int o1, int64_t* out,
-                     size_t out_stride) {
-  if (o0 >= o1) return;
-  std::fill(out, out + lanes, int64_t(0));
-  for (int k = std::max(o0 - r, 0); k <= std::min(o0 + r, n - 1); ++k)
-    for (int l = 0; l < lanes; ++l) out[l] += in[size_t(k) * stride + l];
-  const std::vector<int64_t> zero(lanes, 0);
-  for (int i = o0 + 1; i < o1; ++i) {
-    const int64_t* entering = i + r < n ? in + size_t(i + r) * stride : zero.data();
-    const int64_t* leaving = i - r - 1 >= 0 ? in + size_t(i - r - 1) * stride : zero.data();
-    int64_t* sum = out + size_t(i - o0) * out_stride;
-    const int64_t* previous = sum - out_stride;
-    for (int l = 0; l < lanes; ++l) sum[l] = previous[l] + entering[l] - leaving[l];
+// out entry i, for i in [o0, o1), = sum of entries [i - r, i + r] (clipped).
+// Starting from the window of o0 - 1, each step adds the entering entry
+// i + r and subtracts the leaving one i - r - 1. kLanes as in sliding_extremum.
+template <int kLanes>
+void running_box_sum(int r, Sequence<Fixed4> in, int o0, int o1, Fixed4* out, size_t out_stride) {
+  const int lanes = kLanes > 0 ? kLanes : in.lanes;
+  Lanes<Fixed4, kLanes> sum(lanes);
+  Fixed4* s = sum.data();
+  auto add = [&](int k) { for (int l = 0; l < lanes; ++l) s[l] += in.entry(k)[l]; };
+  auto subtract = [&](int k) { for (int l = 0; l < lanes; ++l) s[l] -= in.entry(k)[l]; };
+  for (int k = std::max(o0 - 1 - r, 0); k <= std::min(o0 - 1 + r, in.n - 1); ++k) add(k);
+  for (int i = o0; i < o1; ++i) {
+    if (i + r < in.n) add(i + r);
+    if (i - r - 1 >= 0) subtract(i - r - 1);
+    std::copy_n(s, lanes, out + size_t(i - o0) * out_stride);
   }
 }
 
-// Per inner pixel (row-major over the box), the 3 channel sums of fixed
-// values over its whole clipped window: rows first, then columns.
-std::vector<int64_t> window_sums(const FilterInput& in, const FilterSettings& s, const Box& box) {
-  const int r = s.radius, ry0 = rows_begin(box, r), ry1 = rows_end(box, r, in.height), bw = box.width();
+// Fills scratch.sums: per block pixel, row-major, the channel sums of fixed
+// values over its whole clipped window. Rows first, then columns.
+void window_sums(const FilterInput& in, const FilterSettings& s, const Box& block, BlockScratch& scratch) {
+  const int r = s.radius, bw = block.width();
+  const Box from = reach(block, r, in);
   const double cap = fixed_cap(r);
-  std::vector<int64_t> fixed(size_t(in.width) * 3), along_rows(size_t(ry1 - ry0) * bw * 3);
-  for (int y = ry0; y < ry1; ++y) {
-    const glm::vec3* row = &in.value[size_t(y) * in.width];
-    for (int x = 0; x < in.width; ++x)
-      for (int c = 0; c < 3; ++c) fixed[size_t(x) * 3 + c] = to_fixed(row[x][c], s.fixed_scale, cap);
-    running_box_sum(r, fixed.data(), 3, in.width, 3, box.x0, box.x1, &along_rows[size_t(y - ry0) * bw * 3], 3);
+  scratch.fixed.resize(size_t(from.width()));
+  scratch.row_sums.resize(size_t(from.height()) * bw);
+  for (int y = 0; y < from.height(); ++y) {
+    const glm::vec3* value = &in.value[size_t(from.y0 + y) * in.width + from.x0];
+    for (int x = 0; x < from.width(); ++x) scratch.fixed[x] = to_fixed(value[x], s.fixed_scale, cap);
+    const Sequence<Fixed4> row{scratch.fixed.data(), 1, from.width(), 1};
+    running_box_sum<1>(r, row, block.x0 - from.x0, block.x1 - from.x0, &scratch.row_sums[size_t(y) * bw], 1);
   }
-  std::vector<int64_t> sums(size_t(box.height()) * bw * 3);
-  const size_t row_stride = size_t(bw) * 3;
-  running_box_sum(r, along_rows.data(), row_stride, ry1 - ry0, bw * 3, box.y0 - ry0, box.y1 - ry0, sums.data(),
-                  row_stride);
-  return sums;
+  scratch.sums.resize(size_t(block.height()) * bw);
+  const Sequence<Fixed4> columns{scratch.row_sums.data(), size_t(bw), from.height(), bw};
+  running_box_sum<0>(r, columns, block.y0 - from.y0, block.y1 - from.y0, scratch.sums.data(), bw);
 }
 
 // Pixels of the window of region pixel (x, y), clipped to the region.
@@ -262,6 +307,36 @@ int window_count(const FilterInput& in, int r, int x, int y) {
   const int w = std::min(x + r, in.width - 1) - std::max(x - r, 0) + 1;
   const int h = std::min(y + r, in.height - 1) - std::max(y - r, 0) + 1;
   return w * h;
+}
+
+// out = sum / (fixed_scale * count), the window average in real units.
+glm::vec3 from_fixed(const Fixed4& sum, double per_quantum) {
+  return glm::vec3(double(sum[0]) * per_quantum, double(sum[1]) * per_quantum, double(sum[2]) * per_quantum);
+}
+
+// Filters the block's pixels into `out`, whose rows are out_stride apart.
+void filter_block(const FilterInput& in, const FilterSettings& s, const Box& block, BlockScratch& scratch,
+                  glm::vec3* out, size_t out_stride, FilterStats& stats) {
+  window_extrema(in, s.radius, block, scratch);
+  window_sums(in, s, block, scratch);
+  // Most windows are whole: their reciprocal is computed once (the same
+  // expression, so the same bits as computing it per pixel).
+  const int whole = (2 * s.radius + 1) * (2 * s.radius + 1);
+  const double whole_per_quantum = 1.0 / (s.fixed_scale * whole);
+  size_t i = 0;
+  for (int y = block.y0; y < block.y1; ++y, out += out_stride)
+    for (int x = block.x0; x < block.x1; ++x, ++i) {
+      const size_t p = size_t(y) * in.width + x;
+      const float d_p = in.depth[p];
+      if (is_valid(d_p) && window_on_one_surface(s, d_p, in.normal[p], scratch, i)) {
+        const int count = window_count(in, s.radius, x, y);
+        out[x - block.x0] = from_fixed(scratch.sums[i], count == whole ? whole_per_quantum : 1.0 / (s.fixed_scale * count));
+        ++stats.fast_pixels;
+      } else {
+        out[x - block.x0] = exact_pixel(in, s, x, y);
+        ++stats.exact_pixels;
+      }
+    }
 }
 
 }  // namespace
@@ -276,24 +351,13 @@ void filter_brute_force(const FilterInput& in, const FilterSettings& s, Rect inn
 void filter_discontinuity(const FilterInput& in, const FilterSettings& s, Rect inner, std::span<glm::vec3> out,
                           FilterStats* stats) {
   const Box box = check_arguments(in, s, inner, out.size());
-  const WindowExtrema extrema = window_extrema(in, s.radius, box);
-  const std::vector<int64_t> sums = window_sums(in, s, box);
+  BlockScratch scratch;
   FilterStats counted;
-  size_t i = 0;
-  for (int y = box.y0; y < box.y1; ++y)
-    for (int x = box.x0; x < box.x1; ++x, ++i) {
-      const size_t p = size_t(y) * in.width + x;
-      const float d_p = in.depth[p];
-      if (is_valid(d_p) && window_on_one_surface(s, d_p, in.normal[p], extrema, i)) {
-        const double count = window_count(in, s.radius, x, y);
-        const int64_t* sum = &sums[i * 3];
-        out[i] = glm::vec3(double(sum[0]) / s.fixed_scale / count, double(sum[1]) / s.fixed_scale / count,
-                           double(sum[2]) / s.fixed_scale / count);
-        ++counted.fast_pixels;
-      } else {
-        out[i] = exact_pixel(in, s, x, y);
-        ++counted.exact_pixels;
-      }
+  for (int y0 = box.y0; y0 < box.y1; y0 += kBlockRows)
+    for (int x0 = box.x0; x0 < box.x1; x0 += kBlockColumns) {
+      const Box block{x0, y0, std::min(x0 + kBlockColumns, box.x1), std::min(y0 + kBlockRows, box.y1)};
+      glm::vec3* block_out = out.data() + size_t(y0 - box.y0) * box.width() + (x0 - box.x0);
+      filter_block(in, s, block, scratch, block_out, box.width(), counted);
     }
   if (stats) *stats = counted;
 }

@@ -34,7 +34,7 @@ namespace igi {
 struct FilterInput {
   int x0 = 0, y0 = 0;  // image coordinates of the region's top-left pixel
   int width = 0, height = 0;
-  std::vector<float> depth;       // distance from the camera; +inf marks "no surface"
+  std::vector<float> depth;       // distance from the camera, > 0; +inf marks "no surface" (never NaN)
   std::vector<glm::vec3> normal;  // unit shading normal (ignored where depth is +inf)
   std::vector<glm::vec3> value;   // demodulated irradiance, finite, >= 0
 };

@@ -48,7 +48,7 @@ void resolve_chain(const Accel& accel, Ray ray, Hit hit, uint32_t pixel_seed, in
 }  // namespace
 
 void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& region, int max_depth,
-                   std::vector<GSample>& out, RayCounts& rays) {
+                   std::vector<GSample>& out, RayCounts& rays, RayLog* log) {
   out.assign(size_t(region.width) * region.height, GSample{});
   CameraBasis camera(frame.camera, frame.width, frame.height);
   RTCIntersectContext context;
@@ -61,7 +61,7 @@ void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& re
       for (int i = 0; i < 16; ++i) {
         const int x = bx + (i & 3), y = by + (i >> 2);
         valid[i] = x < region.width && y < region.height ? -1 : 0;
-        glm::vec3 d = glm::normalize(camera.direction(float(region.x0 + x) + 0.5f, float(region.y0 + y) + 0.5f));
+        glm::vec3 d = glm::normalize(camera.direction(float(region.x0 + x) + frame.jitter_x, float(region.y0 + y) + frame.jitter_y));
         packet.ray.org_x[i] = camera.origin.x; packet.ray.org_y[i] = camera.origin.y; packet.ray.org_z[i] = camera.origin.z;
         packet.ray.dir_x[i] = d.x; packet.ray.dir_y[i] = d.y; packet.ray.dir_z[i] = d.z;
         packet.ray.tnear[i] = 0.0f; packet.ray.tfar[i] = INFINITY;
@@ -69,6 +69,11 @@ void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& re
         packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
         rays.primary += valid[i] ? 1 : 0;
+      }
+      if (log) {
+        log->primary.emplace_back();
+        std::copy_n(valid, 16, log->primary.back().valid);
+        log->primary.back().rays = packet;
       }
       rtcIntersect16(valid, accel.handle(), &context, &packet);
       for (int i = 0; i < 16; ++i) {

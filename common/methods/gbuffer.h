@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 
+#include "methods/ray_log.h"
 #include "render/frame.h"
 #include "scene/accel.h"
 #include "scene/surface.h"
@@ -31,6 +32,6 @@ Region tile_region(const TileJob& job, int image_width, int image_height);
 // glass) followed one ray at a time up to max_depth. Glass picks reflection or
 // refraction with a number hashed from the pixel and seed.
 void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& region, int max_depth,
-                   std::vector<GSample>& out, RayCounts& rays);
+                   std::vector<GSample>& out, RayCounts& rays, RayLog* log = nullptr);
 
 }  // namespace igi

@@ -1,9 +1,11 @@
 #include "methods/vpl_method.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "filter/discontinuity_buffer.h"
 #include "methods/gbuffer.h"
+#include "methods/shadow_batch.h"
 #include "methods/vpl_contribution.h"
 #include "vpl/vpl_generator.h"
 
@@ -32,42 +34,38 @@ void VplMethod::begin_frame(const FrameSetup& frame) {
 void VplMethod::shade(const std::vector<GSample>& gbuffer, const Region& region,
                       std::vector<glm::vec3>& irradiance, RayCounts& rays) const {
   irradiance.assign(gbuffer.size(), glm::vec3(0.0f));
-  VplShading shading{context_.scene, clamp_bound_};
+  const VplShading shading{context_.scene, clamp_bound_};
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   const int sets = interleaved() ? vpls_.set_count() : 1;
-  std::vector<uint32_t> pixels;
+  thread_local PixelBatch batch;
+  thread_local ShadowPacket packet;
   for (int s = 0; s < sets; ++s) {
-    pixels.clear();
+    batch.clear();
     for (int y = 0; y < region.height; ++y)
       for (int x = 0; x < region.width; ++x) {
         const size_t i = size_t(y) * region.width + x;
         if (gbuffer[i].valid() && (!interleaved() || vpls_.set_of_pixel(region.x0 + x, region.y0 + y) == s))
-          pixels.push_back(uint32_t(i));
+          batch.add(uint32_t(i), gbuffer[i]);
       }
+    batch.pad();
     const uint32_t begin = interleaved() ? vpls_.set_begin[s] : 0;
     const uint32_t end = interleaved() ? vpls_.set_begin[s + 1] : uint32_t(vpls_.vpls.size());
     for (uint32_t v = begin; v < end; ++v)
-      for (size_t chunk = 0; chunk < pixels.size(); chunk += 16) {
-        alignas(64) int valid[16];
-        alignas(64) RTCRay16 packet;
-        glm::vec3 contribution[16];
-        for (int k = 0; k < 16; ++k) {
-          ShadowQuery q{};
-          valid[k] = 0;
-          contribution[k] = glm::vec3(0.0f);
-          if (chunk + k < pixels.size()) contribution[k] = shading.contribution(gbuffer[pixels[chunk + k]], vpls_.vpls[v], q);
-          if (contribution[k] != glm::vec3(0.0f)) valid[k] = -1;
-          packet.org_x[k] = q.origin.x; packet.org_y[k] = q.origin.y; packet.org_z[k] = q.origin.z;
-          packet.dir_x[k] = q.direction.x; packet.dir_y[k] = q.direction.y; packet.dir_z[k] = q.direction.z;
-          packet.tnear[k] = 0.0f; packet.tfar[k] = q.tfar;
-          packet.mask[k] = ~0u; packet.flags[k] = 0; packet.time[k] = 0.0f;
-          rays.shadow += valid[k] ? 1 : 0;
+      for (size_t first = 0; first < batch.count; first += 16) {
+        fill_shadow_packet(batch, first, vpls_.vpls[v], shading, gbuffer, packet);
+        if (log_) {
+          log_->shadow.emplace_back();
+          std::copy_n(packet.valid, 16, log_->shadow.back().valid);
+          log_->shadow.back().rays = packet.rays;
         }
-        rtcOccluded16(valid, context_.accel.handle(), &context, &packet);
+        rtcOccluded16(packet.valid, context_.accel.handle(), &context, &packet.rays);
         for (int k = 0; k < 16; ++k)
-          if (valid[k] && packet.tfar[k] >= 0.0f) irradiance[pixels[chunk + k]] += contribution[k];
+          if (packet.valid[k]) {
+            ++rays.shadow;
+            if (packet.rays.tfar[k] >= 0.0f) irradiance[batch.index[first + k]] += packet.contribution[k];
+          }
       }
   }
   // Each set alone estimates the full light; ir sums all S of them.
@@ -78,7 +76,7 @@ void VplMethod::shade(const std::vector<GSample>& gbuffer, const Region& region,
 void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const {
   const Region region = tile_region(job, frame_.width, frame_.height);
   std::vector<GSample> gbuffer;
-  build_gbuffer(context_.accel, frame_, region, settings_.max_depth, gbuffer, rays);
+  build_gbuffer(context_.accel, frame_, region, settings_.max_depth, gbuffer, rays, log_);
   std::vector<glm::vec3> irradiance;
   shade(gbuffer, region, irradiance, rays);
 

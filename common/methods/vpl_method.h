@@ -6,6 +6,7 @@
 //       N x N window, so each pixel sees all sets at 1/S of the cost.
 // Shadow rays go out in 16-wide packets that share one VPL (coherent).
 #include "methods/method.h"
+#include "methods/ray_log.h"
 #include "methods/gbuffer.h"
 #include "vpl/vpl.h"
 
@@ -18,6 +19,8 @@ class VplMethod final : public Method {
   void render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const override;
   uint64_t frame_state_hash() const override { return vpls_.hash; }
   const VplSets& vpls() const { return vpls_; }
+  // Benchmarks only: record every packet traced from now on (one thread only).
+  void record_rays(RayLog* log) { log_ = log; }
 
  private:
   bool interleaved() const { return settings_.method == MethodKind::Igi; }
@@ -30,6 +33,7 @@ class VplMethod final : public Method {
   VplSets vpls_;
   float clamp_bound_ = INFINITY;
   double fixed_scale_ = 0x1p32;
+  RayLog* log_ = nullptr;
 };
 
 }  // namespace igi

@@ -5,6 +5,7 @@
 
 #include "scene/scene.h"
 
+
 namespace igi {
 
 struct FrameSetup {
@@ -15,6 +16,9 @@ struct FrameSetup {
   uint32_t seed = 0;          // scrambles every sample of the frame
   uint32_t sample_begin = 0;  // pt: first sample index of this pass
   uint32_t sample_count = 1;  // pt: samples per pixel in this pass
+  // ir/igi: where in each pixel the primary ray goes ((0.5, 0.5) = centre);
+  // progressive passes move it to antialias.
+  float jitter_x = 0.5f, jitter_y = 0.5f;
 };
 
 // A rectangle of the image, rendered with `border` extra pixels on each side

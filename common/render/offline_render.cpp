@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "render/accumulator.h"
+#include "sampling/sobol.h"
 
 namespace igi {
 
@@ -24,8 +25,12 @@ OfflineResult render_offline(const SceneContext& context, const RenderSettings& 
     if (pt) {
       frame.sample_begin = uint32_t(pass * per_pass);
       frame.sample_count = uint32_t(std::min(per_pass, samples - pass * per_pass));
-    } else {
+    } else if (passes > 1) {
+      // Fresh VPLs and a new sub-pixel position per pass (stratified over passes).
       frame.seed = base.seed + uint32_t(pass);
+      glm::vec2 jitter = sample_2d(uint32_t(pass), 0, base.seed);
+      frame.jitter_x = jitter.x;
+      frame.jitter_y = jitter.y;
     }
     method->begin_frame(frame);
     FrameOptions pass_options = options;

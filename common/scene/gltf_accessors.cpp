@@ -154,16 +154,19 @@ std::vector<glm::vec2> read_texcoords(const tinygltf::Model& model, int accessor
                                       const std::string& role, GltfDiagnostics& diag) {
   const AccessorView view = checked_view(
       model, accessor, role, TINYGLTF_TYPE_VEC2,
-      {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+      {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+       TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
       diag);
   if (view.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !model.accessors[size_t(accessor)].normalized)
     diag.fail(accessor_name(accessor, role), "integer texture coordinates must be normalized");
   std::vector<glm::vec2> uvs(view.count);
   for (size_t i = 0; i < view.count; ++i) {
     const unsigned char* at = view.first + i * view.stride;
-    if (view.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT) uvs[i] = load<glm::vec2>(at);
-    else if (view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) uvs[i] = glm::vec2(at[0], at[1]) / 255.0f;
-    else uvs[i] = glm::vec2(load<uint16_t>(at), load<uint16_t>(at + 2)) / 65535.0f;
+    switch (view.component_type) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: uvs[i] = load<glm::vec2>(at); break;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: uvs[i] = glm::vec2(at[0], at[1]) / 255.0f; break;
+      default: uvs[i] = glm::vec2(load<uint16_t>(at), load<uint16_t>(at + 2)) / 65535.0f;
+    }
     if (!std::isfinite(uvs[i].x) || !std::isfinite(uvs[i].y)) {
       diag.warn_once("non-finite texcoord", "non-finite texture coordinates (first in " +
                                                  accessor_name(accessor, role) + ") replaced by (0, 0)");
@@ -188,9 +191,9 @@ std::vector<uint32_t> read_indices(const tinygltf::Model& model, int accessor,
     else if (view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) indices[i] = load<uint16_t>(at);
     else indices[i] = load<uint32_t>(at);
     if (indices[i] >= vertex_count)
-      diag.fail(accessor_name(accessor, role), "index " + std::to_string(indices[i]) + " at element " +
-                                                   std::to_string(i) + " is out of range: the primitive has " +
-                                                   std::to_string(vertex_count) + " vertices");
+      diag.fail(accessor_name(accessor, role),
+                "index " + std::to_string(indices[i]) + " at element " + std::to_string(i) +
+                    " is out of range: the primitive has " + std::to_string(vertex_count) + " vertices");
   }
   return indices;
 }

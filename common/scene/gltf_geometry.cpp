@@ -54,8 +54,9 @@ void warn_ignored_attributes(const tinygltf::Primitive& primitive, GltfDiagnosti
   for (const auto& [name, accessor] : primitive.attributes) {
     if (name == "POSITION" || name == "NORMAL" || name == "TEXCOORD_0") continue;
     const std::string family = attribute_family(name);
-    diag.warn_once("attribute " + family, "vertex attribute " + (family == name ? name : family + " (" + name + ")") +
-                                              " ignored: " + attribute_consequence(family));
+    const std::string shown = family == name ? name : family + " (" + name + ")";
+    diag.warn_once("attribute " + family,
+                   "vertex attribute " + shown + " ignored: " + attribute_consequence(family));
   }
 }
 
@@ -85,7 +86,8 @@ class GeometryBuilder {
 
  private:
   const std::vector<PrimitiveGeometry>& mesh(int index);
-  std::optional<PrimitiveGeometry> read_primitive(const tinygltf::Primitive& primitive, const std::string& name);
+  std::optional<PrimitiveGeometry> read_primitive(const tinygltf::Primitive& primitive,
+                                                  const std::string& name);
   std::vector<glm::uvec3> read_triangles(const tinygltf::Primitive& primitive, const std::string& name,
                                          size_t vertex_count);
   uint32_t material_index(int material, const std::string& name);
@@ -155,12 +157,16 @@ std::optional<PrimitiveGeometry> GeometryBuilder::read_primitive(const tinygltf:
     geometry.normals = read_vec3_floats(model_, *normal, "NORMAL of " + name, false, diag_);
   if (const std::optional<int> uv = attribute(primitive, "TEXCOORD_0"))
     geometry.uvs = read_texcoords(model_, *uv, "TEXCOORD_0 of " + name, diag_);
+  const std::string expected = " elements, POSITION has " + std::to_string(count);
   if (!geometry.normals.empty() && geometry.normals.size() != count)
-    diag_.fail(name, "NORMAL has " + std::to_string(geometry.normals.size()) + " elements, POSITION has " + std::to_string(count));
+    diag_.fail(name, "NORMAL has " + std::to_string(geometry.normals.size()) + expected);
   if (!geometry.uvs.empty() && geometry.uvs.size() != count)
-    diag_.fail(name, "TEXCOORD_0 has " + std::to_string(geometry.uvs.size()) + " elements, POSITION has " + std::to_string(count));
+    diag_.fail(name, "TEXCOORD_0 has " + std::to_string(geometry.uvs.size()) + expected);
   geometry.triangles = read_triangles(primitive, name, count);
   geometry.material = material_index(primitive.material, name);
+  if (geometry.uvs.empty() && scene_.materials[geometry.material].base_color_texture >= 0)
+    diag_.warn_once("texture without uvs", "primitives with a baseColorTexture but no TEXCOORD_0 (first: " +
+                                               name + ") sample the texture at (0, 0)");
   return geometry;
 }
 
@@ -220,7 +226,8 @@ void GeometryBuilder::append(const PrimitiveGeometry& geometry, const glm::dmat4
   const size_t first_vertex = scene_.positions.size(), first_triangle = scene_.triangles.size();
   for (size_t v = 0; v < geometry.positions.size(); ++v) {
     scene_.positions.push_back(glm::vec3(world * glm::dvec4(geometry.positions[v], 1.0)));
-    if (any_normals_) scene_.normals.push_back(glm::vec3(glm::normalize(normal_matrix * glm::dvec3(geometry.normals[v]))));
+    if (any_normals_)
+      scene_.normals.push_back(glm::vec3(glm::normalize(normal_matrix * glm::dvec3(geometry.normals[v]))));
     if (any_uvs_) scene_.uvs.push_back(geometry.uvs.empty() ? glm::vec2(0.0f) : geometry.uvs[v]);
   }
   for (glm::uvec3 t : geometry.triangles) {

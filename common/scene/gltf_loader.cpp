@@ -30,7 +30,8 @@ std::vector<unsigned char> read_file(const std::string& path) {
   if (!fs::is_regular_file(path, error)) throw SceneError(path + ": no such file (or not a regular file)");
   const uintmax_t size = fs::file_size(path, error);
   // tinygltf takes 32-bit lengths; glTF caps .glb files at 4 GiB as well.
-  if (error || size > UINT32_MAX) throw SceneError(path + ": cannot read the file's size, or it exceeds 4 GiB");
+  if (error || size > UINT32_MAX)
+    throw SceneError(path + ": cannot read the file's size, or it exceeds 4 GiB");
   std::ifstream in(path, std::ios::binary);
   std::vector<unsigned char> bytes(size);
   if (!in || !in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size)))
@@ -56,13 +57,15 @@ bool is_glb(const std::string& path, const std::vector<unsigned char>& bytes) {
 void check_glb(const std::vector<unsigned char>& bytes, const GltfDiagnostics& diag) {
   const size_t size = bytes.size();
   if (size < kGlbHeaderBytes + kChunkHeaderBytes)
-    diag.fail("GLB header", "truncated: " + std::to_string(size) + " bytes, shorter than the headers (20 bytes)");
+    diag.fail("GLB header",
+              "truncated: " + std::to_string(size) + " bytes, shorter than the headers (20 bytes)");
   if (read_u32(bytes, 0) != kGlbMagic) diag.fail("GLB header", "missing the 'glTF' magic");
-  if (read_u32(bytes, 4) != 2) diag.fail("GLB header", "version " + std::to_string(read_u32(bytes, 4)) + ", expected 2");
+  if (read_u32(bytes, 4) != 2)
+    diag.fail("GLB header", "version " + std::to_string(read_u32(bytes, 4)) + ", expected 2");
   const size_t length = read_u32(bytes, 8);
   if (length > size)
-    diag.fail("GLB header", "truncated: the header declares " + std::to_string(length) + " bytes, the file has " +
-                                std::to_string(size));
+    diag.fail("GLB header", "truncated: the header declares " + std::to_string(length) +
+                                " bytes, the file has " + std::to_string(size));
   size_t at = kGlbHeaderBytes;
   for (int chunk = 0; at < length; ++chunk) {
     const std::string name = "GLB chunk " + std::to_string(chunk);
@@ -103,9 +106,10 @@ tinygltf::Model parse_model(const std::vector<unsigned char>& bytes, GltfDiagnos
   std::string error, warning;
   bool ok = false;
   try {
-    ok = binary ? parser.LoadBinaryFromMemory(&model, &error, &warning, bytes.data(), unsigned(bytes.size()), base_dir)
-                : parser.LoadASCIIFromString(&model, &error, &warning, reinterpret_cast<const char*>(bytes.data()),
-                                             unsigned(bytes.size()), base_dir);
+    const unsigned size = unsigned(bytes.size());  // read_file capped it at 4 GiB
+    ok = binary ? parser.LoadBinaryFromMemory(&model, &error, &warning, bytes.data(), size, base_dir)
+                : parser.LoadASCIIFromString(&model, &error, &warning,
+                                             reinterpret_cast<const char*>(bytes.data()), size, base_dir);
   } catch (const std::exception& e) {
     error = e.what();
   }

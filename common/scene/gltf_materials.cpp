@@ -115,8 +115,9 @@ void MaterialConverter::choose_model(const tinygltf::Material& source, const std
   const double metallic = std::clamp(source.pbrMetallicRoughness.metallicFactor, 0.0, 1.0);
   const double roughness = std::clamp(source.pbrMetallicRoughness.roughnessFactor, 0.0, 1.0);
   if (metallic != 0.0 && metallic != 1.0)
-    diag_.warn_once("intermediate metallic", "metallicFactor between 0 and 1 (first in " + name +
-                                                 ") rounded to the nearest: >= 0.5 is a conductor, below is diffuse");
+    diag_.warn_once("intermediate metallic",
+                    "metallicFactor between 0 and 1 (first in " + name +
+                        ") rounded to the nearest: >= 0.5 is a conductor, below is diffuse");
   if (metallic < 0.5) {
     out.type = MaterialType::Diffuse;
   } else if (roughness > 0.0) {
@@ -166,8 +167,9 @@ int MaterialConverter::base_color_texture(const tinygltf::TextureInfo& info, con
   warn_sampler(texture.sampler);
   const int image = texture.source;
   if (image < 0 || size_t(image) >= model_.images.size()) {
-    diag_.warn_once("texture source", gltf_element("textures", size_t(info.index)) +
-                                          " has no image source the loader can read: baseColorFactor is used");
+    diag_.warn_once("texture source",
+                    gltf_element("textures", size_t(info.index)) +
+                        " has no image source the loader can read: baseColorFactor is used");
     return -1;
   }
   auto cached = texture_of_image_.find(image);
@@ -207,8 +209,9 @@ std::optional<Texture> MaterialConverter::decode_image(int index) {
   const bool ok = size > 0 && size <= size_t(INT_MAX) &&
                   tinygltf::LoadImageData(&decoded, index, &error, &warning, 0, 0, bytes, int(size), nullptr);
   if (!ok || decoded.component != 4 || (decoded.bits != 8 && decoded.bits != 16)) {
-    diag_.warn_once("image " + name, name + " ('" + image.uri + "') could not be read or decoded" +
-                                         (error.empty() ? "" : " (" + error + ")") + ": baseColorFactor is used");
+    const std::string reason = error.empty() ? "" : " (" + error + ")";
+    diag_.warn_once("image " + name, name + " ('" + image.uri + "') could not be read or decoded" + reason +
+                                         ": baseColorFactor is used");
     return std::nullopt;
   }
   return to_linear_texture(decoded);

@@ -1,6 +1,7 @@
 #include "scene/gltf_nodes.h"
 
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -38,7 +39,8 @@ glm::dvec3 world_axis(const glm::dmat4& world, glm::dvec3 local) {
   return length > 0.0 && std::isfinite(length) ? axis / length : glm::dvec3(0.0);
 }
 
-std::vector<int> root_nodes(const tinygltf::Model& model, std::string& scene_name, const GltfDiagnostics& diag) {
+std::vector<int> root_nodes(const tinygltf::Model& model, std::string& scene_name,
+                            const GltfDiagnostics& diag) {
   if (!model.scenes.empty()) {
     const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
     if (size_t(scene) >= model.scenes.size())
@@ -73,6 +75,7 @@ class NodeWalker {
 
   void visit(const Pending& pending, std::vector<Pending>& stack);
   void add_light(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world);
+  std::optional<PunctualLight> to_punctual(const tinygltf::Light& light, size_t index);
   void add_camera(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world);
 
   const tinygltf::Model& model_;
@@ -95,7 +98,8 @@ FlattenedNodes NodeWalker::walk() {
 
 // An explicit stack, not recursion: a deep chain of nodes cannot overflow it.
 void NodeWalker::visit(const Pending& pending, std::vector<Pending>& stack) {
-  const std::string referrer = pending.parent < 0 ? "scene nodes" : gltf_element("nodes", size_t(pending.parent)) + ".children";
+  const std::string referrer =
+      pending.parent < 0 ? "scene nodes" : gltf_element("nodes", size_t(pending.parent)) + ".children";
   if (pending.node < 0 || size_t(pending.node) >= model_.nodes.size())
     diag_.fail(referrer, "node " + std::to_string(pending.node) + " does not exist (the file has " +
                              std::to_string(model_.nodes.size()) + ")");
@@ -127,30 +131,44 @@ void NodeWalker::add_light(const tinygltf::Node& node, const std::string& name, 
   if (index < 0 || size_t(index) >= model_.lights.size())
     diag_.fail(name + ".extensions.KHR_lights_punctual", "expected 'light' to index one of the file's " +
                                                             std::to_string(model_.lights.size()) + " lights");
-  const tinygltf::Light& light = model_.lights[size_t(index)];
+  std::optional<PunctualLight> light = to_punctual(model_.lights[size_t(index)], size_t(index));
+  if (!light) return;
+  light->position = world_point(world, glm::dvec3(0.0));
+  light->direction = glm::vec3(world_axis(world, glm::dvec3(0.0, 0.0, -1.0)));
+  if (light->type != LightType::Point && light->direction == glm::vec3(0.0f))
+    diag_.fail(name, "the transform collapses the direction of light " + std::to_string(index));
+  out_.lights.push_back(*light);
+}
+
+// Type, intensity and cones; the node gives position and direction.
+std::optional<PunctualLight> NodeWalker::to_punctual(const tinygltf::Light& light, size_t index) {
+  const std::string name = gltf_element("lights", index);
   PunctualLight out;
-  const glm::vec3 color = light.color.size() >= 3 ? glm::vec3(light.color[0], light.color[1], light.color[2]) : glm::vec3(1.0f);
+  const std::vector<double>& c = light.color;
+  const glm::vec3 color = c.size() >= 3 ? glm::vec3(c[0], c[1], c[2]) : glm::vec3(1.0f);
+  if (glm::any(glm::lessThan(color, glm::vec3(0.0f))) || !(light.intensity >= 0.0))
+    diag_.fail(name, "color and intensity must not be negative");
   out.intensity = color * float(light.intensity);  // radiometric: W/sr or W/m^2
-  out.position = world_point(world, glm::dvec3(0.0));
-  out.direction = glm::vec3(world_axis(world, glm::dvec3(0.0, 0.0, -1.0)));
   if (light.type == "point") {
     out.type = LightType::Point;
   } else if (light.type == "spot") {
     out.type = LightType::Spot;
     out.inner_cone = float(light.spot.innerConeAngle);
     out.outer_cone = float(light.spot.outerConeAngle);
+    if (!(0.0f <= out.inner_cone && out.inner_cone < out.outer_cone && out.outer_cone <= kPi / 2 + 1e-6))
+      diag_.fail(name, "spot cone angles inner " + std::to_string(out.inner_cone) + ", outer " +
+                           std::to_string(out.outer_cone) + ": expected 0 <= inner < outer <= pi/2");
   } else if (light.type == "directional") {
     out.type = LightType::Directional;
   } else {
-    diag_.warn_once("light type " + light.type, "light type '" + light.type + "' (" +
-                                                    gltf_element("lights", size_t(index)) + ") unknown: light ignored");
-    return;
+    diag_.warn_once("light type " + light.type,
+                    "light type '" + light.type + "' (" + name + ") unknown: light ignored");
+    return std::nullopt;
   }
-  if (out.type != LightType::Point && out.direction == glm::vec3(0.0f))
-    diag_.fail(name, "the transform collapses the direction of light " + std::to_string(index));
   if (light.range > 0.0)
-    diag_.warn_once("light range", "light range ignored: lights fall off with the inverse square law, without cut-off");
-  out_.lights.push_back(out);
+    diag_.warn_once("light range",
+                    "light range ignored: lights fall off with the inverse square law, without cut-off");
+  return out;
 }
 
 void NodeWalker::add_camera(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world) {
@@ -165,11 +183,15 @@ void NodeWalker::add_camera(const tinygltf::Node& node, const std::string& name,
     return;
   }
   if (out_.camera) {
-    diag_.warn_once("extra cameras", "cameras after the first perspective camera ignored (first ignored on " + name + ")");
+    diag_.warn_once("extra cameras",
+                    "cameras after the first perspective camera ignored (first ignored on " + name + ")");
     return;
   }
+  if (camera.perspective.aspectRatio > 0.0)
+    diag_.warn_once("aspectRatio", "camera aspectRatio ignored: the image's width and height set it");
   const double yfov = camera.perspective.yfov;
-  if (!(yfov > 0.0 && yfov < kPi)) diag_.fail(camera_name, "yfov " + std::to_string(yfov) + ", expected in (0, pi)");
+  if (!(yfov > 0.0 && yfov < kPi))
+    diag_.fail(camera_name, "yfov " + std::to_string(yfov) + ", expected in (0, pi)");
   const glm::dvec3 forward = world_axis(world, glm::dvec3(0.0, 0.0, -1.0));
   const glm::dvec3 up = world_axis(world, glm::dvec3(0.0, 1.0, 0.0));
   // Re-orthogonalise: a sheared or non-uniformly scaled parent may tilt up.

@@ -34,11 +34,12 @@ void check_writable(const Scene& scene, const std::string& path) {
   for (size_t t = 0; t < scene.triangles.size(); ++t)
     if (glm::any(glm::greaterThanEqual(scene.triangles[t], glm::uvec3(uint32_t(scene.positions.size())))) ||
         scene.triangle_material[t] >= scene.materials.size())
-      throw SceneError(where + "triangle " + std::to_string(t) + " indexes a vertex or material that does not exist");
+      throw SceneError(where + "triangle " + std::to_string(t) +
+                       " indexes a vertex or material that does not exist");
   for (const Material& m : scene.materials)
     if (m.base_color_texture >= int(scene.textures.size()))
-      throw SceneError(where + "material '" + m.name + "' names texture " + std::to_string(m.base_color_texture) +
-                       " of " + std::to_string(scene.textures.size()));
+      throw SceneError(where + "material '" + m.name + "' names texture " +
+                       std::to_string(m.base_color_texture) + " of " + std::to_string(scene.textures.size()));
 }
 
 // Appends a 4-byte aligned bufferView over `bytes` to buffer 0.
@@ -77,7 +78,8 @@ void set_bounds(tinygltf::Accessor& accessor, const std::vector<glm::vec3>& posi
 
 std::vector<std::vector<uint32_t>> triangles_by_material(const Scene& scene) {
   std::vector<std::vector<uint32_t>> groups(scene.materials.size());
-  for (size_t t = 0; t < scene.triangles.size(); ++t) groups[scene.triangle_material[t]].push_back(uint32_t(t));
+  for (size_t t = 0; t < scene.triangles.size(); ++t)
+    groups[scene.triangle_material[t]].push_back(uint32_t(t));
   return groups;
 }
 
@@ -104,18 +106,16 @@ tinygltf::Primitive write_primitive(tinygltf::Model& model, const Submesh& sub, 
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
   primitive.material = material;
-  const int position = add_accessor(model, sub.positions, TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                    TINYGLTF_TARGET_ARRAY_BUFFER);
+  constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT, kVertices = TINYGLTF_TARGET_ARRAY_BUFFER;
+  const int position = add_accessor(model, sub.positions, TINYGLTF_TYPE_VEC3, kFloat, kVertices);
   set_bounds(model.accessors[size_t(position)], sub.positions);
   primitive.attributes["POSITION"] = position;
   if (!sub.normals.empty())
-    primitive.attributes["NORMAL"] = add_accessor(model, sub.normals, TINYGLTF_TYPE_VEC3,
-                                                  TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
+    primitive.attributes["NORMAL"] = add_accessor(model, sub.normals, TINYGLTF_TYPE_VEC3, kFloat, kVertices);
   if (!sub.uvs.empty())
-    primitive.attributes["TEXCOORD_0"] = add_accessor(model, sub.uvs, TINYGLTF_TYPE_VEC2,
-                                                      TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
-  primitive.indices = add_accessor(model, sub.indices, TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                                   TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    primitive.attributes["TEXCOORD_0"] = add_accessor(model, sub.uvs, TINYGLTF_TYPE_VEC2, kFloat, kVertices);
+  primitive.indices = add_accessor(model, sub.indices, TINYGLTF_TYPE_SCALAR,
+                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
   return primitive;
 }
 
@@ -124,7 +124,8 @@ void write_geometry(const Scene& scene, tinygltf::Model& model) {
   std::vector<uint32_t> remap(scene.positions.size(), ~0u);
   const std::vector<std::vector<uint32_t>> groups = triangles_by_material(scene);
   for (size_t m = 0; m < groups.size(); ++m)
-    if (!groups[m].empty()) mesh.primitives.push_back(write_primitive(model, compact(scene, groups[m], remap), int(m)));
+    if (!groups[m].empty())
+      mesh.primitives.push_back(write_primitive(model, compact(scene, groups[m], remap), int(m)));
   if (mesh.primitives.empty()) return;
   model.meshes.push_back(mesh);
   tinygltf::Node node;
@@ -146,7 +147,9 @@ tinygltf::Material to_gltf(const Material& m, std::set<std::string>& used) {
   pbr.baseColorTexture.index = m.base_color_texture;
   switch (m.type) {
     case MaterialType::Diffuse: pbr.metallicFactor = 0.0, pbr.roughnessFactor = 1.0; break;
-    case MaterialType::Conductor: pbr.metallicFactor = 1.0, pbr.roughnessFactor = std::sqrt(double(m.alpha)); break;
+    case MaterialType::Conductor:
+      pbr.metallicFactor = 1.0, pbr.roughnessFactor = std::sqrt(double(m.alpha));
+      break;
     case MaterialType::Mirror: pbr.metallicFactor = 1.0, pbr.roughnessFactor = 0.0; break;
     case MaterialType::Glass:
       pbr.metallicFactor = 0.0, pbr.roughnessFactor = 0.0;
@@ -202,7 +205,8 @@ void write_textures(const Scene& scene, const std::string& stem, tinygltf::Model
 std::vector<double> look_rotation(glm::vec3 forward, glm::vec3 up) {
   const glm::dvec3 z = -glm::normalize(glm::dvec3(forward));
   glm::dvec3 x = glm::cross(glm::dvec3(up), z);
-  if (glm::length(x) < 1e-9) x = glm::cross(std::abs(z.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0), z);
+  if (glm::length(x) < 1e-9)  // up parallel to forward: any perpendicular will do
+    x = glm::cross(std::abs(z.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0), z);
   x = glm::normalize(x);
   const glm::dquat q = glm::quat_cast(glm::dmat3(x, glm::cross(z, x), z));
   return {q.x, q.y, q.z, q.w};
@@ -210,7 +214,9 @@ std::vector<double> look_rotation(glm::vec3 forward, glm::vec3 up) {
 
 tinygltf::Light to_gltf(const PunctualLight& light) {
   tinygltf::Light out;
-  out.type = light.type == LightType::Point ? "point" : light.type == LightType::Spot ? "spot" : "directional";
+  out.type = light.type == LightType::Point  ? "point"
+             : light.type == LightType::Spot ? "spot"
+                                             : "directional";
   // color in [0, 1], intensity carrying the magnitude, as glTF authors write it
   const float peak = std::max({light.intensity.r, light.intensity.g, light.intensity.b});
   const glm::vec3 color = peak > 0.0f ? light.intensity / peak : glm::vec3(1.0f);

@@ -21,11 +21,12 @@ namespace igi {
 enum class VplKind : uint8_t { Surface, Area, Point, Spot, Directional };
 
 struct Vpl {
-  glm::vec3 position;
-  glm::vec3 normal;     // Surface/Area: front normal; Spot: axis; Directional: travel direction
-  glm::vec3 flux;       // already divided by the number of paths of its set
-  glm::vec3 incident;   // Surface: unit direction back towards the light path's previous vertex
-  glm::vec3 albedo;     // Surface: base colour at the hit
+  // Every field initialised: VPL sets are hashed and compared bit for bit.
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f};    // Surface/Area: front normal; Spot: axis; Directional: travel direction
+  glm::vec3 flux{0.0f};      // already divided by the number of paths of its set
+  glm::vec3 incident{0.0f};  // Surface: unit direction back towards the light path's previous vertex
+  glm::vec3 albedo{0.0f};    // Surface: base colour at the hit
   uint32_t material = 0;     // Surface: Scene::materials index
   uint32_t light = 0;        // Spot: Scene::lights index (cone shape)
   VplKind kind = VplKind::Surface;

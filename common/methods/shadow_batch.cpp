@@ -1,0 +1,119 @@
+#include "methods/shadow_batch.h"
+
+#include <algorithm>
+
+namespace igi {
+
+void PixelBatch::clear() {
+  for (auto* v : {&ox, &oy, &oz, &px, &py, &pz, &nx, &ny, &nz, &gx, &gy, &gz}) v->clear();
+  index.clear();
+  fast.clear();
+  count = 0;
+}
+
+void PixelBatch::add(uint32_t gbuffer_index, const GSample& g) {
+  const SurfacePoint& sp = g.surface;
+  const bool front = glm::dot(g.wo, sp.geometric_normal) >= 0.0f;
+  const glm::vec3 n = front ? sp.shading_normal : -sp.shading_normal;
+  const glm::vec3 ng = front ? sp.geometric_normal : -sp.geometric_normal;
+  const glm::vec3 o = offset_origin(sp, ng);
+  index.push_back(gbuffer_index);
+  ox.push_back(o.x); oy.push_back(o.y); oz.push_back(o.z);
+  px.push_back(sp.position.x); py.push_back(sp.position.y); pz.push_back(sp.position.z);
+  nx.push_back(n.x); ny.push_back(n.y); nz.push_back(n.z);
+  gx.push_back(ng.x); gy.push_back(ng.y); gz.push_back(ng.z);
+  fast.push_back(sp.material->type == MaterialType::Diffuse);
+  ++count;
+}
+
+void PixelBatch::pad() {
+  while (index.size() % 16 != 0) {
+    index.push_back(0);
+    for (auto* v : {&ox, &oy, &oz, &px, &py, &pz, &nx, &ny, &nz, &gx, &gy, &gz}) v->push_back(0.0f);
+    fast.push_back(1);  // inert: zero normals give no contribution
+  }
+}
+
+namespace {
+
+// Diffuse-to-diffuse lanes: G = min(cos_x cos_y / r^2, bound), visible side only.
+// Written as independent lanes over restrict pointers so it vectorises.
+void fill_fast_lanes(const PixelBatch& b, size_t first, const Vpl& vpl, float bound, float* __restrict g_out,
+                     RTCRay16& rays) {
+  const float vx = vpl.position.x, vy = vpl.position.y, vz = vpl.position.z;
+  const float mx = vpl.normal.x, my = vpl.normal.y, mz = vpl.normal.z;
+  const float* __restrict px = b.px.data() + first;
+  const float* __restrict py = b.py.data() + first;
+  const float* __restrict pz = b.pz.data() + first;
+  const float* __restrict nx = b.nx.data() + first;
+  const float* __restrict ny = b.ny.data() + first;
+  const float* __restrict nz = b.nz.data() + first;
+  const float* __restrict gx = b.gx.data() + first;
+  const float* __restrict gy = b.gy.data() + first;
+  const float* __restrict gz = b.gz.data() + first;
+  float* __restrict dir_x = rays.dir_x;
+  float* __restrict dir_y = rays.dir_y;
+  float* __restrict dir_z = rays.dir_z;
+  float* __restrict tfar = rays.tfar;
+  for (int k = 0; k < 16; ++k) {
+    const float dx = vx - px[k], dy = vy - py[k], dz = vz - pz[k];
+    const float dist2 = dx * dx + dy * dy + dz * dz;
+    const float dist = std::sqrt(dist2);
+    const float inv = 1.0f / dist;
+    const float wx = dx * inv, wy = dy * inv, wz = dz * inv;
+    const float cos_x = wx * nx[k] + wy * ny[k] + wz * nz[k];
+    const float side = wx * gx[k] + wy * gy[k] + wz * gz[k];
+    const float cos_y = -(wx * mx + wy * my + wz * mz);
+    const float g = std::min(cos_x * cos_y / dist2, bound);
+    // Bitwise &, not &&: no branches, so the loop vectorises.
+    const bool visible = (cos_x > 0.0f) & (side > 0.0f) & (cos_y > 0.0f);
+    g_out[k] = visible ? g : 0.0f;
+    dir_x[k] = wx; dir_y[k] = wy; dir_z[k] = wz;
+    tfar[k] = dist * (1.0f - kShadowEpsilon);
+  }
+  std::copy_n(b.ox.data() + first, 16, rays.org_x);
+  std::copy_n(b.oy.data() + first, 16, rays.org_y);
+  std::copy_n(b.oz.data() + first, 16, rays.org_z);
+  std::fill_n(rays.tnear, 16, 0.0f);
+  std::fill_n(rays.mask, 16, ~0u);
+  std::fill_n(rays.flags, 16, 0u);
+  std::fill_n(rays.time, 16, 0.0f);
+}
+
+bool vpl_is_diffuse_emitter(const Vpl& vpl, const Scene& scene) {
+  return vpl.kind == VplKind::Area ||
+         (vpl.kind == VplKind::Surface && scene.materials[vpl.material].type == MaterialType::Diffuse);
+}
+
+}  // namespace
+
+void fill_shadow_packet(const PixelBatch& batch, size_t first, const Vpl& vpl, const VplShading& shading,
+                        const std::vector<GSample>& gbuffer, ShadowPacket& packet) {
+  const bool fast_vpl = vpl_is_diffuse_emitter(vpl, shading.scene);
+  alignas(64) float g[16];
+  if (fast_vpl) fill_fast_lanes(batch, first, vpl, shading.clamp_bound, g, packet.rays);
+  // Radiance per unit G leaving the VPL, times the receiver's 1/pi (albedo 1).
+  const glm::vec3 intensity = (vpl.kind == VplKind::Area ? vpl.flux : vpl.albedo * vpl.flux * kInvPi) * kInvPi;
+  for (int k = 0; k < 16; ++k) {
+    const size_t i = first + k;
+    if (i >= batch.count) {
+      packet.valid[k] = 0;
+      packet.contribution[k] = glm::vec3(0.0f);
+      continue;
+    }
+    if (fast_vpl && batch.fast[i]) {
+      packet.contribution[k] = intensity * g[k];
+    } else {
+      ShadowQuery q{};
+      packet.contribution[k] = shading.contribution(gbuffer[batch.index[i]], vpl, q);
+      packet.rays.org_x[k] = q.origin.x; packet.rays.org_y[k] = q.origin.y; packet.rays.org_z[k] = q.origin.z;
+      packet.rays.dir_x[k] = q.direction.x; packet.rays.dir_y[k] = q.direction.y; packet.rays.dir_z[k] = q.direction.z;
+      packet.rays.tnear[k] = 0.0f; packet.rays.tfar[k] = q.tfar;
+      packet.rays.mask[k] = ~0u; packet.rays.flags[k] = 0; packet.rays.time[k] = 0.0f;
+    }
+    const glm::vec3& c = packet.contribution[k];
+    packet.valid[k] = c.x > 0.0f || c.y > 0.0f || c.z > 0.0f ? -1 : 0;
+  }
+}
+
+}  // namespace igi

@@ -1,0 +1,43 @@
+#pragma once
+// The inner loop of VPL shading: one VPL against 16 pixels of one set, as one
+// coherent shadow packet. Pixels are kept structure-of-arrays so the common
+// case (diffuse receiver, diffuse or area-light VPL) runs as plain 16-lane
+// arithmetic the compiler vectorises; other lanes take the general path in
+// vpl_contribution.h. Each lane's arithmetic is independent of its
+// neighbours, so a pixel's result does not depend on the packet it is in.
+#include <cstdint>
+#include <vector>
+
+#include <embree3/rtcore.h>
+
+#include "methods/gbuffer.h"
+#include "methods/vpl_contribution.h"
+
+namespace igi {
+
+// One set's valid pixels, padded to a multiple of 16 lanes.
+struct PixelBatch {
+  std::vector<uint32_t> index;  // into the G-buffer
+  std::vector<float> ox, oy, oz;  // shadow-ray origin, nudged to the viewer's side
+  std::vector<float> px, py, pz;  // surface position
+  std::vector<float> nx, ny, nz;  // shading normal, facing the viewer
+  std::vector<float> gx, gy, gz;  // geometric normal, facing the viewer
+  std::vector<uint8_t> fast;      // diffuse receiver: vectorised lane
+  size_t count = 0;
+
+  void clear();
+  void add(uint32_t gbuffer_index, const GSample& g);
+  void pad();  // to a multiple of 16, with inert lanes
+};
+
+struct alignas(64) ShadowPacket {
+  int valid[16];
+  RTCRay16 rays;
+  glm::vec3 contribution[16];
+};
+
+// Fills `packet` for lanes [first, first + 16) of `batch` against `vpl`.
+void fill_shadow_packet(const PixelBatch& batch, size_t first, const Vpl& vpl, const VplShading& shading,
+                        const std::vector<GSample>& gbuffer, ShadowPacket& packet);
+
+}  // namespace igi

@@ -1,0 +1,171 @@
+// igi-bench: throughput of the IGI renderer against raw Embree on the same
+// rays, frames per second, border overhead. Prints figures; asserts nothing.
+//
+//   igi-bench [--size WxH] [--frames F] [--vpls-per-set V] [--scenes a,b]
+//
+// Every figure is the median over F frames. "cpu" columns divide by the CPU
+// time the process actually received (the machine is shared), "wall" by
+// elapsed time.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <string>
+#include <vector>
+
+#include "methods/vpl_method.h"
+#include "render/frame_renderer.h"
+#include "scene/load_scene.h"
+#include "vpl/vpl_generator.h"
+
+namespace igi {
+namespace {
+
+struct Clock {
+  double wall, cpu;
+  static Clock now() {
+    timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return {std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(),
+            double(t.tv_sec) + 1e-9 * double(t.tv_nsec)};
+  }
+  Clock operator-(const Clock& o) const { return {wall - o.wall, cpu - o.cpu}; }
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+struct Timing {
+  double wall, cpu;
+  RayCounts rays;
+};
+
+Timing time_frames(const Method& method, const FrameSetup& frame, int border, int threads, int tile, int frames) {
+  std::vector<double> wall, cpu;
+  RayCounts rays;
+  for (int f = 0; f < frames; ++f) {
+    FrameOptions options;
+    options.threads = threads;
+    options.tile_size = tile;
+    rays = RayCounts{};
+    Clock start = Clock::now();
+    render_frame(method, frame, border, options, rays);
+    Clock d = Clock::now() - start;
+    wall.push_back(d.wall);
+    cpu.push_back(d.cpu);
+  }
+  return {median(wall), median(cpu), rays};
+}
+
+// Replays the logged packets through Embree alone, on one thread.
+Timing time_replay(const Accel& accel, RayLog& log, int frames) {
+  std::vector<double> wall, cpu;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  RayCounts rays;
+  for (int f = 0; f < frames; ++f) {
+    rays = RayCounts{};
+    std::vector<LoggedPrimary> primary = log.primary;  // rays are overwritten by tracing
+    std::vector<LoggedShadow> shadow = log.shadow;
+    Clock start = Clock::now();
+    for (LoggedPrimary& p : primary) rtcIntersect16(p.valid, accel.handle(), &context, &p.rays);
+    for (LoggedShadow& s : shadow) rtcOccluded16(s.valid, accel.handle(), &context, &s.rays);
+    Clock d = Clock::now() - start;
+    wall.push_back(d.wall);
+    cpu.push_back(d.cpu);
+    for (const LoggedPrimary& p : log.primary) rays.primary += std::count(p.valid, p.valid + 16, -1);
+    for (const LoggedShadow& s : log.shadow) rays.shadow += std::count(s.valid, s.valid + 16, -1);
+  }
+  return {median(wall), median(cpu), rays};
+}
+
+// Paths per set that give about `target` VPLs per set in this scene.
+int paths_for_vpls(const SceneContext& ctx, RenderSettings s, int target) {
+  s.paths_per_set = 64;
+  VplSets sets = generate_vpls(ctx, s, 1);
+  double per_path = double(sets.vpls.size()) / (64.0 * sets.set_count());
+  return std::max(1, int(std::lround(target / per_path)));
+}
+
+void bench_scene(const std::string& name, int width, int height, int frames, int vpls_per_set) {
+  Scene scene = load_scene(name);
+  Clock build_start = Clock::now();
+  Accel accel(scene);
+  double build = (Clock::now() - build_start).wall;
+  LightSet lights(scene);
+  SceneContext ctx{scene, accel, lights};
+  RenderSettings settings;
+  settings.method = MethodKind::Igi;
+  settings.clamp = 0.05f;
+  settings.paths_per_set = paths_for_vpls(ctx, settings, vpls_per_set);
+  VplMethod method(ctx, settings);
+  FrameSetup frame;
+  frame.camera = scene.camera_or_auto();
+  frame.width = width;
+  frame.height = height;
+  frame.seed = 1;
+  method.begin_frame(frame);
+  const int border = tile_border(settings);
+  std::printf("\n== %s: %zu triangles (BVH build %.2f s), %dx%d, M=%d paths/set -> %.1f VPLs/set, tiles 40x40 border %d\n",
+              name.c_str(), scene.triangles.size(), build, width, height, settings.paths_per_set,
+              double(method.vpls().vpls.size()) / method.vpls().set_count(), border);
+
+  RayLog log;
+  method.record_rays(&log);
+  RayCounts counted;
+  FrameOptions one;
+  one.threads = 1;
+  one.tile_size = 40;
+  render_frame(method, frame, border, one, counted);
+  method.record_rays(nullptr);
+  Timing raw = time_replay(accel, log, frames);
+
+  std::printf("%-26s %9s %9s %10s %10s %8s\n", "", "frame ms", "fps", "Mrays/s", "Mrays/cpu-s", "rays/px");
+  auto row = [&](const char* label, const Timing& t) {
+    double mr = t.rays.total() * 1e-6;
+    std::printf("%-26s %9.1f %9.2f %10.2f %10.2f %8.1f\n", label, 1e3 * t.wall, 1.0 / t.wall, mr / t.wall,
+                mr / t.cpu, double(t.rays.total()) / (width * height));
+  };
+  Timing t1 = time_frames(method, frame, border, 1, 40, frames);
+  Timing t2 = time_frames(method, frame, border, 2, 40, frames);
+  row("igi, 1 thread", t1);
+  row("igi, 2 threads", t2);
+  row("raw Embree, same rays, 1t", raw);
+  double igi_rate = (t1.rays.primary + t1.rays.shadow) / t1.cpu;
+  double raw_rate = (raw.rays.primary + raw.rays.shadow) / raw.cpu;
+  std::printf("igi / raw Embree throughput (primary + shadow, per cpu-s, 1 thread): %.0f %%\n", 100.0 * igi_rate / raw_rate);
+  std::printf("2-thread speed-up: %.2fx\n", t1.wall / t2.wall);
+
+  // Border overhead: the same frame without the filter border.
+  Timing nb = time_frames(method, frame, 0, 1, 40, frames);
+  std::printf("border overhead (40x40 tiles): %+.1f %% primary rays, %+.1f %% frame time (1 thread)\n",
+              100.0 * (double(t1.rays.primary) / nb.rays.primary - 1.0), 100.0 * (t1.cpu / nb.cpu - 1.0));
+}
+
+}  // namespace
+}  // namespace igi
+
+int main(int argc, char** argv) {
+  int width = 640, height = 480, frames = 5, vpls = 16;
+  std::vector<std::string> scenes = {"cornell", "cornell-blob"};
+  for (int i = 1; i + 1 < argc; i += 2) {
+    std::string a = argv[i], v = argv[i + 1];
+    if (a == "--size") std::sscanf(v.c_str(), "%dx%d", &width, &height);
+    else if (a == "--frames") frames = std::stoi(v);
+    else if (a == "--vpls-per-set") vpls = std::stoi(v);
+    else if (a == "--scenes") {
+      scenes.clear();
+      for (size_t p = 0, q; p <= v.size(); p = q + 1) {
+        q = v.find(',', p);
+        if (q == std::string::npos) q = v.size();
+        scenes.push_back(v.substr(p, q - p));
+      }
+    }
+  }
+  igi::enable_flush_to_zero();
+  for (const std::string& s : scenes) igi::bench_scene(s, width, height, frames, vpls);
+  return 0;
+}
