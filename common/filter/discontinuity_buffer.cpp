@@ -164,7 +164,7 @@ void sliding_extremum(Op op, int r, Sequence<Float4> in, int o0, int o1, Float4*
   const int top = (o1 - 1) / w * w + w - 1;
   suffixes.resize(size_t(top - o0 + 1) * lanes);
   for (int k = top, to_end = 0; k >= o0; --k, to_end = to_end == w - 1 ? 0 : to_end + 1) {
-    Float4* suffix = &suffixes[size_t(k - o0) * lanes];
+    Float4* suffix = suffixes.data() + size_t(k - o0) * lanes;
     const Float4* e = entry(k);
     combine(suffix, e, to_end == 0 ? e : suffix + lanes);
   }
@@ -175,67 +175,62 @@ void sliding_extremum(Op op, int r, Sequence<Float4> in, int o0, int o1, Float4*
     const Float4* e = entry(k);
     combine(prefix.data(), from_start == 0 ? e : prefix.data(), e);
     const int i = k - (w - 1);
-    if (i >= o0) combine(out + size_t(i - o0) * out_stride, &suffixes[size_t(i - o0) * lanes], prefix.data());
+    if (i < o0) continue;
+    combine(out + size_t(i - o0) * out_stride, suffixes.data() + size_t(i - o0) * lanes, prefix.data());
   }
 }
 
-// The inner rect is filtered in blocks so that the intermediate planes stay
-// in cache; a block reads the r pixels around it again.
-constexpr int kBlockRows = 32, kBlockColumns = 64;
+// Inner rows are filtered in bands so that the intermediate planes stay in
+// cache; a band reads the r rows above and below it again.
+constexpr int kBandRows = 32;
 
-// Working memory of one call, reused from block to block.
-struct BlockScratch {
-  std::vector<Float4> geometry;  // per pixel of the block's reach
+// Working memory of one call, reused from band to band.
+struct BandScratch {
+  std::vector<Float4> geometry;  // per pixel of the rows read
   std::vector<Float4> along_rows, lo, hi, suffixes;
   std::vector<Fixed4> fixed, row_sums, sums;
 };
 
-// The pixels that windows of a block's pixels reach, clipped to the region.
-// Sequences over the reach are clipped where the region is, and no window
-// of the block leaves the reach elsewhere.
-Box reach(const Box& block, int r, const FilterInput& in) {
-  return {std::max(block.x0 - r, 0), std::max(block.y0 - r, 0), std::min(block.x1 + r, in.width),
-          std::min(block.y1 + r, in.height)};
-}
+// Rows of the region that windows of a band's rows reach.
+int rows_begin(const Box& band, int r) { return std::max(band.y0 - r, 0); }
+int rows_end(const Box& band, int r, int height) { return std::min(band.y1 + r, height); }
 
-// Per block pixel, row-major: lo (Min) or hi (Max) of the geometry over its
+// Per band pixel, row-major: lo (Min) or hi (Max) of the geometry over its
 // window. Rows first, then columns.
 template <class Op>
-void window_extremum(Op op, int r, const Box& block, const Box& reach, BlockScratch& scratch,
+void window_extremum(Op op, int r, const Box& band, int region_width, int rows, BandScratch& scratch,
                      std::vector<Float4>& result) {
-  const int bw = block.width(), rw = reach.width(), rh = reach.height();
-  scratch.along_rows.resize(size_t(rh) * bw);
-  for (int y = 0; y < rh; ++y) {
-    const Sequence<Float4> row{&scratch.geometry[size_t(y) * rw], 1, rw, 1};
-    sliding_extremum<1>(op, r, row, block.x0 - reach.x0, block.x1 - reach.x0, &scratch.along_rows[size_t(y) * bw],
-                        1, scratch.suffixes);
+  const int bw = band.width(), ry0 = rows_begin(band, r);
+  scratch.along_rows.resize(size_t(rows) * bw);
+  for (int y = 0; y < rows; ++y) {
+    const Sequence<Float4> row{scratch.geometry.data() + size_t(y) * region_width, 1, region_width, 1};
+    Float4* along_row = scratch.along_rows.data() + size_t(y) * bw;
+    sliding_extremum<1>(op, r, row, band.x0, band.x1, along_row, 1, scratch.suffixes);
   }
-  result.resize(size_t(block.height()) * bw);
-  const Sequence<Float4> columns{scratch.along_rows.data(), size_t(bw), rh, bw};
-  sliding_extremum<0>(op, r, columns, block.y0 - reach.y0, block.y1 - reach.y0, result.data(), bw,
-                      scratch.suffixes);
+  result.resize(size_t(band.height()) * bw);
+  const Sequence<Float4> columns{scratch.along_rows.data(), size_t(bw), rows, bw};
+  sliding_extremum<0>(op, r, columns, band.y0 - ry0, band.y1 - ry0, result.data(), bw, scratch.suffixes);
 }
 
-// Fills scratch.lo and scratch.hi for the block.
-void window_extrema(const FilterInput& in, int r, const Box& block, BlockScratch& scratch) {
-  const Box from = reach(block, r, in);
-  scratch.geometry.resize(size_t(from.width()) * from.height());
-  Float4* g = scratch.geometry.data();
-  for (int y = from.y0; y < from.y1; ++y)
-    for (int x = from.x0; x < from.x1; ++x) {
-      const size_t p = size_t(y) * in.width + x;
-      *g++ = Float4{in.depth[p], in.normal[p].x, in.normal[p].y, in.normal[p].z};
-    }
-  window_extremum(Min{}, r, block, from, scratch, scratch.lo);
-  window_extremum(Max{}, r, block, from, scratch, scratch.hi);
+// Fills scratch.lo and scratch.hi for the band.
+void window_extrema(const FilterInput& in, int r, const Box& band, BandScratch& scratch) {
+  const int ry0 = rows_begin(band, r), rows = rows_end(band, r, in.height) - ry0;
+  scratch.geometry.resize(size_t(rows) * in.width);
+  const size_t first = size_t(ry0) * in.width;
+  for (size_t i = 0; i < scratch.geometry.size(); ++i) {
+    const glm::vec3& n = in.normal[first + i];
+    scratch.geometry[i] = Float4{in.depth[first + i], n.x, n.y, n.z};
+  }
+  window_extremum(Min{}, r, band, in.width, rows, scratch, scratch.lo);
+  window_extremum(Max{}, r, band, in.width, rows, scratch, scratch.hi);
 }
 
-// True when every pixel of p's window (block pixel i) passes same_surface,
+// True when every pixel of p's window (band pixel i) passes same_surface,
 // judged from the extrema alone. Conservative in floats too, because
 // rounding is monotone: d_p - d_min >= d_p - d_q, and each
 // min(n_p.c * lo.c, n_p.c * hi.c) <= n_p.c * n_q.c, so the sum in dot3's
 // order bounds dot3(n_p, n_q) from below.
-bool window_on_one_surface(const FilterSettings& s, float d_p, const glm::vec3& n_p, const BlockScratch& scratch,
+bool window_on_one_surface(const FilterSettings& s, float d_p, const glm::vec3& n_p, const BandScratch& scratch,
                            size_t i) {
   const Float4 lo = scratch.lo[i], hi = scratch.hi[i];
   if (!is_valid(hi[0])) return false;
@@ -283,23 +278,23 @@ void running_box_sum(int r, Sequence<Fixed4> in, int o0, int o1, Fixed4* out, si
   }
 }
 
-// Fills scratch.sums: per block pixel, row-major, the channel sums of fixed
+// Fills scratch.sums: per band pixel, row-major, the channel sums of fixed
 // values over its whole clipped window. Rows first, then columns.
-void window_sums(const FilterInput& in, const FilterSettings& s, const Box& block, BlockScratch& scratch) {
-  const int r = s.radius, bw = block.width();
-  const Box from = reach(block, r, in);
+void window_sums(const FilterInput& in, const FilterSettings& s, const Box& band, BandScratch& scratch) {
+  const int r = s.radius, ry0 = rows_begin(band, r), rows = rows_end(band, r, in.height) - ry0;
+  const int bw = band.width();
   const double cap = fixed_cap(r);
-  scratch.fixed.resize(size_t(from.width()));
-  scratch.row_sums.resize(size_t(from.height()) * bw);
-  for (int y = 0; y < from.height(); ++y) {
-    const glm::vec3* value = &in.value[size_t(from.y0 + y) * in.width + from.x0];
-    for (int x = 0; x < from.width(); ++x) scratch.fixed[x] = to_fixed(value[x], s.fixed_scale, cap);
-    const Sequence<Fixed4> row{scratch.fixed.data(), 1, from.width(), 1};
-    running_box_sum<1>(r, row, block.x0 - from.x0, block.x1 - from.x0, &scratch.row_sums[size_t(y) * bw], 1);
+  scratch.fixed.resize(size_t(in.width));
+  scratch.row_sums.resize(size_t(rows) * bw);
+  for (int y = 0; y < rows; ++y) {
+    const glm::vec3* value = in.value.data() + size_t(ry0 + y) * in.width;
+    for (int x = 0; x < in.width; ++x) scratch.fixed[x] = to_fixed(value[x], s.fixed_scale, cap);
+    const Sequence<Fixed4> row{scratch.fixed.data(), 1, in.width, 1};
+    running_box_sum<1>(r, row, band.x0, band.x1, scratch.row_sums.data() + size_t(y) * bw, 1);
   }
-  scratch.sums.resize(size_t(block.height()) * bw);
-  const Sequence<Fixed4> columns{scratch.row_sums.data(), size_t(bw), from.height(), bw};
-  running_box_sum<0>(r, columns, block.y0 - from.y0, block.y1 - from.y0, scratch.sums.data(), bw);
+  scratch.sums.resize(size_t(band.height()) * bw);
+  const Sequence<Fixed4> columns{scratch.row_sums.data(), size_t(bw), rows, bw};
+  running_box_sum<0>(r, columns, band.y0 - ry0, band.y1 - ry0, scratch.sums.data(), bw);
 }
 
 // Pixels of the window of region pixel (x, y), clipped to the region.
@@ -314,26 +309,26 @@ glm::vec3 from_fixed(const Fixed4& sum, double per_quantum) {
   return glm::vec3(double(sum[0]) * per_quantum, double(sum[1]) * per_quantum, double(sum[2]) * per_quantum);
 }
 
-// Filters the block's pixels into `out`, whose rows are out_stride apart.
-void filter_block(const FilterInput& in, const FilterSettings& s, const Box& block, BlockScratch& scratch,
-                  glm::vec3* out, size_t out_stride, FilterStats& stats) {
-  window_extrema(in, s.radius, block, scratch);
-  window_sums(in, s, block, scratch);
+// Filters the band's pixels into `out` (band pixels, row-major).
+void filter_band(const FilterInput& in, const FilterSettings& s, const Box& band, BandScratch& scratch,
+                 glm::vec3* out, FilterStats& stats) {
+  window_extrema(in, s.radius, band, scratch);
+  window_sums(in, s, band, scratch);
   // Most windows are whole: their reciprocal is computed once (the same
   // expression, so the same bits as computing it per pixel).
   const int whole = (2 * s.radius + 1) * (2 * s.radius + 1);
   const double whole_per_quantum = 1.0 / (s.fixed_scale * whole);
   size_t i = 0;
-  for (int y = block.y0; y < block.y1; ++y, out += out_stride)
-    for (int x = block.x0; x < block.x1; ++x, ++i) {
+  for (int y = band.y0; y < band.y1; ++y)
+    for (int x = band.x0; x < band.x1; ++x, ++i) {
       const size_t p = size_t(y) * in.width + x;
       const float d_p = in.depth[p];
       if (is_valid(d_p) && window_on_one_surface(s, d_p, in.normal[p], scratch, i)) {
         const int count = window_count(in, s.radius, x, y);
-        out[x - block.x0] = from_fixed(scratch.sums[i], count == whole ? whole_per_quantum : 1.0 / (s.fixed_scale * count));
+        out[i] = from_fixed(scratch.sums[i], count == whole ? whole_per_quantum : 1.0 / (s.fixed_scale * count));
         ++stats.fast_pixels;
       } else {
-        out[x - block.x0] = exact_pixel(in, s, x, y);
+        out[i] = exact_pixel(in, s, x, y);
         ++stats.exact_pixels;
       }
     }
@@ -351,14 +346,12 @@ void filter_brute_force(const FilterInput& in, const FilterSettings& s, Rect inn
 void filter_discontinuity(const FilterInput& in, const FilterSettings& s, Rect inner, std::span<glm::vec3> out,
                           FilterStats* stats) {
   const Box box = check_arguments(in, s, inner, out.size());
-  BlockScratch scratch;
+  BandScratch scratch;
   FilterStats counted;
-  for (int y0 = box.y0; y0 < box.y1; y0 += kBlockRows)
-    for (int x0 = box.x0; x0 < box.x1; x0 += kBlockColumns) {
-      const Box block{x0, y0, std::min(x0 + kBlockColumns, box.x1), std::min(y0 + kBlockRows, box.y1)};
-      glm::vec3* block_out = out.data() + size_t(y0 - box.y0) * box.width() + (x0 - box.x0);
-      filter_block(in, s, block, scratch, block_out, box.width(), counted);
-    }
+  for (int y0 = box.y0; y0 < box.y1; y0 += kBandRows) {
+    const Box band{box.x0, y0, box.x1, std::min(y0 + kBandRows, box.y1)};
+    filter_band(in, s, band, scratch, out.data() + size_t(y0 - box.y0) * box.width(), counted);
+  }
   if (stats) *stats = counted;
 }
 

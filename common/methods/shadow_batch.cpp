@@ -8,6 +8,7 @@ void PixelBatch::clear() {
   for (auto* v : {&ox, &oy, &oz, &px, &py, &pz, &nx, &ny, &nz, &gx, &gy, &gz}) v->clear();
   index.clear();
   fast.clear();
+  chunk_fast.clear();
   count = 0;
 }
 
@@ -32,6 +33,12 @@ void PixelBatch::pad() {
     for (auto* v : {&ox, &oy, &oz, &px, &py, &pz, &nx, &ny, &nz, &gx, &gy, &gz}) v->push_back(0.0f);
     fast.push_back(1);  // inert: zero normals give no contribution
   }
+  chunk_fast.clear();
+  for (size_t c = 0; c < index.size(); c += 16)
+    chunk_fast.push_back(std::all_of(fast.begin() + c, fast.begin() + c + 16, [](uint8_t f) { return f != 0; }));
+  sum_r.assign(index.size(), 0.0f);
+  sum_g.assign(index.size(), 0.0f);
+  sum_b.assign(index.size(), 0.0f);
 }
 
 namespace {
@@ -91,29 +98,49 @@ void fill_shadow_packet(const PixelBatch& batch, size_t first, const Vpl& vpl, c
                         const std::vector<GSample>& gbuffer, ShadowPacket& packet) {
   const bool fast_vpl = vpl_is_diffuse_emitter(vpl, shading.scene);
   alignas(64) float g[16];
-  if (fast_vpl) fill_fast_lanes(batch, first, vpl, shading.clamp_bound, g, packet.rays);
-  // Radiance per unit G leaving the VPL, times the receiver's 1/pi (albedo 1).
-  const glm::vec3 intensity = (vpl.kind == VplKind::Area ? vpl.flux : vpl.albedo * vpl.flux * kInvPi) * kInvPi;
+  if (fast_vpl) {
+    fill_fast_lanes(batch, first, vpl, shading.clamp_bound, g, packet.rays);
+    // Radiance per unit G leaving the VPL, times the receiver's 1/pi (albedo 1).
+    const glm::vec3 i = (vpl.kind == VplKind::Area ? vpl.flux : vpl.albedo * vpl.flux * kInvPi) * kInvPi;
+    for (int k = 0; k < 16; ++k) {
+      packet.r[k] = i.x * g[k];
+      packet.g[k] = i.y * g[k];
+      packet.b[k] = i.z * g[k];
+      packet.valid[k] = g[k] > 0.0f ? -1 : 0;  // padding lanes have g = 0
+    }
+    if (batch.chunk_fast[first / 16]) return;
+  }
+  // General lanes: glossy receivers, or a VPL that is not a diffuse emitter.
   for (int k = 0; k < 16; ++k) {
     const size_t i = first + k;
-    if (i >= batch.count) {
-      packet.valid[k] = 0;
-      packet.contribution[k] = glm::vec3(0.0f);
-      continue;
-    }
-    if (fast_vpl && batch.fast[i]) {
-      packet.contribution[k] = intensity * g[k];
-    } else {
-      ShadowQuery q{};
-      packet.contribution[k] = shading.contribution(gbuffer[batch.index[i]], vpl, q);
-      packet.rays.org_x[k] = q.origin.x; packet.rays.org_y[k] = q.origin.y; packet.rays.org_z[k] = q.origin.z;
-      packet.rays.dir_x[k] = q.direction.x; packet.rays.dir_y[k] = q.direction.y; packet.rays.dir_z[k] = q.direction.z;
-      packet.rays.tnear[k] = 0.0f; packet.rays.tfar[k] = q.tfar;
-      packet.rays.mask[k] = ~0u; packet.rays.flags[k] = 0; packet.rays.time[k] = 0.0f;
-    }
-    const glm::vec3& c = packet.contribution[k];
+    if (i >= batch.count || (fast_vpl && batch.fast[i])) continue;
+    ShadowQuery q{};
+    glm::vec3 c = shading.contribution(gbuffer[batch.index[i]], vpl, q);
+    packet.r[k] = c.x; packet.g[k] = c.y; packet.b[k] = c.z;
     packet.valid[k] = c.x > 0.0f || c.y > 0.0f || c.z > 0.0f ? -1 : 0;
+    packet.rays.org_x[k] = q.origin.x; packet.rays.org_y[k] = q.origin.y; packet.rays.org_z[k] = q.origin.z;
+    packet.rays.dir_x[k] = q.direction.x; packet.rays.dir_y[k] = q.direction.y; packet.rays.dir_z[k] = q.direction.z;
+    packet.rays.tnear[k] = 0.0f; packet.rays.tfar[k] = q.tfar;
+    packet.rays.mask[k] = ~0u; packet.rays.flags[k] = 0; packet.rays.time[k] = 0.0f;
   }
+  if (!fast_vpl)
+    for (size_t k = batch.count > first ? batch.count - first : 0; k < 16; ++k) packet.valid[k] = 0;
+}
+
+int accumulate_shadow_packet(const ShadowPacket& packet, size_t first, PixelBatch& batch) {
+  float* __restrict r = batch.sum_r.data() + first;
+  float* __restrict g = batch.sum_g.data() + first;
+  float* __restrict b = batch.sum_b.data() + first;
+  int traced = 0;
+  for (int k = 0; k < 16; ++k) {
+    // Embree sets tfar to -inf for occluded lanes.
+    const float lit = (packet.valid[k] != 0) & (packet.rays.tfar[k] >= 0.0f) ? 1.0f : 0.0f;
+    r[k] += packet.r[k] * lit;
+    g[k] += packet.g[k] * lit;
+    b[k] += packet.b[k] * lit;
+    traced += packet.valid[k] != 0;
+  }
+  return traced;
 }
 
 }  // namespace igi

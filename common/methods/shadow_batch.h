@@ -23,6 +23,8 @@ struct PixelBatch {
   std::vector<float> nx, ny, nz;  // shading normal, facing the viewer
   std::vector<float> gx, gy, gz;  // geometric normal, facing the viewer
   std::vector<uint8_t> fast;      // diffuse receiver: vectorised lane
+  std::vector<uint8_t> chunk_fast;  // per 16 lanes: all of them fast
+  std::vector<float> sum_r, sum_g, sum_b;  // accumulated demodulated irradiance
   size_t count = 0;
 
   void clear();
@@ -33,11 +35,14 @@ struct PixelBatch {
 struct alignas(64) ShadowPacket {
   int valid[16];
   RTCRay16 rays;
-  glm::vec3 contribution[16];
+  float r[16], g[16], b[16];  // unoccluded contribution per lane
 };
 
 // Fills `packet` for lanes [first, first + 16) of `batch` against `vpl`.
 void fill_shadow_packet(const PixelBatch& batch, size_t first, const Vpl& vpl, const VplShading& shading,
                         const std::vector<GSample>& gbuffer, ShadowPacket& packet);
+// After tracing: adds the unoccluded lanes' contributions to the batch sums.
+// Returns the number of rays the packet traced.
+int accumulate_shadow_packet(const ShadowPacket& packet, size_t first, PixelBatch& batch);
 
 }  // namespace igi

@@ -61,12 +61,10 @@ void VplMethod::shade(const std::vector<GSample>& gbuffer, const Region& region,
           log_->shadow.back().rays = packet.rays;
         }
         rtcOccluded16(packet.valid, context_.accel.handle(), &context, &packet.rays);
-        for (int k = 0; k < 16; ++k)
-          if (packet.valid[k]) {
-            ++rays.shadow;
-            if (packet.rays.tfar[k] >= 0.0f) irradiance[batch.index[first + k]] += packet.contribution[k];
-          }
+        rays.shadow += accumulate_shadow_packet(packet, first, batch);
       }
+    for (size_t i = 0; i < batch.count; ++i)
+      irradiance[batch.index[i]] = glm::vec3(batch.sum_r[i], batch.sum_g[i], batch.sum_b[i]);
   }
   // Each set alone estimates the full light; ir sums all S of them.
   if (!interleaved())

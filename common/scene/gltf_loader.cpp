@@ -1,5 +1,6 @@
 #include "scene/gltf_loader.h"
 
+#include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>

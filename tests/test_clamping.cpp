@@ -1,0 +1,68 @@
+// Clamping the geometry term trades blotches for lost energy; the loss must
+// sit in corners and creases, where VPLs come closer than the clamp distance.
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "methods/gbuffer.h"
+#include "sampling/warp.h"
+#include "scene/builtin_scenes.h"
+#include "support/render_fixture.h"
+
+namespace igi {
+namespace {
+
+// Pixels whose visible point lies within `distance` of another surface,
+// found by short probe rays over the hemisphere.
+std::vector<bool> crease_mask(const test::Prepared& p, const FrameSetup& frame, float distance) {
+  std::vector<GSample> gbuffer;
+  RayCounts rays;
+  build_gbuffer(*p.accel, frame, Region{0, 0, frame.width, frame.height}, 16, gbuffer, rays);
+  std::vector<bool> mask(gbuffer.size(), false);
+  for (size_t i = 0; i < gbuffer.size(); ++i) {
+    const GSample& g = gbuffer[i];
+    if (!g.valid()) continue;
+    Frame f(glm::dot(g.wo, g.surface.geometric_normal) >= 0 ? g.surface.geometric_normal : -g.surface.geometric_normal);
+    for (int k = 0; k < 64 && !mask[i]; ++k) {
+      glm::vec3 d = f.to_world(cosine_hemisphere({(k + 0.5f) / 64.0f, (k * 0.618034f) - std::floor(k * 0.618034f)}));
+      mask[i] = p.accel->occluded(Ray{offset_origin(g.surface, d), d, 0.0f, distance});
+    }
+  }
+  return mask;
+}
+
+// 1 - mean(image) / mean(reference) over the pixels where mask == want.
+double energy_loss(const Image& image, const Image& ref, const std::vector<bool>& mask, bool want) {
+  double a = 0, b = 0;
+  for (size_t i = 0; i < mask.size(); ++i)
+    if (mask[i] == want && ref.pixels[i].x < 5.0f) {  // skip the light itself
+      a += image.pixels[i].x + image.pixels[i].y + image.pixels[i].z;
+      b += ref.pixels[i].x + ref.pixels[i].y + ref.pixels[i].z;
+    }
+  return 1.0 - a / b;
+}
+
+TEST(Clamping, EnergyLossIsConfinedToCreases) {
+  test::Prepared p(make_cornell_box());
+  const int w = 64, h = 48;
+  RenderSettings ir;
+  ir.method = MethodKind::InstantRadiosity;
+  ir.paths_per_set = 16;
+  const Image unclamped = p.render(ir, w, h, 16);
+  for (float clamp : {0.02f, 0.05f, 0.1f}) {
+    ir.clamp = clamp;
+    const Image clamped = p.render(ir, w, h, 16);
+    const float distance = clamp * p.scene.bounds().diagonal();
+    const std::vector<bool> crease = crease_mask(p, p.frame(w, h), distance);
+    const double share = double(std::count(crease.begin(), crease.end(), true)) / crease.size();
+    const double open_loss = energy_loss(clamped, unclamped, crease, false);
+    const double crease_loss = energy_loss(clamped, unclamped, crease, true);
+    std::printf("clamp %.2f (%.1f mm): creases %.0f %% of pixels lose %.1f %%, open surfaces lose %.2f %%\n",
+                clamp, 1e3 * distance, 100 * share, 100 * crease_loss, 100 * open_loss);
+    EXPECT_LT(std::abs(open_loss), 0.01) << "open surfaces keep their energy";
+    EXPECT_GT(crease_loss, 3.0 * std::max(open_loss, 0.003)) << "the loss sits in the creases";
+  }
+}
+
+}  // namespace
+}  // namespace igi
