@@ -31,6 +31,14 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
+// Per-pixel SIMD values (GCC and Clang vector extensions), so that one
+// operation covers all channels of a pixel: its geometry (depth, normal x,
+// y, z) for min and max, its value in fixed point (r, g, b, 0) for the sums,
+// and the doubles that value is converted from.
+using Float4 = float __attribute__((vector_size(16)));
+using Fixed4 = int64_t __attribute__((vector_size(32)));
+using Double4 = double __attribute__((vector_size(32)));
+
 bool is_valid(float depth) { return depth < kInfinity; }
 
 // Written out so the summation order is fixed, (x + y) + z: the window test
@@ -96,14 +104,6 @@ glm::vec3 exact_pixel(const FilterInput& in, const FilterSettings& s, int px, in
 
 // ---------------------------------------------------------------------------
 // Sliding extrema (van Herk / Gil-Werman).
-
-// A pixel's geometry, (depth, normal x, y, z), as one SIMD value (a GCC and
-// Clang vector extension), so min and max take all four channels at once.
-using Float4 = float __attribute__((vector_size(16)));
-// A pixel's value in fixed point, (r, g, b, 0), likewise, and the doubles
-// it is converted from.
-using Fixed4 = int64_t __attribute__((vector_size(32)));
-using Double4 = double __attribute__((vector_size(32)));
 
 struct Min {
   Float4 operator()(Float4 a, Float4 b) const { return b < a ? b : a; }
@@ -247,10 +247,10 @@ bool window_on_one_surface(const FilterSettings& s, float d_p, const glm::vec3& 
 // so no window sum (nor a running sum mid-update) can overflow.
 double fixed_cap(int r) { return 0x1p55 / (double(2 * r + 1) * double(2 * r + 1)); }
 
-// llround(clamp(v * scale, -cap, cap)) for the three channels at once.
-// llround is done as truncation, then rounding the remainder half away from
-// zero; the remainder is exact, x and its truncation being within a factor 2
-// (or equal). Vector comparisons give -1 for true.
+// llround(clamp(v * scale, -cap, cap)) for the three channels at once, bit
+// for bit: truncate, then round the remainder half away from zero. The
+// remainder x - trunc(x) is exact (Sterbenz: trunc(x) is 0 or within a
+// factor 2 of x). Vector comparisons give -1 for true.
 Fixed4 to_fixed(const glm::vec3& v, double scale, double cap) {
   const Double4 lo = Double4{} - cap, hi = Double4{} + cap;
   Double4 x = Double4{v.x, v.y, v.z, 0.0} * scale;
@@ -304,7 +304,8 @@ int window_count(const FilterInput& in, int r, int x, int y) {
   return w * h;
 }
 
-// out = sum / (fixed_scale * count), the window average in real units.
+// The window average in real units, sum / (fixed_scale * count), as a
+// multiply by a reciprocal (as deterministic, and cheaper).
 glm::vec3 from_fixed(const Fixed4& sum, double per_quantum) {
   return glm::vec3(double(sum[0]) * per_quantum, double(sum[1]) * per_quantum, double(sum[2]) * per_quantum);
 }
