@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "display/image_window.h"
 #include "render_options.h"
 #include "render/offline_render.h"
 #include "scene/gltf_writer.h"
@@ -43,6 +44,13 @@ int run(const igi::RenderOptions& o) {
               igi::method_name(o.settings.method), o.width, o.height, o.samples,
               o.settings.method == igi::MethodKind::PathTracer ? "spp" : "passes", r.seconds,
               r.rays.total() * 1e-6, r.rays.total() * 1e-6 / r.seconds);
+  if (o.show) {
+    igi::WindowOptions window;
+    window.title = "igi-render: " + o.scene + " (" + igi::method_name(o.settings.method) + ")";
+    window.exposure = o.exposure;
+    window.screenshot = o.screenshot;
+    igi::show_image(r.image, window);
+  }
   return 0;
 }
 

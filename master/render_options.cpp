@@ -55,7 +55,9 @@ std::string render_usage(const std::string& program) {
          "  --filter-normal C     igi: neighbours need normal dot above C [0.9]\n"
          "  --filter-depth R      igi: neighbours need relative depth difference below R [0.05]\n"
          "  --export-gltf FILE    write the scene as glTF and exit\n"
-         "  --quiet               no progress output\n";
+         "  --quiet               no progress output\n"
+         "  --show                show the result in a window (Esc closes it)\n"
+         "  --screenshot FILE     show, save the window's pixels to FILE, close\n";
 }
 
 RenderOptions parse_render_options(const std::vector<std::string>& args) {
@@ -90,6 +92,8 @@ RenderOptions parse_render_options(const std::vector<std::string>& args) {
     else if (a == "--filter-depth") s.filter_depth_ratio = to_float(a, value());
     else if (a == "--export-gltf") o.export_gltf = value();
     else if (a == "--quiet") o.quiet = true;
+    else if (a == "--show") o.show = true;
+    else if (a == "--screenshot") { o.show = true; o.screenshot = value(); }
     else throw std::invalid_argument("unknown option '" + a + "' (see --help)");
   }
   return o;

@@ -20,6 +20,8 @@ struct RenderOptions {
   std::string output = "render.png";
   std::string export_gltf;  // when set: write the scene as glTF and exit
   bool quiet = false;
+  bool show = false;             // open a window with the result
+  std::string screenshot;        // with show: save the window's pixels and close
   bool help = false;
 };
 

@@ -23,6 +23,14 @@ float srgb_to_linear(float v) {
   return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
 }
 
+std::vector<unsigned char> to_srgb8(const Image& image, float exposure) {
+  std::vector<unsigned char> bytes(image.pixels.size() * 3);
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      bytes[3 * i + c] = (unsigned char)std::lround(255.0f * linear_to_srgb(exposure * image.pixels[i][c]));
+  return bytes;
+}
+
 static bool is_float_format(const std::string& path) {
   std::string ext = path.substr(path.find_last_of('.') + 1);
   std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
@@ -39,11 +47,7 @@ void write_image(const Image& image, const std::string& path, float exposure) {
   if (linear) {
     ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
   } else {
-    std::vector<unsigned char> bytes(image.pixels.size() * 3);
-    for (size_t i = 0; i < image.pixels.size(); ++i)
-      for (int c = 0; c < 3; ++c)
-        bytes[3 * i + c] = (unsigned char)std::lround(255.0f * linear_to_srgb(exposure * image.pixels[i][c]));
-    ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+    ok = out->write_image(OIIO::TypeDesc::UINT8, to_srgb8(image, exposure).data());
   }
   if (!ok || !out->close()) throw std::runtime_error(path + ": " + out->geterror());
 }

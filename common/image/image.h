@@ -24,6 +24,9 @@ struct Image {
 void write_image(const Image& image, const std::string& path, float exposure = 1.0f);
 Image read_image(const std::string& path);
 
+// 8-bit sRGB, three bytes a pixel, row 0 at the top; clamps after `exposure`.
+std::vector<unsigned char> to_srgb8(const Image& image, float exposure = 1.0f);
+
 float linear_to_srgb(float linear);
 float srgb_to_linear(float encoded);
 

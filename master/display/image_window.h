@@ -1,0 +1,22 @@
+#pragma once
+// A window that shows a rendered image (GLFW, legacy OpenGL: one
+// glDrawPixels a frame). Works under Xvfb with Mesa.
+#include <string>
+
+#include "image/image.h"
+
+namespace igi {
+
+struct WindowOptions {
+  std::string title = "igi-cluster";
+  float exposure = 1.0f;
+  double seconds = 0.0;     // close after this long; 0: when the user closes it (or Esc)
+  std::string screenshot;   // when set: save what the window shows as PNG, then close
+};
+
+// Whether a window can be opened here (a display exists and GLFW starts).
+bool window_available();
+// Blocks until the window closes. Throws std::runtime_error when none opens.
+void show_image(const Image& image, const WindowOptions& options);
+
+}  // namespace igi
