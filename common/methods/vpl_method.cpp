@@ -29,6 +29,26 @@ void VplMethod::begin_frame(const FrameSetup& frame) {
   fixed_scale_ = filter_fixed_scale(flux / std::max(1, vpls_.set_count()) / (diagonal * diagonal));
 }
 
+// The valid pixels of set s (all pixels for ir), in 4 x 4 blocks of the
+// set's own pixel grid so a packet's rays start close together (coherent).
+void VplMethod::collect_set_pixels(const std::vector<GSample>& gbuffer, const Region& region, int s,
+                                   PixelBatch& batch) const {
+  const int n = interleaved() ? vpls_.interleave : 1;
+  const int sx = interleaved() ? s % n : 0, sy = interleaved() ? s / n : 0;
+  // First column and row of the region that belong to the set (global coordinates).
+  const int x_first = region.x0 + ((sx - region.x0 % n) + n) % n;
+  const int y_first = region.y0 + ((sy - region.y0 % n) + n) % n;
+  const int nx = x_first < region.x0 + region.width ? (region.x0 + region.width - x_first + n - 1) / n : 0;
+  const int ny = y_first < region.y0 + region.height ? (region.y0 + region.height - y_first + n - 1) / n : 0;
+  for (int by = 0; by < ny; by += 4)
+    for (int bx = 0; bx < nx; bx += 4)
+      for (int j = by; j < std::min(by + 4, ny); ++j)
+        for (int i = bx; i < std::min(bx + 4, nx); ++i) {
+          const size_t index = size_t(y_first + n * j - region.y0) * region.width + (x_first + n * i - region.x0);
+          if (gbuffer[index].valid()) batch.add(uint32_t(index), gbuffer[index]);
+        }
+}
+
 // Sums, for each valid pixel, the unoccluded contributions of its VPLs. Rays
 // of a packet share one VPL and come from nearby pixels of one set.
 void VplMethod::shade(const std::vector<GSample>& gbuffer, const Region& region,
@@ -43,12 +63,7 @@ void VplMethod::shade(const std::vector<GSample>& gbuffer, const Region& region,
   thread_local ShadowPacket packet;
   for (int s = 0; s < sets; ++s) {
     batch.clear();
-    for (int y = 0; y < region.height; ++y)
-      for (int x = 0; x < region.width; ++x) {
-        const size_t i = size_t(y) * region.width + x;
-        if (gbuffer[i].valid() && (!interleaved() || vpls_.set_of_pixel(region.x0 + x, region.y0 + y) == s))
-          batch.add(uint32_t(i), gbuffer[i]);
-      }
+    collect_set_pixels(gbuffer, region, s, batch);
     batch.pad();
     const uint32_t begin = interleaved() ? vpls_.set_begin[s] : 0;
     const uint32_t end = interleaved() ? vpls_.set_begin[s + 1] : uint32_t(vpls_.vpls.size());

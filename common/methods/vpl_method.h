@@ -7,6 +7,7 @@
 // Shadow rays go out in 16-wide packets that share one VPL (coherent).
 #include "methods/method.h"
 #include "methods/ray_log.h"
+#include "methods/shadow_batch.h"
 #include "methods/gbuffer.h"
 #include "vpl/vpl.h"
 
@@ -24,6 +25,8 @@ class VplMethod final : public Method {
 
  private:
   bool interleaved() const { return settings_.method == MethodKind::Igi; }
+  void collect_set_pixels(const std::vector<GSample>& gbuffer, const Region& region, int set,
+                          PixelBatch& batch) const;
   void shade(const std::vector<GSample>& gbuffer, const Region& region,
              std::vector<glm::vec3>& irradiance, RayCounts& rays) const;
 

@@ -82,6 +82,33 @@ Timing time_replay(const Accel& accel, RayLog& log, int frames) {
   return {median(wall), median(cpu), rays};
 }
 
+// Replays the shadow packets one ray at a time: the packet gain in this scene.
+void replay_breakdown(const Accel& accel, const RayLog& log) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  std::vector<LoggedPrimary> primary = log.primary;
+  std::vector<LoggedShadow> shadow = log.shadow;
+  size_t np = 0, ns = 0;
+  Clock t0 = Clock::now();
+  for (LoggedPrimary& p : primary) rtcIntersect16(p.valid, accel.handle(), &context, &p.rays);
+  Clock t1 = Clock::now();
+  for (LoggedShadow& s : shadow) rtcOccluded16(s.valid, accel.handle(), &context, &s.rays);
+  Clock t2 = Clock::now();
+  for (const LoggedShadow& s : log.shadow)
+    for (int k = 0; k < 16; ++k) {
+      if (!s.valid[k]) continue;
+      RTCRay r{s.rays.org_x[k], s.rays.org_y[k], s.rays.org_z[k], s.rays.tnear[k],
+               s.rays.dir_x[k], s.rays.dir_y[k], s.rays.dir_z[k], 0.0f, s.rays.tfar[k], ~0u, 0u, 0u};
+      rtcOccluded1(accel.handle(), &context, &r);
+      ++ns;
+    }
+  Clock t3 = Clock::now();
+  for (const LoggedPrimary& p : log.primary) np += std::count(p.valid, p.valid + 16, -1);
+  std::printf("raw Embree per cpu-s: primary 16-wide %.1f Mrays/s, shadow 16-wide %.1f, shadow 1-wide %.1f\n",
+              np * 1e-6 / (t1 - t0).cpu, ns * 1e-6 / (t2 - t1).cpu, ns * 1e-6 / (t3 - t2).cpu);
+}
+
 // Paths per set that give about `target` VPLs per set in this scene.
 int paths_for_vpls(const SceneContext& ctx, RenderSettings s, int target) {
   s.paths_per_set = 64;
@@ -122,6 +149,7 @@ void bench_scene(const std::string& name, int width, int height, int frames, int
   render_frame(method, frame, border, one, counted);
   method.record_rays(nullptr);
   Timing raw = time_replay(accel, log, frames);
+  replay_breakdown(accel, log);
 
   std::printf("%-26s %9s %9s %10s %10s %8s\n", "", "frame ms", "fps", "Mrays/s", "Mrays/cpu-s", "rays/px");
   auto row = [&](const char* label, const Timing& t) {
