@@ -13,6 +13,23 @@
 namespace igi {
 namespace {
 
+TEST(Sampler, SecondSobolDimensionMatchesItsGeneratorMatrix) {
+  // The byte tables must equal the XOR of columns v_0 = 2^31, v_{k+1} = v_k ^ (v_k >> 1).
+  auto by_definition = [](uint32_t index) {
+    uint32_t r = 0;
+    for (uint32_t v = 1u << 31; index; index >>= 1, v ^= v >> 1)
+      if (index & 1u) r ^= v;
+    return r;
+  };
+  uint32_t x = 12345;
+  for (int i = 0; i < 100000; ++i) {
+    x = x * 1664525u + 1013904223u;
+    ASSERT_EQ(sobol_dim1(x), by_definition(x));
+    ASSERT_EQ(sobol_dim1(uint32_t(i)), by_definition(uint32_t(i)));
+  }
+  EXPECT_EQ(sobol_dim0(1), 1u << 31);
+}
+
 TEST(Sampler, ValuesAreInUnitInterval) {
   for (uint32_t i = 0; i < 4096; ++i)
     for (uint32_t d = 0; d < 8; ++d) {

@@ -347,7 +347,7 @@ void filter_brute_force(const FilterInput& in, const FilterSettings& s, Rect inn
 void filter_discontinuity(const FilterInput& in, const FilterSettings& s, Rect inner, std::span<glm::vec3> out,
                           FilterStats* stats) {
   const Box box = check_arguments(in, s, inner, out.size());
-  BandScratch scratch;
+  thread_local BandScratch scratch;  // reused across calls: no allocation per tile
   FilterStats counted;
   for (int y0 = box.y0; y0 < box.y1; y0 += kBandRows) {
     const Box band{box.x0, y0, box.x1, std::min(y0 + kBandRows, box.y1)};

@@ -20,7 +20,7 @@ Region tile_region(const TileJob& job, int image_width, int image_height) {
 namespace {
 
 // Follows mirrors and glass from a first hit to a non-specular surface.
-void resolve_chain(const Accel& accel, Ray ray, Hit hit, uint32_t pixel_seed, int max_depth,
+void resolve_chain(const Accel& accel, Ray ray, Hit hit, glm::uvec3 pixel_and_seed, int max_depth,
                    GSample& g, RayCounts& rays) {
   const Scene& scene = accel.scene();
   float travelled = 0.0f;
@@ -35,6 +35,7 @@ void resolve_chain(const Accel& accel, Ray ray, Hit hit, uint32_t pixel_seed, in
       return;
     }
     if (depth + 1 >= max_depth) return;
+    const uint32_t pixel_seed = hash(pixel_and_seed.x, pixel_and_seed.y, pixel_and_seed.z);
     float u_lobe = float(hash(pixel_seed, uint32_t(depth)) >> 8) * 0x1p-24f;
     auto bs = bsdf_sample(sp, -ray.direction, glm::vec2(0.5f), u_lobe);
     if (!bs) return;
@@ -82,8 +83,8 @@ void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& re
         Ray ray{camera.origin, {packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]}};
         Hit hit{packet.ray.tfar[i], accel.triangle_index(packet.hit.geomID[i], packet.hit.primID[i]),
                 {packet.hit.u[i], packet.hit.v[i]}};
-        uint32_t pixel_seed = hash(uint32_t(region.x0 + x), uint32_t(region.y0 + y), frame.seed);
-        resolve_chain(accel, ray, hit, pixel_seed, max_depth, out[size_t(y) * region.width + x], rays);
+        const glm::uvec3 pixel_and_seed(uint32_t(region.x0 + x), uint32_t(region.y0 + y), frame.seed);
+        resolve_chain(accel, ray, hit, pixel_and_seed, max_depth, out[size_t(y) * region.width + x], rays);
       }
     }
 }

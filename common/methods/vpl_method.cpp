@@ -88,18 +88,19 @@ void VplMethod::shade(const std::vector<GSample>& gbuffer, const Region& region,
 
 void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const {
   const Region region = tile_region(job, frame_.width, frame_.height);
-  std::vector<GSample> gbuffer;
+  // Per-thread scratch: tiles come by the thousand, allocations would dominate.
+  thread_local std::vector<GSample> gbuffer;
+  thread_local std::vector<glm::vec3> irradiance, filtered;
+  thread_local FilterInput in;
   build_gbuffer(context_.accel, frame_, region, settings_.max_depth, gbuffer, rays, log_);
-  std::vector<glm::vec3> irradiance;
   shade(gbuffer, region, irradiance, rays);
 
-  std::vector<glm::vec3> filtered(size_t(job.w) * job.h);
+  filtered.resize(size_t(job.w) * job.h);
   if (interleaved() && settings_.filter) {
-    FilterInput in;
     in.x0 = region.x0; in.y0 = region.y0; in.width = region.width; in.height = region.height;
-    in.value = std::move(irradiance);
-    in.depth.reserve(gbuffer.size());
-    in.normal.reserve(gbuffer.size());
+    std::swap(in.value, irradiance);
+    in.depth.clear();
+    in.normal.clear();
     for (const GSample& g : gbuffer) {
       in.depth.push_back(g.depth);
       in.normal.push_back(g.valid() ? g.surface.shading_normal : glm::vec3(0.0f));

@@ -5,21 +5,38 @@
 namespace igi {
 
 static uint32_t reverse_bits(uint32_t v) {
+  v = __builtin_bswap32(v);
   v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
   v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
-  v = ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
-  v = ((v >> 8) & 0x00ff00ffu) | ((v & 0x00ff00ffu) << 8);
-  return (v >> 16) | (v << 16);
+  return ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
 }
 
 uint32_t sobol_dim0(uint32_t index) { return reverse_bits(index); }
 
+namespace {
+
+// Generator matrix columns of the second dimension: v_0 = 2^31,
+// v_{k+1} = v_k ^ (v_k >> 1). The product with an index is a XOR over its
+// set bits, so it splits into one table per index byte.
+struct SobolDim1Tables {
+  uint32_t byte[4][256];
+  constexpr SobolDim1Tables() : byte{} {
+    uint32_t column[32] = {};
+    column[0] = 1u << 31;
+    for (int k = 1; k < 32; ++k) column[k] = column[k - 1] ^ (column[k - 1] >> 1);
+    for (int b = 0; b < 4; ++b)
+      for (uint32_t value = 0; value < 256; ++value)
+        for (int bit = 0; bit < 8; ++bit)
+          if (value & (1u << bit)) byte[b][value] ^= column[8 * b + bit];
+  }
+};
+constexpr SobolDim1Tables kSobolDim1;
+
+}  // namespace
+
 uint32_t sobol_dim1(uint32_t index) {
-  // Generator matrix columns: v_0 = 2^31, v_{k+1} = v_k ^ (v_k >> 1).
-  uint32_t result = 0;
-  for (uint32_t v = 1u << 31; index; index >>= 1, v ^= v >> 1)
-    if (index & 1u) result ^= v;
-  return result;
+  return kSobolDim1.byte[0][index & 255] ^ kSobolDim1.byte[1][(index >> 8) & 255] ^
+         kSobolDim1.byte[2][(index >> 16) & 255] ^ kSobolDim1.byte[3][index >> 24];
 }
 
 // Laine-Karras style hash in reversed bit order: bit k of the output depends
