@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/suite_scenes.h"
+
 namespace igi {
 
 uint32_t add_material(Scene& scene, Material material) {
@@ -129,9 +131,13 @@ Scene make_cornell_blob(int triangles) {
   return s;
 }
 
-std::vector<std::string> builtin_scene_names() { return {"cornell", "cornell-blob", "furnace"}; }
+// "rooms-N" takes any N in 1..kMaxRooms; the list names the largest as an example.
+std::vector<std::string> builtin_scene_names() {
+  return {"cornell", "cornell-blob", "furnace", "corner", "rooms", "rooms-10", "glossy", "large"};
+}
 
 bool is_builtin_scene(const std::string& name) {
+  if (parse_rooms_name(name) > 0) return true;
   for (const std::string& n : builtin_scene_names())
     if (n == name) return true;
   return false;
@@ -141,8 +147,13 @@ Scene make_builtin_scene(const std::string& name) {
   if (name == "cornell") return make_cornell_box();
   if (name == "furnace") return make_furnace(0.5f, 1.0f);
   if (name == "cornell-blob") return make_cornell_blob(320000);
+  if (name == "corner") return make_corner_scene();
+  if (const int rooms = parse_rooms_name(name)) return make_rooms_scene(rooms);
+  if (name == "glossy") return make_glossy_cornell();
+  if (name == "large") return make_large_scene();
   std::string known;
   for (const std::string& n : builtin_scene_names()) known += (known.empty() ? "" : ", ") + n;
+  known += " (rooms-N for N = 1.." + std::to_string(kMaxRooms) + ")";
   throw SceneError("unknown built-in scene '" + name + "' (known: " + known + ")");
 }
 

@@ -1,0 +1,204 @@
+#include "scene/suite_scenes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "scene/builtin_scenes.h"
+
+namespace igi {
+namespace {
+
+uint32_t diffuse(Scene& s, const char* name, glm::vec3 albedo) {
+  Material m;
+  m.name = name;
+  m.base_color = albedo;
+  return add_material(s, m);
+}
+
+uint32_t emitter(Scene& s, const char* name, glm::vec3 radiance) {
+  Material m;
+  m.name = name;
+  m.base_color = glm::vec3(0.78f);
+  m.emission = radiance;
+  return add_material(s, m);
+}
+
+Camera look_at(glm::vec3 eye, glm::vec3 target, float vfov_degrees) {
+  Camera c;
+  c.position = eye;
+  c.forward = glm::normalize(target - eye);
+  c.up = {0.0f, 1.0f, 0.0f};
+  c.vfov = glm::radians(vfov_degrees);
+  return c;
+}
+
+// An axis-aligned room's six faces, all double-sided, seen from inside.
+void add_room_box(Scene& s, glm::vec3 lo, glm::vec3 hi, uint32_t walls, uint32_t floor, uint32_t ceiling) {
+  const float x0 = lo.x, y0 = lo.y, z0 = lo.z, x1 = hi.x, y1 = hi.y, z1 = hi.z;
+  add_quad(s, {x0, y0, z0}, {x0, y0, z1}, {x1, y0, z1}, {x1, y0, z0}, floor);    // normal +y
+  add_quad(s, {x0, y1, z0}, {x1, y1, z0}, {x1, y1, z1}, {x0, y1, z1}, ceiling);  // normal -y
+  add_quad(s, {x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0}, walls);    // z = z0, normal +z
+  add_quad(s, {x0, y0, z1}, {x0, y1, z1}, {x1, y1, z1}, {x1, y0, z1}, walls);    // z = z1, normal -z
+  add_quad(s, {x0, y0, z0}, {x0, y1, z0}, {x0, y1, z1}, {x0, y0, z1}, walls);    // x = x0, normal +x
+  add_quad(s, {x1, y0, z0}, {x1, y0, z1}, {x1, y1, z1}, {x1, y1, z0}, walls);    // x = x1, normal -x
+}
+
+// Downward-facing square emitter of half-width h centred at (cx, y, cz).
+void add_ceiling_light(Scene& s, float cx, float y, float cz, float h, uint32_t material) {
+  add_quad(s, {cx + h, y, cz - h}, {cx + h, y, cz + h}, {cx - h, y, cz + h}, {cx - h, y, cz - h}, material);
+}
+
+}  // namespace
+
+void group_by_material(Scene& s) {
+  std::vector<uint32_t> order(s.triangles.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](uint32_t a, uint32_t b) { return s.triangle_material[a] < s.triangle_material[b]; });
+  std::vector<uint32_t> remap(s.positions.size(), ~0u);
+  Scene out;
+  for (uint32_t t : order) {
+    glm::uvec3 tri;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = s.triangles[t][k];
+      if (remap[v] == ~0u) {
+        remap[v] = uint32_t(out.positions.size());
+        out.positions.push_back(s.positions[v]);
+        if (!s.normals.empty()) out.normals.push_back(s.normals[v]);
+        if (!s.uvs.empty()) out.uvs.push_back(s.uvs[v]);
+      }
+      tri[k] = remap[v];
+    }
+    out.triangles.push_back(tri);
+    out.triangle_material.push_back(s.triangle_material[t]);
+  }
+  s.positions = std::move(out.positions);
+  s.normals = std::move(out.normals);
+  s.uvs = std::move(out.uvs);
+  s.triangles = std::move(out.triangles);
+  s.triangle_material = std::move(out.triangle_material);
+}
+
+Scene make_corner_scene() {
+  Scene s;
+  s.name = "corner";
+  const uint32_t walls = diffuse(s, "walls", {0.75f, 0.75f, 0.75f});
+  const uint32_t floor = diffuse(s, "floor", {0.6f, 0.55f, 0.5f});
+  add_room_box(s, {0, 0, 0}, {4, 2.5f, 4}, walls, floor, walls);
+  // The spot's cone covers about a metre around the corner (4, 0, 4): the
+  // rest of the room sees only light that bounced there first.
+  PunctualLight spot;
+  spot.type = LightType::Spot;
+  spot.position = {2.2f, 1.6f, 2.2f};
+  spot.direction = glm::normalize(glm::vec3(4.0f, 0.0f, 4.0f) - spot.position);
+  spot.intensity = glm::vec3(40.0f, 36.0f, 30.0f);
+  spot.inner_cone = glm::radians(14.0f);
+  spot.outer_cone = glm::radians(20.0f);
+  s.lights.push_back(spot);
+  s.camera = look_at({0.4f, 1.8f, 0.6f}, {4.0f, 0.5f, 3.6f}, 60.0f);
+  group_by_material(s);
+  return s;
+}
+
+Scene make_rooms_scene(int n) {
+  if (n < 1 || n > kMaxRooms)
+    throw SceneError("rooms scene: N = " + std::to_string(n) + ", expected 1.." + std::to_string(kMaxRooms));
+  Scene s;
+  s.name = n == 4 ? "rooms" : "rooms-" + std::to_string(n);
+  const float room = 4.0f, height = 2.5f, door_half = 0.5f, door_top = 2.0f;
+  const float size = room * float(n);
+  const uint32_t walls = diffuse(s, "walls", {0.7f, 0.7f, 0.7f});
+  const uint32_t floor = diffuse(s, "floor", {0.5f, 0.45f, 0.4f});
+  const uint32_t ceiling = diffuse(s, "ceiling", {0.8f, 0.8f, 0.8f});
+  const uint32_t lamp = emitter(s, "lamp", {12.0f, 10.0f, 7.0f});
+  add_room_box(s, {0, 0, 0}, {size, height, size}, walls, floor, ceiling);
+  // Inner walls: a wall of n segments at every room boundary, each segment
+  // with a centred doorway (two full-height pieces and a lintel).
+  for (int k = 1; k < n; ++k)
+    for (int j = 0; j < n; ++j) {
+      const float c = room * float(k), a = room * float(j), m = a + 0.5f * room, b = a + room;
+      // Wall x = c, spanning z in [a, b].
+      add_quad(s, {c, 0, a}, {c, 0, m - door_half}, {c, height, m - door_half}, {c, height, a}, walls);
+      add_quad(s, {c, 0, m + door_half}, {c, 0, b}, {c, height, b}, {c, height, m + door_half}, walls);
+      add_quad(s, {c, door_top, m - door_half}, {c, door_top, m + door_half}, {c, height, m + door_half},
+               {c, height, m - door_half}, walls);
+      // Wall z = c, spanning x in [a, b].
+      add_quad(s, {a, 0, c}, {m - door_half, 0, c}, {m - door_half, height, c}, {a, height, c}, walls);
+      add_quad(s, {m + door_half, 0, c}, {b, 0, c}, {b, height, c}, {m + door_half, height, c}, walls);
+      add_quad(s, {m - door_half, door_top, c}, {m + door_half, door_top, c}, {m + door_half, height, c},
+               {m - door_half, height, c}, walls);
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      add_ceiling_light(s, room * (float(i) + 0.5f), height - 1e-3f, room * (float(j) + 0.5f), 0.3f, lamp);
+  // From the first room, down the column of doorways at x = 2 and slightly
+  // sideways, so a few rooms show and most lights are hidden.
+  s.camera = look_at({1.0f, 1.5f, 0.3f}, {2.6f, 1.0f, std::max(8.0f, size)}, 60.0f);
+  group_by_material(s);
+  return s;
+}
+
+Scene make_glossy_cornell(float alpha) {
+  Scene s = make_cornell_box();
+  s.name = "glossy";
+  Material metal;
+  metal.name = "metal";
+  metal.type = MaterialType::Conductor;
+  metal.base_color = {0.95f, 0.93f, 0.88f};
+  metal.alpha = alpha;
+  const uint32_t floor = add_material(s, metal);
+  s.triangle_material[0] = s.triangle_material[1] = floor;  // the floor is the first quad
+  group_by_material(s);
+  return s;
+}
+
+Scene make_large_scene(int triangles) {
+  Scene s = make_cornell_box();
+  s.name = "large";
+  s.triangles.resize(s.triangles.size() - 20);  // the blocks are the last 10 quads
+  s.triangle_material.resize(s.triangles.size());
+  const uint32_t clay = diffuse(s, "clay", {0.6f, 0.6f, 0.55f});
+  // 4 r (r - 1) triangles per sphere of r rings and 2 r segments.
+  const double per_sphere = std::ceil(triangles / 9.0);
+  const int rings = int(std::ceil(0.5 * (1.0 + std::sqrt(1.0 + per_sphere))));
+  const int segments = 2 * rings;
+  for (int gi = 0; gi < 3; ++gi)
+    for (int gj = 0; gj < 3; ++gj) {
+      const float radius = 0.06f + 0.01f * float((gi + 2 * gj) % 3);
+      const glm::vec3 center(0.1f + 0.175f * gi, radius, 0.12f + 0.16f * gj);
+      const float lobes = 3.0f + float(gi + gj);
+      auto point = [&](int i, int j) {
+        float theta = float(M_PI) * i / rings, phi = 2.0f * float(M_PI) * j / segments;
+        glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+        float bump = 1.0f + 0.1f * std::sin(lobes * 2.0f * theta) * std::sin(lobes * phi);
+        return center + radius * bump * n;
+      };
+      const uint32_t base = uint32_t(s.positions.size());
+      for (int i = 0; i <= rings; ++i)
+        for (int j = 0; j < segments; ++j) s.positions.push_back(point(i, j));
+      auto index = [&](int i, int j) { return base + uint32_t(i * segments + (j % segments)); };
+      for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+          if (i != rings - 1) s.triangles.push_back({index(i, j), index(i + 1, j + 1), index(i + 1, j)});
+          if (i != 0) s.triangles.push_back({index(i, j), index(i, j + 1), index(i + 1, j + 1)});
+        }
+    }
+  s.triangle_material.resize(s.triangles.size(), clay);
+  group_by_material(s);
+  return s;
+}
+
+int parse_rooms_name(const std::string& name) {
+  if (name == "rooms") return 4;
+  const std::string prefix = "rooms-";
+  if (name.rfind(prefix, 0) != 0 || name.size() == prefix.size() || name.size() > prefix.size() + 2) return 0;
+  int n = 0;
+  for (size_t i = prefix.size(); i < name.size(); ++i) {
+    if (name[i] < '0' || name[i] > '9') return 0;
+    n = 10 * n + (name[i] - '0');
+  }
+  return n >= 1 && n <= kMaxRooms ? n : 0;
+}
+
+}  // namespace igi

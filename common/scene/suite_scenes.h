@@ -1,0 +1,42 @@
+#pragma once
+// The accuracy suite: small, deterministic scenes, each built to show where a
+// many-light method fails. All in metres, all exportable as glTF
+// (igi-render --scene NAME --export-gltf F.gltf) so any renderer reads the
+// same scene. Every builder returns triangles grouped by material with
+// vertices in first-use order, which is how the glTF writer stores them: a
+// written scene loads back with the same triangle and vertex order.
+//
+//   corner  closed 4 x 2.5 x 4 m room, one spot light aimed into a floor
+//           corner: everything the camera sees away from the spot is
+//           indirect light from VPLs crowded into that corner (clamping
+//           darkens it).
+//   rooms-N N x N rooms of 4 x 4 x 2.5 m joined by doorways, one ceiling
+//           light each; the camera sees a few rooms, most light is occluded.
+//   glossy  the Cornell box with a GGX metal floor: VPLs show as spikes.
+//   large   the Cornell box without its blocks and a 3 x 3 grid of bumpy
+//           spheres, about 1.05 M triangles.
+#include <string>
+
+#include "scene/scene.h"
+
+namespace igi {
+
+inline constexpr int kMaxRooms = 10;
+
+Scene make_corner_scene();
+// 1 <= n <= kMaxRooms; throws SceneError otherwise.
+Scene make_rooms_scene(int n);
+// alpha: GGX roughness parameter of the floor (roughness^2).
+Scene make_glossy_cornell(float alpha = 0.04f);
+// At least `triangles` triangles in the spheres (the box adds 20).
+Scene make_large_scene(int triangles = 1'050'000);
+
+// The room count named by "rooms" (4) or "rooms-N"; 0 when `name` is neither
+// or N is outside 1..kMaxRooms.
+int parse_rooms_name(const std::string& name);
+
+// Stable-sorts triangles by material and renumbers vertices in first-use
+// order, dropping unused ones: the order the glTF writer stores.
+void group_by_material(Scene& scene);
+
+}  // namespace igi

@@ -1,0 +1,32 @@
+#pragma once
+// igi-worker processes started by the master on this machine. They die with
+// the master however it ends: a normal exit or Ctrl-C stops them here, and a
+// crash or kill -9 reaches them through PR_SET_PDEATHSIG.
+#include <string>
+#include <sys/types.h>
+#include <vector>
+
+namespace igi {
+
+class LocalWorkers {
+ public:
+  LocalWorkers() = default;
+  ~LocalWorkers() { stop_all(); }
+  LocalWorkers(const LocalWorkers&) = delete;
+  LocalWorkers& operator=(const LocalWorkers&) = delete;
+
+  // Starts `count` workers connecting to `endpoint`. Throws when the worker
+  // binary cannot be found or started.
+  void start(int count, const std::string& endpoint, int threads_each, const std::vector<std::string>& extra_args);
+  void kill_one(size_t index, int signal);
+  void stop_all();
+  const std::vector<pid_t>& pids() const { return pids_; }
+
+ private:
+  std::vector<pid_t> pids_;
+};
+
+// The igi-worker next to this program (same folder, or ../worker/ in a build tree).
+std::string find_worker_binary();
+
+}  // namespace igi

@@ -1,0 +1,140 @@
+// igi-master: renders frames on igi-worker processes (local and remote) and
+// writes them (--frames F) or shows them in a window.
+#include <atomic>
+#include <thread>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "frame_stats.h"
+#include "local_workers.h"
+#include "master_options.h"
+#include "master_session.h"
+#include "render/accumulator.h"
+#include "sampling/sobol.h"
+#include "scene/builtin_scenes.h"
+#include "scene/load_scene.h"
+#include "scene/scene_file.h"
+
+namespace {
+
+std::atomic<bool> g_interrupted{false};  // set by SIGINT/SIGTERM only
+
+igi::SceneSource scene_source(const std::string& scene) {
+  if (igi::is_builtin_scene(scene)) return {scene, 0, {}};
+  auto bytes = igi::read_file_bytes(scene);
+  if (!bytes) throw std::runtime_error(scene + ": cannot read the scene file");
+  const uint64_t hash = igi::content_hash(*bytes);
+  return {std::filesystem::path(scene).filename().string(), hash, std::move(*bytes)};
+}
+
+// Workers on this machine connect over loopback whatever interface we bound.
+std::string local_endpoint(std::string endpoint) {
+  for (const std::string any : {"0.0.0.0", "*"})
+    if (auto at = endpoint.find(any); at != std::string::npos) endpoint.replace(at, any.size(), "127.0.0.1");
+  return endpoint;
+}
+
+std::string frame_path(const std::string& output, int frame, int frames) {
+  if (frames <= 1) return output;
+  std::filesystem::path p(output);
+  char suffix[16];
+  std::snprintf(suffix, sizeof suffix, "-%04d", frame);
+  return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
+}
+
+igi::FrameSetup frame_setup(const igi::MasterOptions& o, const igi::Scene& scene, int i) {
+  igi::FrameSetup f;
+  f.frame_id = uint64_t(i);
+  f.camera = scene.camera_or_auto();
+  f.width = o.render.width;
+  f.height = o.render.height;
+  f.seed = o.render.seed;
+  const bool pt = o.render.settings.method == igi::MethodKind::PathTracer;
+  f.sample_count = pt ? uint32_t(o.render.samples) : 1;
+  if (o.progressive && i > 0) {  // a new estimate each frame: new seed, new sub-pixel position
+    f.seed += uint32_t(i);
+    f.sample_begin = pt ? uint32_t(i * o.render.samples) : 0;
+    glm::vec2 j = igi::sample_2d(uint32_t(i), 0, o.render.seed);
+    f.jitter_x = j.x;
+    f.jitter_y = j.y;
+  }
+  if (o.camera_path == "orbit") {  // turn about the vertical axis through the scene's centre
+    const glm::vec3 c = scene.bounds().center();
+    const float angle = 0.02f * float(i);
+    const glm::mat3 r(glm::vec3(std::cos(angle), 0, -std::sin(angle)), glm::vec3(0, 1, 0),
+                      glm::vec3(std::sin(angle), 0, std::cos(angle)));
+    f.camera.position = c + r * (f.camera.position - c);
+    f.camera.forward = r * f.camera.forward;
+  }
+  return f;
+}
+
+int run_headless(const igi::MasterOptions& o, const igi::Scene& scene, igi::MasterSession& session,
+                 igi::LocalWorkers& workers) {
+  igi::Accumulator accumulator(o.render.width, o.render.height);
+  std::vector<igi::FrameRecord> records;
+  int next = 0, written = 0;
+  auto idle_since = std::chrono::steady_clock::now();
+  while (written < o.frames && !g_interrupted) {
+    while (next < o.frames && session.can_add_frame()) session.add_frame(frame_setup(o, scene, next++));
+    for (igi::CompletedFrame& f : session.pump(50)) {
+      igi::Image image = std::move(f.image);
+      if (o.progressive) {
+        accumulator.add(image, 1.0);
+        image = accumulator.resolve();
+      }
+      igi::write_image(image, frame_path(o.render.output, written, o.frames), o.render.exposure);
+      if (!o.render.quiet)
+        std::printf("frame %d: %.1f ms, %.1f Mrays/s, %zu workers\n", written, 1e3 * f.record.seconds,
+                    f.record.seconds > 0 ? f.record.rays.total() * 1e-6 / f.record.seconds : 0.0, session.worker_count());
+      records.push_back(f.record);
+      ++written;
+    }
+    if (session.worker_count() > 0) idle_since = std::chrono::steady_clock::now();
+    if (std::chrono::steady_clock::now() - idle_since > std::chrono::seconds(60)) {
+      std::fprintf(stderr, "igi-master: no worker for 60 s; start some with igi-worker --connect %s\n",
+                   session.endpoint().c_str());
+      break;
+    }
+  }
+  session.close(written == o.frames ? "done" : "interrupted");
+  workers.stop_all();
+  if (!o.stats.empty()) igi::write_stats_json(o.stats, records, session.bad_messages());
+  return written == o.frames ? 0 : 1;
+}
+
+int run(const igi::MasterOptions& o) {
+  igi::Scene scene = igi::load_scene(o.render.scene);  // validates it, and gives the camera
+  zmq::context_t context;
+  igi::MasterSession session(o, scene_source(o.render.scene), context);
+  std::fprintf(stderr, "igi-master: listening on %s\n", session.endpoint().c_str());
+  igi::LocalWorkers workers;
+  const int threads = o.worker_threads > 0 ? o.worker_threads
+                                           : std::max(1, int(std::thread::hardware_concurrency()) / std::max(1, o.workers));
+  std::vector<std::string> extra;
+  if (!igi::is_builtin_scene(o.render.scene))
+    extra = {"--scene-dir", std::filesystem::absolute(o.render.scene).parent_path().string()};
+  workers.start(o.workers, local_endpoint(session.endpoint()), threads, extra);
+  if (o.kill_worker_after > 0)
+    session.on_accepted = [&](uint64_t n) { if (n == uint64_t(o.kill_worker_after)) workers.kill_one(0, SIGKILL); };
+  if (o.frames <= 0) throw std::invalid_argument("the window is not built yet: use --frames F");
+  return run_headless(o, scene, session, workers);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::signal(SIGINT, [](int) { g_interrupted = true; });
+  std::signal(SIGTERM, [](int) { g_interrupted = true; });
+  try {
+    igi::MasterOptions o = igi::parse_master_options({argv + 1, argv + argc});
+    if (o.render.help) { std::cout << igi::master_usage(argv[0]); return 0; }
+    return run(o);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "igi-master: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,62 @@
+#include "master_options.h"
+
+#include <stdexcept>
+
+namespace igi {
+
+std::string master_usage(const std::string& program) {
+  return "usage: " + program + " [cluster options] [render options]\n"
+         "cluster options:\n"
+         "  --workers N           local igi-worker processes to start (0: only remote ones) [2]\n"
+         "  --worker-threads T    threads per local worker, 0 = cores / workers [0]\n"
+         "  --listen ENDPOINT     where workers connect [tcp://127.0.0.1:0 = loopback, any free port];\n"
+         "                        name another interface (tcp://0.0.0.0:5555) to open it to a network\n"
+         "  --frames F            headless: render F frames and write them (-o); default: a window\n"
+         "  --progressive         headless: accumulate frames, advancing the seed\n"
+         "  --camera-path orbit   headless: turn the camera about the scene, one step a frame\n"
+         "  --stats FILE.json     per-frame statistics\n"
+         "  --credits K           jobs a worker holds at once [2]\n"
+         "  --heartbeat-ms MS     [250]   --timeout-ms MS  silent worker declared dead [1500]\n"
+         "render options (as igi-render):\n" + render_usage(program);
+}
+
+static int to_int(const std::string& option, const std::string& value) {
+  try {
+    size_t end = 0;
+    int v = std::stoi(value, &end);
+    if (end == value.size() && v >= 0) return v;
+  } catch (const std::exception&) {
+  }
+  throw std::invalid_argument(option + ": expected a non-negative integer, got '" + value + "'");
+}
+
+MasterOptions parse_master_options(const std::vector<std::string>& args) {
+  MasterOptions o;
+  std::vector<std::string> render_args;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) throw std::invalid_argument(a + ": missing value");
+      return args[++i];
+    };
+    if (a == "--workers") o.workers = to_int(a, value());
+    else if (a == "--worker-threads") o.worker_threads = to_int(a, value());
+    else if (a == "--listen") o.listen = value();
+    else if (a == "--frames") o.frames = to_int(a, value());
+    else if (a == "--progressive") o.progressive = true;
+    else if (a == "--camera-path") o.camera_path = value();
+    else if (a == "--stats") o.stats = value();
+    else if (a == "--credits") o.credits = std::max(1, to_int(a, value()));
+    else if (a == "--heartbeat-ms") o.heartbeat_ms = std::max(10, to_int(a, value()));
+    else if (a == "--timeout-ms") o.timeout_ms = std::max(50, to_int(a, value()));
+    else if (a == "--test-kill-worker-after") o.kill_worker_after = to_int(a, value());
+    else if (a == "--test-force-duplicates") o.force_duplicates = to_int(a, value());
+    else render_args.push_back(a);
+  }
+  o.render = parse_render_options(render_args);
+  if (o.camera_path != "" && o.camera_path != "orbit")
+    throw std::invalid_argument("--camera-path: expected 'orbit', got '" + o.camera_path + "'");
+  return o;
+}
+
+}  // namespace igi

@@ -1,0 +1,31 @@
+#pragma once
+// igi-master's options: the renderer's (scene, method, size...) plus the
+// cluster's.
+#include <string>
+#include <vector>
+
+#include "render_options.h"
+
+namespace igi {
+
+struct MasterOptions {
+  RenderOptions render;           // scene, method, settings, size, -o, seed...
+  int workers = 2;                // local igi-worker processes to start
+  int worker_threads = 0;         // threads per local worker; 0: cores / workers
+  std::string listen = "tcp://127.0.0.1:0";  // port 0: any free port
+  int frames = 0;                 // headless: render this many frames; 0: window
+  bool progressive = false;       // headless: accumulate frames (seed advances)
+  std::string camera_path;        // headless: "orbit" turns the camera about the scene
+  std::string stats;              // per-frame statistics as JSON
+  int credits = 2;                // jobs a worker holds at once
+  int heartbeat_ms = 250;
+  int timeout_ms = 1500;          // a silent worker is dead after this
+  // Test hooks.
+  int kill_worker_after = 0;      // SIGKILL local worker 0 after this many results
+  int force_duplicates = 0;       // hand this many jobs to two workers on purpose
+};
+
+MasterOptions parse_master_options(const std::vector<std::string>& args);
+std::string master_usage(const std::string& program);
+
+}  // namespace igi

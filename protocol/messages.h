@@ -1,0 +1,116 @@
+#pragma once
+// The wire format between igi-master and igi-worker, as plain data.
+//
+// Every message is one ZeroMQ frame: an 8-byte header (magic "IGI1", protocol
+// version, type, flags = 0) and a payload, all little-endian. encode() and
+// decode() in codec.h are written side by side; decode() validates every
+// length, count, enum and number before use and never trusts the peer.
+//
+// Conversation:
+//   worker -> master  Hello                  (version, build, SIMD, threads)
+//   master -> worker  Welcome | Refuse       (scene by content hash, settings)
+//   worker -> master  SceneRequest           (only when it has no file with that hash)
+//   master -> worker  SceneData
+//   master -> worker  FrameSetup, TileJob... (jobs up to the worker's credits)
+//   worker -> master  TileResult...          (one per job; returns a credit)
+//   both ways         Heartbeat              (every heartbeat interval)
+//   either way        Bye                    (leaving; the peer forgets the other)
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "methods/settings.h"
+#include "render/frame.h"
+
+namespace igi::protocol {
+
+inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
+inline constexpr uint16_t kVersion = 1;
+
+// Size limits, checked before anything is allocated.
+inline constexpr size_t kMaxString = 4096;
+inline constexpr size_t kMaxSceneBytes = 512u << 20;
+inline constexpr int kMaxImageSide = 16384;
+inline constexpr int kMaxTileSide = 1024;
+inline constexpr size_t kMaxMessageBytes = kMaxSceneBytes + 65536;
+
+enum class MessageType : uint8_t {
+  Hello = 1,
+  Welcome = 2,
+  Refuse = 3,
+  SceneRequest = 4,
+  SceneData = 5,
+  FrameSetup = 6,
+  TileJob = 7,
+  TileResult = 8,
+  Heartbeat = 9,
+  Bye = 10,
+};
+
+const char* message_name(MessageType type);
+
+struct Hello {
+  std::string build_id;   // must equal the master's: same binary, same floats
+  std::string simd;       // e.g. "avx512", for logs
+  uint32_t threads = 1;
+};
+
+struct Welcome {
+  uint64_t session = 0;
+  std::string scene_name;   // built-in scene name, or the file's name (no directories)
+  uint64_t scene_hash = 0;  // FNV-1a 64 of the file's bytes; 0 for built-in scenes
+  uint64_t scene_size = 0;  // bytes of the file; 0 for built-in scenes
+  RenderSettings settings;
+  uint32_t credits = 2;         // jobs the worker may hold at once
+  uint32_t heartbeat_ms = 500;  // both sides send at least this often
+};
+
+struct Refuse {
+  std::string reason;
+};
+
+struct SceneRequest {
+  uint64_t scene_hash = 0;
+};
+
+struct SceneData {
+  uint64_t scene_hash = 0;
+  std::string file_name;
+  std::vector<uint8_t> bytes;
+};
+
+struct FrameSetupMsg {
+  igi::FrameSetup frame;
+};
+
+struct TileJobMsg {
+  uint64_t frame_id = 0;
+  uint64_t job_id = 0;  // unique within the session; results carry it back
+  igi::TileJob tile;
+};
+
+struct TileResult {
+  uint64_t frame_id = 0;
+  uint64_t job_id = 0;
+  igi::TileJob tile;
+  float render_seconds = 0.0f;
+  uint64_t frame_state_hash = 0;  // the worker's VPL-set hash for this frame
+  igi::RayCounts rays;
+  std::vector<glm::vec3> pixels;  // tile.w * tile.h, row-major, linear RGB
+};
+
+struct Heartbeat {};
+
+struct Bye {
+  std::string reason;
+};
+
+using Message = std::variant<Hello, Welcome, Refuse, SceneRequest, SceneData, FrameSetupMsg, TileJobMsg,
+                             TileResult, Heartbeat, Bye>;
+
+MessageType type_of(const Message& message);
+
+}  // namespace igi::protocol

@@ -1,0 +1,87 @@
+#include "render_pool.h"
+
+#include <chrono>
+#include <utility>
+
+#include "scene/accel.h"
+
+namespace igi {
+
+RenderPool::RenderPool(const SceneContext& context, const RenderSettings& settings, int threads)
+    : context_(context), settings_(settings) {
+  for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { run(); });
+}
+
+RenderPool::~RenderPool() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+    queue_.clear();
+  }
+  wake_.notify_all();
+  for (std::thread& t : threads_) t.join();
+}
+
+void RenderPool::add_frame(const FrameSetup& frame) {
+  auto state = std::make_shared<FrameState>();
+  state->setup = frame;
+  state->method = make_method(context_, settings_);
+  std::lock_guard lock(mutex_);
+  frames_[frame.frame_id] = std::move(state);
+  // Keep the newest few: results of older frames may still be in flight.
+  while (frames_.size() > 4) frames_.erase(frames_.begin());
+}
+
+void RenderPool::add_job(const protocol::TileJobMsg& job) {
+  {
+    std::lock_guard lock(mutex_);
+    queue_.push_back(job);
+  }
+  wake_.notify_one();
+}
+
+std::vector<protocol::TileResult> RenderPool::take_results() {
+  std::lock_guard lock(mutex_);
+  return std::exchange(results_, {});
+}
+
+size_t RenderPool::busy() const {
+  std::lock_guard lock(mutex_);
+  return queue_.size() + rendering_;
+}
+
+protocol::TileResult RenderPool::render(const protocol::TileJobMsg& job, FrameState& frame) {
+  auto start = std::chrono::steady_clock::now();
+  std::call_once(frame.begun, [&] { frame.method->begin_frame(frame.setup); });
+  protocol::TileResult r;
+  r.frame_id = job.frame_id;
+  r.job_id = job.job_id;
+  r.tile = job.tile;
+  r.pixels.resize(size_t(job.tile.w) * job.tile.h);
+  frame.method->render_tile(job.tile, r.pixels, r.rays);
+  r.frame_state_hash = frame.method->frame_state_hash();
+  r.render_seconds = std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+void RenderPool::run() {
+  enable_flush_to_zero();
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    wake_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+    if (stopping_) return;
+    protocol::TileJobMsg job = queue_.front();
+    queue_.pop_front();
+    auto frame = frames_.find(job.frame_id);
+    if (frame == frames_.end()) continue;  // a frame we were never told about: drop
+    std::shared_ptr<FrameState> state = frame->second;
+    ++rendering_;
+    lock.unlock();
+    protocol::TileResult result = render(job, *state);
+    lock.lock();
+    --rendering_;
+    results_.push_back(std::move(result));
+  }
+}
+
+}  // namespace igi
