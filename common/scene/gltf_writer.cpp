@@ -283,17 +283,22 @@ tinygltf::Model to_model(const Scene& scene, const std::string& stem) {
 void write_gltf(const Scene& scene, const std::string& path) {
   check_writable(scene, path);
   const std::string stem = fs::path(path).stem().string();
-  const tinygltf::Model model = to_model(scene, stem);
+  // A .glb carries its buffer and images inside: one self-contained file,
+  // which is what a master sends to workers without the scene.
+  const bool binary = fs::path(path).extension() == ".glb";
+  tinygltf::Model model = to_model(scene, stem);
+  if (binary)
+    for (tinygltf::Buffer& buffer : model.buffers) buffer.uri.clear();
   tinygltf::TinyGLTF writer;
   tinygltf::FsCallbacks files{&tinygltf::FileExists, &tinygltf::ExpandFilePath, &tinygltf::ReadWholeFile,
                               &tinygltf::WriteWholeFile, nullptr};
   writer.SetImageWriter(&tinygltf::WriteImageData, &files);
-  if (!writer.WriteGltfSceneToFile(&model, path, false, false, true, false))
+  if (!writer.WriteGltfSceneToFile(&model, path, binary, binary, !binary, binary))
     throw SceneError(path + ": cannot write the glTF file or its buffer " + stem + ".bin");
   // tinygltf reports a failed image write only by leaving the file out.
   const fs::path folder = fs::path(path).parent_path();
   for (const tinygltf::Image& image : model.images)
-    if (!fs::exists(folder / image.uri))
+    if (!binary && !fs::exists(folder / image.uri))
       throw SceneError(path + ": cannot write texture " + (folder / image.uri).string());
 }
 

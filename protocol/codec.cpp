@@ -1,0 +1,390 @@
+// Encode and decode, one write/read pair per message, side by side. Each read
+// validates its fields right after reading them; the limits are listed first.
+#include "protocol/codec.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "protocol/wire.h"
+
+namespace igi::protocol {
+namespace {
+
+constexpr size_t kHeaderBytes = 8;
+constexpr int64_t kMaxThreads = 4096;
+constexpr int64_t kMaxDepth = 1024;
+constexpr int64_t kMaxInterleave = 16;
+constexpr int64_t kMaxPathsPerSet = 1 << 20;
+constexpr int64_t kMaxCredits = 64;
+constexpr int64_t kMinHeartbeatMs = 10, kMaxHeartbeatMs = 60000;
+constexpr int64_t kMaxBorder = 64;
+constexpr size_t kPixelBytes = 12;  // three f32
+// sin of the smallest angle allowed between camera forward and up.
+constexpr float kMinSinForwardUp = 1e-4f;
+
+// ---- Checks: each records "<field>: <what was wrong, what was expected>".
+
+std::string show(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", v);
+  return text;
+}
+
+void check_range(Reader& r, const char* field, int64_t v, int64_t lo, int64_t hi) {
+  if (v < lo || v > hi)
+    r.fail(field, std::to_string(v) + ", expected [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+}
+
+// lo <= v <= hi, which NaN fails.
+void check_closed(Reader& r, const char* field, float v, float lo, float hi) {
+  if (!(v >= lo && v <= hi)) r.fail(field, show(v) + ", expected [" + show(lo) + ", " + show(hi) + "]");
+}
+
+void check_finite(Reader& r, const char* field, float v) {
+  if (!std::isfinite(v)) r.fail(field, show(v) + ", expected a finite number");
+}
+
+void check_finite_non_negative(Reader& r, const char* field, float v) {
+  if (!(std::isfinite(v) && v >= 0.0f)) r.fail(field, show(v) + ", expected a finite number >= 0");
+}
+
+void check_finite(Reader& r, const char* field, glm::vec3 v) {
+  for (int i = 0; i < 3; ++i) check_finite(r, field, v[i]);
+}
+
+// At most 64 bytes of a peer's text, non-printable bytes as '?', for an error message.
+std::string quote(const std::string& text) {
+  std::string shown = "\"";
+  for (size_t i = 0; i < text.size() && i < 64; ++i) shown += std::isprint(uint8_t(text[i])) ? text[i] : '?';
+  return shown + (text.size() > 64 ? "\"..." : "\"");
+}
+
+// The name becomes a file name in the worker's cache: no directories, no way up.
+void check_file_name(Reader& r, const char* field, const std::string& name) {
+  bool ok = !name.empty() && name.find_first_of(std::string("/\\\0", 3)) == std::string::npos &&
+            name.find("..") == std::string::npos;
+  if (!ok) r.fail(field, quote(name) + ", expected a non-empty file name without '/', '\\', NUL or \"..\"");
+}
+
+// Renderers normalise camera vectors in float: the length must be a normal float.
+void check_direction(Reader& r, const char* field, glm::vec3 v) {
+  check_finite(r, field, v);
+  if (r.ok() && !std::isnormal(glm::length(v))) r.fail(field, "zero or degenerate length, expected a direction");
+}
+
+void check_camera(Reader& r, const Camera& camera) {
+  check_finite(r, "frame.camera.position", camera.position);
+  check_direction(r, "frame.camera.forward", camera.forward);
+  check_direction(r, "frame.camera.up", camera.up);
+  if (r.ok() && glm::length(glm::cross(glm::normalize(camera.forward), glm::normalize(camera.up))) < kMinSinForwardUp)
+    r.fail("frame.camera.up", "parallel to forward, expected a direction across it");
+  float vfov = camera.vfov;
+  if (!(vfov > 0.0f && vfov < std::numbers::pi_v<float>))
+    r.fail("frame.camera.vfov", show(vfov) + " radians, expected (0, pi)");
+}
+
+// ---- Shared parts.
+
+void write(Writer& w, const RenderSettings& s) {
+  w.u8(static_cast<uint8_t>(s.method));
+  w.i32(s.max_depth);
+  w.i32(s.interleave);
+  w.i32(s.paths_per_set);
+  w.f32(s.clamp);
+  w.boolean(s.filter);
+  w.f32(s.filter_normal_cos);
+  w.f32(s.filter_depth_ratio);
+}
+
+void read(Reader& r, RenderSettings& s) {
+  uint8_t method = r.u8("settings.method");
+  check_range(r, "settings.method", method, 0, static_cast<uint8_t>(MethodKind::Igi));
+  if (r.ok()) s.method = static_cast<MethodKind>(method);
+  s.max_depth = r.i32("settings.max_depth");
+  check_range(r, "settings.max_depth", s.max_depth, 1, kMaxDepth);
+  s.interleave = r.i32("settings.interleave");
+  check_range(r, "settings.interleave", s.interleave, 1, kMaxInterleave);
+  s.paths_per_set = r.i32("settings.paths_per_set");
+  check_range(r, "settings.paths_per_set", s.paths_per_set, 1, kMaxPathsPerSet);
+  s.clamp = r.f32("settings.clamp");
+  check_finite_non_negative(r, "settings.clamp", s.clamp);
+  s.filter = r.boolean("settings.filter");
+  s.filter_normal_cos = r.f32("settings.filter_normal_cos");
+  check_closed(r, "settings.filter_normal_cos", s.filter_normal_cos, -1.0f, 1.0f);
+  s.filter_depth_ratio = r.f32("settings.filter_depth_ratio");
+  check_finite_non_negative(r, "settings.filter_depth_ratio", s.filter_depth_ratio);
+}
+
+void write(Writer& w, const TileJob& t) {
+  w.i32(t.x);
+  w.i32(t.y);
+  w.i32(t.w);
+  w.i32(t.h);
+  w.i32(t.border);
+}
+
+// x and y stay below kMaxImageSide so that x + w cannot overflow.
+void read(Reader& r, TileJob& t) {
+  t.x = r.i32("tile.x");
+  check_range(r, "tile.x", t.x, 0, kMaxImageSide - 1);
+  t.y = r.i32("tile.y");
+  check_range(r, "tile.y", t.y, 0, kMaxImageSide - 1);
+  t.w = r.i32("tile.w");
+  check_range(r, "tile.w", t.w, 1, kMaxTileSide);
+  t.h = r.i32("tile.h");
+  check_range(r, "tile.h", t.h, 1, kMaxTileSide);
+  t.border = r.i32("tile.border");
+  check_range(r, "tile.border", t.border, 0, kMaxBorder);
+}
+
+// ---- Messages, in MessageType order.
+
+void write(Writer& w, const Hello& m) {
+  w.string(m.build_id);
+  w.string(m.simd);
+  w.u32(m.threads);
+}
+
+void read(Reader& r, Hello& m) {
+  m.build_id = r.string("build_id", kMaxString);
+  m.simd = r.string("simd", kMaxString);
+  m.threads = r.u32("threads");
+  check_range(r, "threads", m.threads, 1, kMaxThreads);
+}
+
+void write(Writer& w, const Welcome& m) {
+  w.u64(m.session);
+  w.string(m.scene_name);
+  w.u64(m.scene_hash);
+  w.u64(m.scene_size);
+  write(w, m.settings);
+  w.u32(m.credits);
+  w.u32(m.heartbeat_ms);
+}
+
+void read(Reader& r, Welcome& m) {
+  m.session = r.u64("session");
+  m.scene_name = r.string("scene_name", kMaxString);
+  check_file_name(r, "scene_name", m.scene_name);
+  m.scene_hash = r.u64("scene_hash");
+  m.scene_size = r.u64("scene_size");
+  if (m.scene_size > kMaxSceneBytes)
+    r.fail("scene_size", std::to_string(m.scene_size) + " bytes, over the limit of " + std::to_string(kMaxSceneBytes));
+  read(r, m.settings);
+  m.credits = r.u32("credits");
+  check_range(r, "credits", m.credits, 1, kMaxCredits);
+  m.heartbeat_ms = r.u32("heartbeat_ms");
+  check_range(r, "heartbeat_ms", m.heartbeat_ms, kMinHeartbeatMs, kMaxHeartbeatMs);
+}
+
+void write(Writer& w, const Refuse& m) { w.string(m.reason); }
+
+void read(Reader& r, Refuse& m) { m.reason = r.string("reason", kMaxString); }
+
+void write(Writer& w, const SceneRequest& m) { w.u64(m.scene_hash); }
+
+void read(Reader& r, SceneRequest& m) { m.scene_hash = r.u64("scene_hash"); }
+
+void write(Writer& w, const SceneData& m) {
+  w.u64(m.scene_hash);
+  w.string(m.file_name);
+  w.bytes(m.bytes);
+}
+
+void read(Reader& r, SceneData& m) {
+  m.scene_hash = r.u64("scene_hash");
+  m.file_name = r.string("file_name", kMaxString);
+  check_file_name(r, "file_name", m.file_name);
+  m.bytes = r.bytes("bytes", kMaxSceneBytes);
+}
+
+void write(Writer& w, const FrameSetupMsg& m) {
+  const FrameSetup& f = m.frame;
+  w.u64(f.frame_id);
+  w.vec3(f.camera.position);
+  w.vec3(f.camera.forward);
+  w.vec3(f.camera.up);
+  w.f32(f.camera.vfov);
+  w.i32(f.width);
+  w.i32(f.height);
+  w.u32(f.seed);
+  w.u32(f.sample_begin);
+  w.u32(f.sample_count);
+  w.f32(f.jitter_x);
+  w.f32(f.jitter_y);
+}
+
+void read(Reader& r, FrameSetupMsg& m) {
+  FrameSetup& f = m.frame;
+  f.frame_id = r.u64("frame.frame_id");
+  f.camera.position = r.vec3("frame.camera.position");
+  f.camera.forward = r.vec3("frame.camera.forward");
+  f.camera.up = r.vec3("frame.camera.up");
+  f.camera.vfov = r.f32("frame.camera.vfov");
+  check_camera(r, f.camera);
+  f.width = r.i32("frame.width");
+  check_range(r, "frame.width", f.width, 1, kMaxImageSide);
+  f.height = r.i32("frame.height");
+  check_range(r, "frame.height", f.height, 1, kMaxImageSide);
+  f.seed = r.u32("frame.seed");
+  f.sample_begin = r.u32("frame.sample_begin");
+  f.sample_count = r.u32("frame.sample_count");
+  check_range(r, "frame.sample_count", f.sample_count, 1, UINT32_MAX);
+  f.jitter_x = r.f32("frame.jitter_x");
+  check_closed(r, "frame.jitter_x", f.jitter_x, 0.0f, 1.0f);
+  f.jitter_y = r.f32("frame.jitter_y");
+  check_closed(r, "frame.jitter_y", f.jitter_y, 0.0f, 1.0f);
+}
+
+void write(Writer& w, const TileJobMsg& m) {
+  w.u64(m.frame_id);
+  w.u64(m.job_id);
+  write(w, m.tile);
+}
+
+void read(Reader& r, TileJobMsg& m) {
+  m.frame_id = r.u64("frame_id");
+  m.job_id = r.u64("job_id");
+  read(r, m.tile);
+}
+
+void write(Writer& w, const TileResult& m) {
+  w.u64(m.frame_id);
+  w.u64(m.job_id);
+  write(w, m.tile);
+  w.f32(m.render_seconds);
+  w.u64(m.frame_state_hash);
+  w.u64(m.rays.primary);
+  w.u64(m.rays.shadow);
+  w.u64(m.rays.secondary);
+  w.u32(static_cast<uint32_t>(m.pixels.size()));
+  w.reserve(m.pixels.size() * kPixelBytes);
+  for (const glm::vec3& p : m.pixels) w.vec3(p);
+}
+
+// The count must match the tile before anything is allocated for it.
+void read_pixels(Reader& r, TileResult& m) {
+  uint32_t n = r.count("pixels", kPixelBytes, size_t(kMaxTileSide) * kMaxTileSide);
+  size_t expected = size_t(m.tile.w) * size_t(m.tile.h);
+  if (r.ok() && n != expected)
+    r.fail("pixels", std::to_string(n) + " pixels, expected " + std::to_string(m.tile.w) + " x " +
+                         std::to_string(m.tile.h) + " = " + std::to_string(expected));
+  if (!r.ok()) return;
+  m.pixels.resize(n);
+  for (uint32_t i = 0; i < n && r.ok(); ++i) {
+    m.pixels[i] = r.vec3("pixels");
+    glm::vec3 p = m.pixels[i];
+    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
+      r.fail("pixels", "pixel " + std::to_string(i) + " is (" + show(p.x) + ", " + show(p.y) + ", " + show(p.z) +
+                           "), expected finite values");
+  }
+}
+
+void read(Reader& r, TileResult& m) {
+  m.frame_id = r.u64("frame_id");
+  m.job_id = r.u64("job_id");
+  read(r, m.tile);
+  m.render_seconds = r.f32("render_seconds");
+  check_finite_non_negative(r, "render_seconds", m.render_seconds);
+  m.frame_state_hash = r.u64("frame_state_hash");
+  m.rays.primary = r.u64("rays.primary");
+  m.rays.shadow = r.u64("rays.shadow");
+  m.rays.secondary = r.u64("rays.secondary");
+  read_pixels(r, m);
+}
+
+void write(Writer&, const Heartbeat&) {}
+
+void read(Reader&, Heartbeat&) {}
+
+void write(Writer& w, const Bye& m) { w.string(m.reason); }
+
+void read(Reader& r, Bye& m) { m.reason = r.string("reason", kMaxString); }
+
+// ---- Header and dispatch.
+
+std::string hex(uint32_t v) {
+  char text[16];
+  std::snprintf(text, sizeof text, "0x%08x", v);
+  return text;
+}
+
+// The message type, or nullopt with the error recorded. Magic and version come
+// first so that a peer of another version is named as such.
+std::optional<MessageType> read_header(Reader& r) {
+  r.begin("header");
+  if (r.remaining() < kHeaderBytes) {
+    r.fail("message of " + std::to_string(r.remaining()) + " bytes, shorter than the " +
+           std::to_string(kHeaderBytes) + "-byte header");
+    return std::nullopt;
+  }
+  uint32_t magic = r.u32("magic");
+  if (magic != kMagic) r.fail("not an igi message: magic " + hex(magic) + ", expected " + hex(kMagic) + " (\"IGI1\")");
+  uint16_t version = r.u16("version");
+  if (version != kVersion)
+    r.fail("protocol version " + std::to_string(version) + ", this build speaks " + std::to_string(kVersion));
+  uint8_t type = r.u8("type");
+  if (type < uint8_t(MessageType::Hello) || type > uint8_t(MessageType::Bye))
+    r.fail("unknown message type " + std::to_string(type));
+  uint8_t flags = r.u8("flags");
+  if (r.ok() && flags != 0)
+    r.fail(std::string(message_name(MessageType(type))) + ": flags " + hex(flags) + ", expected 0");
+  if (!r.ok()) return std::nullopt;
+  return MessageType(type);
+}
+
+template <class T>
+Message read_message(Reader& r) {
+  Message message{std::in_place_type<T>};
+  read(r, std::get<T>(message));
+  return message;
+}
+
+Message read_payload(Reader& r, MessageType type) {
+  switch (type) {
+    case MessageType::Hello: return read_message<Hello>(r);
+    case MessageType::Welcome: return read_message<Welcome>(r);
+    case MessageType::Refuse: return read_message<Refuse>(r);
+    case MessageType::SceneRequest: return read_message<SceneRequest>(r);
+    case MessageType::SceneData: return read_message<SceneData>(r);
+    case MessageType::FrameSetup: return read_message<FrameSetupMsg>(r);
+    case MessageType::TileJob: return read_message<TileJobMsg>(r);
+    case MessageType::TileResult: return read_message<TileResult>(r);
+    case MessageType::Heartbeat: return read_message<Heartbeat>(r);
+    case MessageType::Bye: return read_message<Bye>(r);
+  }
+  r.fail("unknown message type " + std::to_string(int(type)));  // read_header let it through: a bug
+  return Heartbeat{};
+}
+
+}  // namespace
+
+std::vector<uint8_t> encode(const Message& message) {
+  Writer w;
+  w.u32(kMagic);
+  w.u16(kVersion);
+  w.u8(static_cast<uint8_t>(type_of(message)));
+  w.u8(0);  // flags
+  std::visit([&w](const auto& m) { write(w, m); }, message);
+  return w.take();
+}
+
+DecodeResult decode(std::span<const uint8_t> bytes) {
+  if (bytes.size() > kMaxMessageBytes)
+    return {std::nullopt, "message of " + std::to_string(bytes.size()) + " bytes, over the limit of " +
+                              std::to_string(kMaxMessageBytes)};
+  Reader r(bytes);
+  std::optional<MessageType> type = read_header(r);
+  if (!type) return {std::nullopt, r.error()};
+  std::string name = message_name(*type);
+  r.begin(name);
+  Message message = read_payload(r, *type);
+  if (r.ok() && r.remaining() != 0)
+    r.fail(name + ": " + std::to_string(r.remaining()) + " trailing bytes after the payload");
+  if (!r.ok()) return {std::nullopt, r.error()};
+  return {std::move(message), {}};
+}
+
+}  // namespace igi::protocol

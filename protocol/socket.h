@@ -1,0 +1,44 @@
+#pragma once
+// Thin helpers over cppzmq so master and worker stay short. One message is
+// one frame; a ROUTER sees and sends [identity, message].
+//
+// Threading: a zmq socket belongs to one thread, and so do these calls on it.
+// Errors: bad frames from a peer come back as values (Received::error); only
+// socket failures (a terminated context, a closed socket) throw zmq::error_t.
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include <zmq.hpp>
+
+#include "protocol/messages.h"
+
+namespace igi::protocol {
+
+// Options every socket gets, before bind/connect: ZMQ_MAXMSGSIZE =
+// kMaxMessageBytes (zmq drops a peer that sends more), linger 0 (close never
+// waits for unsent messages).
+void configure(zmq::socket_t& socket);
+
+// Sends one message as one frame (DEALER side). Queues without blocking until
+// the socket's high-water mark (1000 messages by default); blocks past it.
+void send(zmq::socket_t& socket, const Message& m);
+
+// Sends [identity, message] (ROUTER side). A ROUTER drops messages for an
+// identity it does not know or whose queue is full, without an error.
+void send_to(zmq::socket_t& router, const std::string& identity, const Message& m);
+
+struct Received {
+  std::string identity;            // ROUTER side: the peer's routing id (binary)
+  std::optional<Message> message;  // empty when the frame(s) did not decode
+  std::string error;               // why not; empty when message is set
+  size_t bytes = 0;                // bytes received, identity frame excluded
+};
+
+// Waits up to timeout_ms (0 = poll once; negative counts as 0, never forever)
+// and receives one message, draining all of its frames. nullopt on timeout.
+// A ROUTER expects [identity, message], a DEALER [message]; any other number
+// of frames, or bytes that do not decode, give a Received with error set.
+std::optional<Received> receive(zmq::socket_t& socket, int timeout_ms, bool router);
+
+}  // namespace igi::protocol

@@ -1,0 +1,157 @@
+#!/usr/bin/env python3
+"""Charts and the headline table from igi-accuracy's CSV.
+
+    plot_accuracy.py results/accuracy/accuracy.csv results/accuracy [--targets 0.05,0.01] [--flip-target 0.1]
+
+Writes into the output folder:
+  <scene>.png   relMSE and mean FLIP against render time, log-log, one series
+                per method variant (pt; ir per clamp; igi per filter and clamp),
+                with the Pareto front of each method (pt, ir, igi) drawn over them
+  pareto.csv    the points on each method's front
+  headline.md   time to reach each target error, per method and scene
+"""
+import argparse
+import csv
+import math
+import os
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+METHOD_COLOURS = {"pt": "black", "ir": "tab:blue", "igi": "tab:red"}
+
+
+def read_rows(path):
+    rows = []
+    with open(path, newline="") as f:
+        for r in csv.DictReader(f):
+            r["seconds"] = float(r["seconds"])
+            for k in ("relmse", "rmse", "flip"):
+                r[k] = float(r[k])
+            r["params_dict"] = dict(kv.split("=", 1) for kv in r["params"].split(";") if "=" in kv)
+            rows.append(r)
+    return rows
+
+
+def variant(row):
+    """The series a point belongs to: everything but the budget (spp, M, passes)."""
+    p = row["params_dict"]
+    if row["method"] == "pt":
+        return "pt"
+    label = f"{row['method']} clamp {p.get('clamp', '0')}"
+    if row["method"] == "igi":
+        label += f" filter {p.get('filter', 'on')}"
+    if p.get("bc", "off") != "off":
+        label += " bc"
+    return label
+
+
+def pareto(points, key):
+    """Points not beaten in both time and error, by increasing time."""
+    front, best = [], math.inf
+    for r in sorted(points, key=lambda r: (r["seconds"], r[key])):
+        if r[key] < best:
+            front.append(r)
+            best = r[key]
+    return front
+
+
+def plot_scene(scene, rows, out_dir):
+    fig, axes = plt.subplots(1, 2, figsize=(13, 6))
+    series = defaultdict(list)
+    for r in rows:
+        series[variant(r)].append(r)
+    markers = ["o", "s", "^", "v", "D", "P", "X"]
+    for ax, key, label in ((axes[0], "relmse", "relMSE (epsilon 0.01)"), (axes[1], "flip", "mean FLIP (LDR, 67 ppd)")):
+        style_index = defaultdict(int)
+        for name, pts in sorted(series.items()):
+            pts = sorted(pts, key=lambda r: r["seconds"])
+            method = pts[0]["method"]
+            marker = markers[style_index[method] % len(markers)]
+            style_index[method] += 1
+            ax.plot([r["seconds"] for r in pts], [r[key] for r in pts], linestyle="none", marker=marker, ms=4,
+                    color=METHOD_COLOURS.get(method, "gray"), alpha=0.6, label=name)
+        for method in ("pt", "ir", "igi"):
+            front = pareto([r for r in rows if r["method"] == method], key)
+            if front:
+                ax.step([r["seconds"] for r in front], [r[key] for r in front], where="post", lw=2.5,
+                        color=METHOD_COLOURS[method], label=f"{method} Pareto front")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("render time (s, same machine, same run)")
+        ax.set_ylabel(label)
+        ax.grid(True, which="both", alpha=0.25)
+    axes[0].set_title(f"{scene}: relMSE against time")
+    axes[1].set_title(f"{scene}: FLIP against time")
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=5, fontsize=7, frameon=False)
+    fig.tight_layout(rect=(0, 0.12, 1, 1))
+    path = os.path.join(out_dir, f"{scene}.png")
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def time_to_reach(rows, method, key, target):
+    hits = [r for r in rows if r["method"] == method and r[key] <= target]
+    if not hits:
+        best = min((r[key] for r in rows if r["method"] == method), default=math.nan)
+        return f"not reached (best {best:.3g})"
+    r = min(hits, key=lambda r: r["seconds"])
+    return f"{r['seconds']:.3g} s ({r['params'].replace(';bc=off', '').replace(';', ', ')})"
+
+
+def headline(rows, scenes, targets, flip_target, meta):
+    lines = [
+        "| scene | method | " + " | ".join(f"relMSE <= {t:g}" for t in targets) + f" | FLIP <= {flip_target:g} |",
+        "|---|---|" + "---|" * (len(targets) + 1),
+    ]
+    for scene in scenes:
+        srows = [r for r in rows if r["scene"] == scene]
+        for method in ("pt", "ir", "igi"):
+            cells = [time_to_reach(srows, method, "relmse", t) for t in targets]
+            cells.append(time_to_reach(srows, method, "flip", flip_target))
+            lines.append(f"| {scene} | {method} | " + " | ".join(cells) + " |")
+    intro = (
+        "Time to reach a given error against the converged path-traced reference "
+        f"({meta}); the fastest measured point of each method, with its settings. "
+        "relMSE = mean (x - r)^2 / (r^2 + 0.01); FLIP = mean LDR-FLIP at 67 pixels per degree "
+        "of the images clamped to [0, 1] and sRGB-encoded. VPL points are medians over three seeds. "
+        "All points from one run on one machine (scripts/bench-accuracy.sh).\n"
+    )
+    return intro + "\n" + "\n".join(lines) + "\n"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("csv")
+    ap.add_argument("out_dir")
+    ap.add_argument("--targets", default="0.05,0.01", help="relMSE targets for the headline table")
+    ap.add_argument("--flip-target", type=float, default=0.1)
+    ap.add_argument("--meta", default="", help="run conditions for the table's introduction")
+    args = ap.parse_args()
+    rows = read_rows(args.csv)
+    os.makedirs(args.out_dir, exist_ok=True)
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    for scene in scenes:
+        print(plot_scene(scene, [r for r in rows if r["scene"] == scene], args.out_dir))
+    with open(os.path.join(args.out_dir, "pareto.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["scene", "method", "metric", "params", "seconds", "value"])
+        for scene in scenes:
+            for method in ("pt", "ir", "igi"):
+                for key in ("relmse", "flip"):
+                    for r in pareto([r for r in rows if r["scene"] == scene and r["method"] == method], key):
+                        w.writerow([scene, method, key, r["params"], r["seconds"], r[key]])
+    targets = [float(t) for t in args.targets.split(",") if t]
+    path = os.path.join(args.out_dir, "headline.md")
+    with open(path, "w") as f:
+        f.write(headline(rows, scenes, targets, args.flip_target, args.meta or "see the CSV"))
+    print(path)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,207 @@
+// igi-accuracy: error against render time for every method on the accuracy
+// suite, all points measured in one run on one machine. Writes CSV rows
+//   scene,method,params,seconds,relmse,rmse,flip
+// (relMSE with epsilon kRelMseEpsilon = 0.01; FLIP: mean LDR-FLIP at 67 pixels
+// per degree of the images tonemapped as the PNG output does). Asserts nothing;
+// scripts/charts/plot_accuracy.py turns the CSV into charts and headline.md.
+//
+//   igi-accuracy [--scenes a,b] [--size WxH] [--ref-spp N] [--refs DIR] [--out F.csv] [--quick]
+//
+// References: pt with --ref-spp samples, cached as
+// DIR/<scene>-<w>x<h>-<spp>-<hash of settings>.exr so reruns reuse them.
+// Sweeps: pt over samples per pixel; ir and igi over VPL paths per set M and
+// progressive passes, the clamp, and (igi) the discontinuity filter.
+// Unclamped VPL errors have infinite variance: a single seed is one draw of
+// a heavy-tailed figure, so each VPL point is the median over three seeds,
+// with the median seed's time.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "image/flip.h"
+#include "image/metrics.h"
+#include "render/offline_render.h"
+#include "sampling/hash.h"
+#include "scene/load_scene.h"
+
+namespace igi {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Options {
+  std::vector<std::string> scenes = {"cornell", "corner", "rooms", "glossy", "large"};
+  int width = 128, height = 96;
+  int ref_spp = 4096;
+  std::string refs = "results/refs";
+  std::string out = "results/accuracy/accuracy.csv";
+  bool quick = false;  // fewer points, for a smoke run
+};
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> parts;
+  std::stringstream in(s);
+  for (std::string part; std::getline(in, part, sep);)
+    if (!part.empty()) parts.push_back(part);
+  return parts;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(a + ": expected a value");
+      return argv[++i];
+    };
+    if (a == "--scenes") o.scenes = split(value(), ',');
+    else if (a == "--size") {
+      const std::string v = value();
+      if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 1 || o.height < 1)
+        throw std::invalid_argument("--size: expected WxH, got '" + v + "'");
+    } else if (a == "--ref-spp") o.ref_spp = std::stoi(value());
+    else if (a == "--refs") o.refs = value();
+    else if (a == "--out") o.out = value();
+    else if (a == "--quick") o.quick = true;
+    else throw std::invalid_argument("unknown option '" + a + "' (see the header of tests/bench/accuracy_bench.cpp)");
+  }
+  return o;
+}
+
+// A scene with its BVH and lights, alive for one scene's sweep.
+struct Prepared {
+  Scene scene;
+  Accel accel;
+  LightSet lights;
+  explicit Prepared(Scene s) : scene(std::move(s)), accel(scene), lights(scene) {}
+  SceneContext context() const { return {scene, accel, lights}; }
+};
+
+OfflineResult render(const Prepared& p, const RenderSettings& settings, const Options& o, int samples,
+                     uint32_t seed) {
+  FrameSetup frame;
+  frame.camera = p.scene.camera_or_auto();
+  frame.width = o.width;
+  frame.height = o.height;
+  frame.seed = seed;
+  return render_offline(p.context(), settings, frame, samples, FrameOptions{});
+}
+
+const Image& cached_reference(const Prepared& p, const std::string& name, const Options& o, Image& storage) {
+  RenderSettings pt;
+  pt.method = MethodKind::PathTracer;
+  const uint32_t seed = 7;
+  const uint32_t settings_hash = hash(hash(uint32_t(pt.max_depth), seed), 1u /* pt reference version */);
+  char file[256];
+  std::snprintf(file, sizeof file, "%s-%dx%d-%d-%08x.exr", name.c_str(), o.width, o.height, o.ref_spp, settings_hash);
+  const fs::path path = fs::path(o.refs) / file;
+  if (fs::exists(path)) {
+    storage = read_image(path.string());
+    std::fprintf(stderr, "%s: reference %s (cached)\n", name.c_str(), path.c_str());
+    return storage;
+  }
+  fs::create_directories(o.refs);
+  const OfflineResult r = render(p, pt, o, o.ref_spp, seed);
+  write_image(r.image, path.string());
+  std::fprintf(stderr, "%s: reference %s (%.1f s)\n", name.c_str(), path.c_str(), r.seconds);
+  storage = r.image;
+  return storage;
+}
+
+struct Point {
+  double seconds, relmse, rmse, flip;
+};
+
+Point measure(const Image& image, double seconds, const Image& ref) {
+  return {seconds, rel_mse(image, ref), rmse(image, ref), mean_flip(image, ref)};
+}
+
+void write_row(std::ofstream& csv, const std::string& scene, const char* method, const std::string& params,
+               const Point& p) {
+  char line[512];
+  std::snprintf(line, sizeof line, "%s,%s,%s,%.4f,%.6g,%.6g,%.6g\n", scene.c_str(), method, params.c_str(), p.seconds,
+                p.relmse, p.rmse, p.flip);
+  csv << line;
+  csv.flush();
+  std::fputs(line, stderr);
+}
+
+void sweep_pt(const Prepared& p, const std::string& name, const Options& o, const Image& ref, std::ofstream& csv) {
+  RenderSettings pt;
+  pt.method = MethodKind::PathTracer;
+  const int max_spp = o.quick ? 16 : std::max(16, o.ref_spp / 16);
+  for (int spp = 1; spp <= max_spp; spp *= 2) {
+    const OfflineResult r = render(p, pt, o, spp, 1);  // seed 1: independent of the reference's seed 7
+    write_row(csv, name, "pt", "spp=" + std::to_string(spp), measure(r.image, r.seconds, ref));
+  }
+}
+
+// Median over three seeds by relMSE (the other figures from the same run).
+Point median_point(const Prepared& p, const RenderSettings& s, const Options& o, int passes, const Image& ref) {
+  std::vector<Point> points;
+  for (uint32_t seed : {1u, 1001u, 2001u}) {
+    const OfflineResult r = render(p, s, o, passes, seed);
+    points.push_back(measure(r.image, r.seconds, ref));
+  }
+  std::sort(points.begin(), points.end(), [](const Point& a, const Point& b) { return a.relmse < b.relmse; });
+  return points[1];
+}
+
+void sweep_vpl(const Prepared& p, const std::string& name, const Options& o, const Image& ref, std::ofstream& csv) {
+  // (paths per set M, progressive passes): VPL budget up, then passes up.
+  std::vector<std::pair<int, int>> budgets = {{1, 1}, {4, 1}, {16, 1}, {64, 1}, {16, 4}, {16, 16}};
+  if (o.quick) budgets = {{2, 1}, {8, 1}, {8, 4}};
+  const std::vector<float> clamps = o.quick ? std::vector<float>{0.0f, 0.05f} : std::vector<float>{0.0f, 0.02f, 0.1f};
+  for (MethodKind kind : {MethodKind::InstantRadiosity, MethodKind::Igi})
+    for (bool filter : {true, false}) {
+      if (kind == MethodKind::InstantRadiosity && !filter) continue;  // ir has no filter
+      for (float clamp : clamps)
+        for (auto [m, passes] : budgets) {
+          // ir shades every VPL per pixel: its big budgets cost N^2 times igi's.
+          if (kind == MethodKind::InstantRadiosity && m * passes > 64) continue;
+          RenderSettings s;
+          s.method = kind;
+          s.paths_per_set = m;
+          s.clamp = clamp;
+          s.filter = filter;
+          // Bias compensation (Kollig & Keller 2006) joins here as one more
+          // axis ("bc=on|off") once the renderer has it.
+          char params[128];
+          std::snprintf(params, sizeof params, "M=%d;passes=%d;clamp=%g;filter=%s;bc=off", m, passes, clamp,
+                        kind == MethodKind::Igi && filter ? "on" : "off");
+          write_row(csv, name, method_name(kind), params, median_point(p, s, o, passes, ref));
+        }
+    }
+}
+
+int run(const Options& o) {
+  fs::create_directories(fs::path(o.out).parent_path().empty() ? fs::path(".") : fs::path(o.out).parent_path());
+  std::ofstream csv(o.out);
+  if (!csv) throw std::runtime_error(o.out + ": cannot write");
+  csv << "scene,method,params,seconds,relmse,rmse,flip\n";
+  for (const std::string& name : o.scenes) {
+    const Prepared p(load_scene(name));
+    Image storage;
+    const Image& ref = cached_reference(p, name, o, storage);
+    sweep_pt(p, name, o, ref, csv);
+    sweep_vpl(p, name, o, ref, csv);
+  }
+  std::fprintf(stderr, "wrote %s\n", o.out.c_str());
+  return 0;
+}
+
+}  // namespace
+}  // namespace igi
+
+int main(int argc, char** argv) {
+  try {
+    return igi::run(igi::parse(argc, argv));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "igi-accuracy: %s\n", e.what());
+    return 1;
+  }
+}

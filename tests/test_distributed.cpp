@@ -1,0 +1,163 @@
+// Headless tile-result tests: a master with local or extra workers gives the
+// very image the single-process renderer gives, whatever happens to workers.
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+#include <zmq.hpp>
+
+#include "protocol/codec.h"
+#include "scene/builtin_scenes.h"
+#include "scene/gltf_writer.h"
+#include "scene/load_scene.h"
+#include "support/image_compare.h"
+#include "support/process.h"
+#include "support/render_fixture.h"
+
+namespace igi {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr int kWidth = 160, kHeight = 120;
+
+std::string master(const std::string& extra, const std::string& scene = "cornell") {
+  return std::string(IGI_MASTER_BINARY) + " --scene " + scene + " --method igi --vpl-paths 8 --size " +
+         std::to_string(kWidth) + "x" + std::to_string(kHeight) + " --tile 16 --worker-threads 1 " + extra;
+}
+
+// The single-process render of the same scene and settings.
+Image single_process(const std::string& scene = "cornell") {
+  static std::map<std::string, Image> cache;
+  if (!cache.count(scene)) {
+    test::Prepared p(load_scene(scene));
+    RenderSettings s;
+    s.method = MethodKind::Igi;
+    s.paths_per_set = 8;
+    cache[scene] = p.render(s, kWidth, kHeight, 1, 1);
+  }
+  return cache[scene];
+}
+
+nlohmann::json read_json(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+int wait_for(pid_t pid, int seconds) {
+  for (int i = 0; i < seconds * 10; ++i) {
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  test::stop(pid);
+  return -2;
+}
+
+TEST(Distributed, TwoWorkersMatchTheSingleProcessRenderBitForBit) {
+  const std::string out = test::output_path("dist-two.exr");
+  auto r = test::run(master("--workers 2 --frames 1 -o " + out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(test::images_identical("dist-two", read_image(out), single_process()));
+}
+
+TEST(Distributed, DuplicatedTilesGiveTheSameImage) {
+  const std::string out = test::output_path("dist-dup.exr"), stats = test::output_path("dist-dup.json");
+  auto r = test::run(master("--workers 2 --frames 1 --credits 1 --test-force-duplicates 40 -o " + out + " --stats " + stats));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(test::images_identical("dist-dup", read_image(out), single_process()));
+  EXPECT_GE(read_json(stats)["frames"][0]["duplicated_total"].get<int>(), 40);
+}
+
+TEST(Distributed, WorkerKilledMidFrameLosesNothing) {
+  const std::string out = test::output_path("dist-kill.exr"), stats = test::output_path("dist-kill.json");
+  auto r = test::run(master("--workers 2 --frames 12 --heartbeat-ms 100 --timeout-ms 600 --test-kill-worker-after 30 -o " +
+                            out + " --stats " + stats));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (int f = 0; f < 12; ++f) {
+    char name[64];
+    std::snprintf(name, sizeof name, "dist-kill-%04d.exr", f);
+    EXPECT_TRUE(test::images_identical(std::string("dist-kill-") + std::to_string(f),
+                                       read_image(test::output_path(name)), single_process()));
+  }
+  nlohmann::json s = read_json(stats);
+  // Its jobs come back either as straggler copies (often first, near a
+  // frame's end) or reissued once it is declared dead.
+  const auto& last = s["frames"][11];
+  EXPECT_GT(last["reissued_total"].get<int>() + last["duplicated_total"].get<int>(), 0);
+  EXPECT_NE(r.output.find("declared dead"), std::string::npos) << r.output;
+  double slowest = 0;
+  for (auto& f : s["frames"]) slowest = std::max(slowest, f["seconds"].get<double>());
+  std::printf("slowest frame with a worker killed: %.0f ms (timeout 600 ms)\n", 1e3 * slowest);
+  EXPECT_LT(slowest, 2 * 0.6 + 1.0) << "a kill delays a frame by about a timeout, not more";
+}
+
+TEST(Distributed, WorkerJoiningMidSessionGetsWork) {
+  const int port = test::free_port();
+  const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(port);
+  const std::string out = test::output_path("dist-join.exr"), stats = test::output_path("dist-join.json");
+  pid_t m = test::start(master("--workers 1 --frames 60 --listen " + endpoint + " --quiet -o " + out + " --stats " + stats));
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  pid_t w = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --quiet");
+  EXPECT_EQ(wait_for(m, 120), 0);
+  EXPECT_EQ(wait_for(w, 20), 0) << "the joined worker leaves cleanly on the master's bye";
+  nlohmann::json s = read_json(stats);
+  EXPECT_EQ(s["frames"].back()["workers"].size(), 2u) << "both workers rendered the last frame";
+}
+
+TEST(Distributed, WorkerOfAnotherBuildIsRefusedWithItsReason) {
+  const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(test::free_port());
+  pid_t m = test::start(master("--workers 0 --frames 1 --quiet --listen " + endpoint + " -o " + test::output_path("dist-refuse.exr")));
+  auto r = test::run(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --build-id other-build", 30);
+  test::stop(m);
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("refused by master"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("other-build"), std::string::npos) << r.output;
+}
+
+TEST(Distributed, PeerOfAnotherProtocolVersionIsToldWhy) {
+  const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(test::free_port());
+  pid_t m = test::start(master("--workers 0 --frames 1 --quiet --listen " + endpoint + " -o " + test::output_path("dist-version.exr")));
+  zmq::context_t context;
+  zmq::socket_t dealer(context, zmq::socket_type::dealer);
+  dealer.set(zmq::sockopt::linger, 0);
+  dealer.set(zmq::sockopt::rcvtimeo, 10000);
+  dealer.connect(endpoint);
+  std::vector<uint8_t> hello = protocol::encode(protocol::Hello{"x", "sse", 1});
+  hello[4] = uint8_t(protocol::kVersion + 1);  // the u16 version after the magic
+  dealer.send(zmq::buffer(hello), zmq::send_flags::none);
+  zmq::message_t reply;
+  auto got = dealer.recv(reply, zmq::recv_flags::none);
+  test::stop(m);
+  ASSERT_TRUE(got) << "the master answers";
+  auto decoded = protocol::decode({static_cast<const uint8_t*>(reply.data()), reply.size()});
+  ASSERT_TRUE(decoded.message) << decoded.error;
+  auto* refuse = std::get_if<protocol::Refuse>(&*decoded.message);
+  ASSERT_NE(refuse, nullptr);
+  EXPECT_NE(refuse->reason.find("version"), std::string::npos) << refuse->reason;
+}
+
+TEST(Distributed, WorkerWithoutTheSceneFileReceivesItFromTheMaster) {
+  const fs::path dir = fs::path(test::output_path("dist-scene"));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "master");
+  const std::string scene = (dir / "master" / "box.glb").string();
+  write_gltf(make_cornell_box(), scene);
+  const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(test::free_port());
+  const std::string out = (dir / "out.exr").string();
+  pid_t m = test::start(master("--workers 0 --frames 1 --quiet --listen " + endpoint + " -o " + out, scene));
+  auto r = test::run(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --scene-dir " +
+                     (dir / "nowhere").string() + " --cache " + (dir / "cache").string(), 60);
+  EXPECT_EQ(wait_for(m, 60), 0);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("asking the master"), std::string::npos) << r.output;
+  ASSERT_TRUE(fs::exists(dir / "cache"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir / "cache"), fs::directory_iterator{}), 1) << "one file, named by hash";
+  EXPECT_TRUE(test::images_identical("dist-scene", read_image(out), single_process(scene)));
+}
+
+}  // namespace
+}  // namespace igi

@@ -1,0 +1,106 @@
+// FLIP (LDR): zero for identical images, grows with the perturbation, close
+// to symmetric, near one for black against white, and blurs fine noise away
+// when the viewer is further (more pixels per degree).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "image/flip.h"
+#include "sampling/hash.h"
+
+namespace igi {
+namespace {
+
+// A smooth sRGB gradient with a sharp-edged square: colour and features.
+Image test_pattern(int w, int h) {
+  Image image(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      glm::vec3 c(0.2f + 0.6f * float(x) / float(w), 0.3f + 0.4f * float(y) / float(h), 0.5f);
+      if (x > w / 3 && x < 2 * w / 3 && y > h / 3 && y < 2 * h / 3) c = {0.9f, 0.8f, 0.2f};
+      image.at(x, y) = c;
+    }
+  return image;
+}
+
+// Adds zero-mean uniform noise of the given amplitude, the same pattern at
+// every amplitude (a deterministic hash of pixel and channel).
+Image with_noise(const Image& image, float amplitude) {
+  Image out = image;
+  for (size_t i = 0; i < out.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const float u = float(hash(uint32_t(i), uint32_t(c)) >> 8) / float(1 << 24);
+      out.pixels[i][c] = std::clamp(out.pixels[i][c] + amplitude * (2.0f * u - 1.0f), 0.0f, 1.0f);
+    }
+  return out;
+}
+
+TEST(Flip, IdenticalImagesGiveZero) {
+  const Image a = test_pattern(64, 48);
+  const FlipMap map = flip_ldr(a, a);
+  for (float e : map.error) ASSERT_EQ(e, 0.0f);
+  EXPECT_EQ(mean_flip(a, a), 0.0);
+}
+
+TEST(Flip, LargerPerturbationGivesLargerError) {
+  const Image a = test_pattern(64, 48);
+  const double small = flip_ldr(with_noise(a, 0.02f), a).mean();
+  const double medium = flip_ldr(with_noise(a, 0.08f), a).mean();
+  const double large = flip_ldr(with_noise(a, 0.3f), a).mean();
+  std::printf("mean FLIP, noise +-0.02: %.4f, +-0.08: %.4f, +-0.3: %.4f\n", small, medium, large);
+  EXPECT_GT(small, 0.0);
+  EXPECT_LT(small, medium);
+  EXPECT_LT(medium, large);
+  EXPECT_LT(large, 1.0);
+}
+
+TEST(Flip, NearlySymmetric) {
+  const Image a = test_pattern(64, 48), b = with_noise(a, 0.1f);
+  const double ab = flip_ldr(b, a).mean(), ba = flip_ldr(a, b).mean();
+  std::printf("FLIP(b, a) %.4f, FLIP(a, b) %.4f\n", ab, ba);
+  EXPECT_NEAR(ab, ba, 0.15 * std::max(ab, ba));
+}
+
+TEST(Flip, BlackAgainstWhiteIsNearlyOne) {
+  Image black(16, 16), white(16, 16);
+  for (glm::vec3& p : white.pixels) p = glm::vec3(1.0f);
+  // HyAB(black, white) = 100 against cmax = HyAB(green, blue): 0.967 by the remap.
+  const double e = flip_ldr(black, white).mean();
+  std::printf("FLIP black vs white: %.4f\n", e);
+  EXPECT_NEAR(e, 0.967, 0.01);
+}
+
+TEST(Flip, FineNoiseFadesWithMorePixelsPerDegree) {
+  const Image a = test_pattern(64, 48), b = with_noise(a, 0.1f);
+  const double near = flip_ldr(b, a, 20.0f).mean(), far = flip_ldr(b, a, 200.0f).mean();
+  std::printf("FLIP at 20 ppd %.4f, at 200 ppd %.4f\n", near, far);
+  EXPECT_GT(near, far);
+}
+
+TEST(Flip, ErrorStaysWhereTheImagesDiffer) {
+  const Image a = test_pattern(96, 64);
+  Image b = a;
+  for (int y = 5; y < 15; ++y)
+    for (int x = 5; x < 15; ++x) b.at(x, y) = glm::vec3(0.0f);
+  const FlipMap map = flip_ldr(b, a);
+  EXPECT_GT(map.error[10 * 96 + 10], 0.3f) << "inside the change";
+  EXPECT_EQ(map.error[50 * 96 + 80], 0.0f) << "far from the change";
+}
+
+TEST(Flip, SizeMismatchIsAnError) {
+  EXPECT_THROW(flip_ldr(Image(4, 4), Image(4, 5)), std::invalid_argument);
+}
+
+TEST(Flip, TonemapClampsAndEncodesSrgb) {
+  Image linear(2, 1);
+  linear.at(0, 0) = glm::vec3(4.0f);
+  linear.at(1, 0) = glm::vec3(0.214f);
+  const Image ldr = tonemap_for_flip(linear);
+  EXPECT_FLOAT_EQ(ldr.at(0, 0).x, 1.0f);
+  EXPECT_NEAR(ldr.at(1, 0).x, 0.5f, 0.01f);
+}
+
+}  // namespace
+}  // namespace igi

@@ -1,0 +1,454 @@
+// The wire format: every message round-trips, and no bytes from a peer (cut
+// short, corrupted, oversized, of another version) crash the decoder or get
+// through as an invalid message. Then the socket helpers over loopback.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "protocol/codec.h"
+#include "protocol/socket.h"
+
+namespace igi::protocol {
+namespace {
+
+// ---- Field-by-field equality; floats compare by bits (so -0 != +0, NaN == NaN).
+
+bool same(float a, float b) { return std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b); }
+bool same(glm::vec3 a, glm::vec3 b) { return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z); }
+bool same(const TileJob& a, const TileJob& b) {
+  return a.x == b.x && a.y == b.y && a.w == b.w && a.h == b.h && a.border == b.border;
+}
+bool same(const RenderSettings& a, const RenderSettings& b) {
+  return a.method == b.method && a.max_depth == b.max_depth && a.interleave == b.interleave &&
+         a.paths_per_set == b.paths_per_set && same(a.clamp, b.clamp) && a.filter == b.filter &&
+         same(a.filter_normal_cos, b.filter_normal_cos) && same(a.filter_depth_ratio, b.filter_depth_ratio);
+}
+bool same(const Hello& a, const Hello& b) {
+  return a.build_id == b.build_id && a.simd == b.simd && a.threads == b.threads;
+}
+bool same(const Welcome& a, const Welcome& b) {
+  return a.session == b.session && a.scene_name == b.scene_name && a.scene_hash == b.scene_hash &&
+         a.scene_size == b.scene_size && same(a.settings, b.settings) && a.credits == b.credits &&
+         a.heartbeat_ms == b.heartbeat_ms;
+}
+bool same(const Refuse& a, const Refuse& b) { return a.reason == b.reason; }
+bool same(const SceneRequest& a, const SceneRequest& b) { return a.scene_hash == b.scene_hash; }
+bool same(const SceneData& a, const SceneData& b) {
+  return a.scene_hash == b.scene_hash && a.file_name == b.file_name && a.bytes == b.bytes;
+}
+bool same(const FrameSetupMsg& a, const FrameSetupMsg& b) {
+  const FrameSetup &f = a.frame, &g = b.frame;
+  return f.frame_id == g.frame_id && same(f.camera.position, g.camera.position) &&
+         same(f.camera.forward, g.camera.forward) && same(f.camera.up, g.camera.up) &&
+         same(f.camera.vfov, g.camera.vfov) && f.width == g.width && f.height == g.height && f.seed == g.seed &&
+         f.sample_begin == g.sample_begin && f.sample_count == g.sample_count && same(f.jitter_x, g.jitter_x) &&
+         same(f.jitter_y, g.jitter_y);
+}
+bool same(const TileJobMsg& a, const TileJobMsg& b) {
+  return a.frame_id == b.frame_id && a.job_id == b.job_id && same(a.tile, b.tile);
+}
+bool same(const TileResult& a, const TileResult& b) {
+  bool pixels = a.pixels.size() == b.pixels.size();
+  for (size_t i = 0; pixels && i < a.pixels.size(); ++i) pixels = same(a.pixels[i], b.pixels[i]);
+  return pixels && a.frame_id == b.frame_id && a.job_id == b.job_id && same(a.tile, b.tile) &&
+         same(a.render_seconds, b.render_seconds) && a.frame_state_hash == b.frame_state_hash &&
+         a.rays.primary == b.rays.primary && a.rays.shadow == b.rays.shadow && a.rays.secondary == b.rays.secondary;
+}
+bool same(const Heartbeat&, const Heartbeat&) { return true; }
+bool same(const Bye& a, const Bye& b) { return a.reason == b.reason; }
+bool same(const Message& a, const Message& b) {
+  if (a.index() != b.index()) return false;
+  return std::visit([&b](const auto& x) { return same(x, std::get<std::decay_t<decltype(x)>>(b)); }, a);
+}
+
+// ---- One message of every type, every field away from its default.
+
+TileResult sample_tile_result() {
+  TileResult m{9, 77, {64, 32, 8, 8, 1}, 0.125f, 0xa5a5a5a5deadbeefull, {100, 200, 300}, {}};
+  for (int i = 0; i < 64; ++i) m.pixels.push_back({0.5f * float(i), -0.0f, 1e-3f * float(i * i)});
+  return m;
+}
+
+std::vector<Message> samples() {
+  RenderSettings settings{MethodKind::InstantRadiosity, 7, 4, 64, 0.05f, false, 0.8f, 0.1f};
+  Camera camera{{1, 2, 3}, {0, -0.2f, -1}, {0.1f, 1, 0}, 0.9f};
+  std::vector<uint8_t> scene(300);
+  for (size_t i = 0; i < scene.size(); ++i) scene[i] = uint8_t(i * 7);
+  return {
+      Hello{"igi-1.0-abc123", "avx2", 12},
+      Welcome{0x1122334455667788ull, "cornell.glb", 0xcbf29ce484222325ull, 123456, settings, 3, 250},
+      Refuse{"build id mismatch: worker abc, master def"},
+      SceneRequest{0xdeadbeefcafef00dull},
+      SceneData{0x0123456789abcdefull, "scene.glb", scene},
+      FrameSetupMsg{FrameSetup{42, camera, 640, 480, 7, 16, 4, 0.25f, 0.75f}},
+      TileJobMsg{9, 77, {64, 32, 16, 8, 2}},
+      sample_tile_result(),
+      Heartbeat{},
+      Bye{"shutting down"},
+  };
+}
+
+template <class T>
+T sample() {
+  for (const Message& m : samples())
+    if (const T* p = std::get_if<T>(&m)) return *p;
+  return T{};
+}
+
+// A sample of type T with one change.
+template <class T>
+Message edited(void (*change)(T&)) {
+  T m = sample<T>();
+  change(m);
+  return m;
+}
+
+// The same, for a change inside Welcome::settings or FrameSetupMsg::frame.
+Message settings_edited(void (*change)(RenderSettings&)) {
+  Welcome m = sample<Welcome>();
+  change(m.settings);
+  return m;
+}
+Message frame_edited(void (*change)(FrameSetup&)) {
+  FrameSetupMsg m = sample<FrameSetupMsg>();
+  change(m.frame);
+  return m;
+}
+
+DecodeResult decode_copy(const std::vector<uint8_t>& bytes) {
+  std::vector<uint8_t> exact(bytes);  // exactly sized, so ASan sees any over-read
+  return decode(exact);
+}
+
+// ---- The codec.
+
+TEST(Protocol, EveryTypeHasASampleANameAndItsOwnTag) {
+  std::vector<Message> all = samples();
+  ASSERT_EQ(all.size(), std::variant_size_v<Message>);
+  for (size_t i = 0; i < all.size(); ++i) {
+    EXPECT_EQ(all[i].index(), i);
+    EXPECT_EQ(uint8_t(type_of(all[i])), i + 1);
+    EXPECT_STRNE(message_name(type_of(all[i])), "Unknown");
+  }
+  EXPECT_STREQ(message_name(MessageType::TileResult), "TileResult");
+  EXPECT_STREQ(message_name(MessageType(0)), "Unknown");
+}
+
+TEST(Protocol, RoundTripsEveryTypeFieldByField) {
+  for (const Message& m : samples()) {
+    std::vector<uint8_t> bytes = encode(m);
+    DecodeResult d = decode_copy(bytes);
+    ASSERT_TRUE(d.message) << message_name(type_of(m)) << ": " << d.error;
+    EXPECT_TRUE(d.error.empty());
+    EXPECT_TRUE(same(*d.message, m)) << message_name(type_of(m));
+    EXPECT_EQ(encode(*d.message), bytes) << message_name(type_of(m));
+  }
+}
+
+TEST(Protocol, HeaderAndFieldsAreLittleEndian) {
+  std::vector<uint8_t> bytes = encode(SceneRequest{0x0102030405060708ull});
+  std::vector<uint8_t> expected = {'I', 'G', 'I', '1', 1, 0, uint8_t(MessageType::SceneRequest), 0,
+                                   8,   7,   6,   5,   4, 3, 2,                                   1};
+  EXPECT_EQ(bytes, expected);
+}
+
+TEST(Protocol, EveryTruncationIsRejected) {
+  for (const Message& m : samples()) {
+    std::vector<uint8_t> bytes = encode(m);
+    for (size_t n = 0; n < bytes.size(); ++n) {
+      DecodeResult d = decode_copy(std::vector<uint8_t>(bytes.begin(), bytes.begin() + n));
+      EXPECT_FALSE(d.message) << message_name(type_of(m)) << " cut to " << n << " bytes";
+      EXPECT_FALSE(d.error.empty()) << message_name(type_of(m)) << " cut to " << n << " bytes";
+    }
+  }
+}
+
+// Accepted corruptions must be valid messages: decode only accepts canonical
+// bytes, so encoding the result gives back exactly the corrupted bytes.
+TEST(Protocol, EverySingleByteCorruptionIsRejectedOrValid) {
+  for (const Message& m : samples()) {
+    const std::vector<uint8_t> bytes = encode(m);
+    for (size_t i = 0; i < bytes.size(); ++i) {
+      for (uint8_t value : {uint8_t(bytes[i] ^ 0xFF), uint8_t(0), uint8_t(0xFF)}) {
+        if (value == bytes[i]) continue;
+        std::vector<uint8_t> corrupt = bytes;
+        corrupt[i] = value;
+        DecodeResult d = decode_copy(corrupt);
+        if (d.message) {
+          EXPECT_TRUE(d.error.empty());
+          EXPECT_EQ(encode(*d.message), corrupt) << message_name(type_of(m)) << " byte " << i;
+        } else {
+          EXPECT_FALSE(d.error.empty()) << message_name(type_of(m)) << " byte " << i;
+        }
+        if (i < 8) {
+          EXPECT_FALSE(d.message) << "header byte " << i << " corrupted yet accepted";
+        }
+      }
+    }
+  }
+}
+
+TEST(Protocol, OtherVersionIsNamedWithBothVersions) {
+  std::vector<uint8_t> bytes = encode(sample<Hello>());
+  bytes[4] = 2;
+  DecodeResult d = decode_copy(bytes);
+  EXPECT_FALSE(d.message);
+  EXPECT_EQ(d.error, "protocol version 2, this build speaks 1");
+}
+
+TEST(Protocol, HeaderErrors) {
+  std::vector<uint8_t> bytes = encode(Heartbeat{});
+  auto error_with = [&bytes](size_t i, uint8_t v) {
+    std::vector<uint8_t> b = bytes;
+    b[i] = v;
+    return decode_copy(b).error;
+  };
+  EXPECT_NE(error_with(0, 'X').find("magic"), std::string::npos);
+  EXPECT_EQ(error_with(6, 0), "unknown message type 0");
+  EXPECT_EQ(error_with(6, 11), "unknown message type 11");
+  EXPECT_EQ(error_with(7, 1), "Heartbeat: flags 0x00000001, expected 0");
+  EXPECT_NE(decode_copy({1, 2, 3}).error.find("shorter than the 8-byte header"), std::string::npos);
+}
+
+TEST(Protocol, TrailingBytesAreRejected) {
+  for (const Message& m : samples()) {
+    std::vector<uint8_t> bytes = encode(m);
+    bytes.push_back(0);
+    DecodeResult d = decode_copy(bytes);
+    EXPECT_FALSE(d.message);
+    EXPECT_EQ(d.error, std::string(message_name(type_of(m))) + ": 1 trailing bytes after the payload");
+  }
+}
+
+TEST(Protocol, TileResultPixelsMustMatchTheTileAndBeFinite) {
+  TileResult m = sample_tile_result();
+  m.pixels.resize(37);
+  EXPECT_EQ(decode_copy(encode(m)).error, "TileResult.pixels: 37 pixels, expected 8 x 8 = 64");
+  for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    m = sample_tile_result();
+    m.pixels[13].y = bad;
+    DecodeResult d = decode_copy(encode(m));
+    EXPECT_FALSE(d.message);
+    EXPECT_NE(d.error.find("TileResult.pixels: pixel 13"), std::string::npos) << d.error;
+  }
+}
+
+// Each change breaks one rule; the error must name the message and field.
+TEST(Protocol, EveryFieldRuleIsEnforced) {
+  struct Case { Message message; const char* error_starts; };
+  std::vector<Case> cases = {
+      {edited<Hello>([](Hello& m) { m.threads = 0; }), "Hello.threads: 0, expected [1, 4096]"},
+      {edited<Hello>([](Hello& m) { m.threads = 4097; }), "Hello.threads: 4097"},
+      {edited<Hello>([](Hello& m) { m.build_id.assign(kMaxString + 1, 'x'); }), "Hello.build_id: length 4097"},
+      {edited<Welcome>([](Welcome& m) { m.credits = 0; }), "Welcome.credits"},
+      {edited<Welcome>([](Welcome& m) { m.credits = 65; }), "Welcome.credits"},
+      {edited<Welcome>([](Welcome& m) { m.heartbeat_ms = 9; }), "Welcome.heartbeat_ms"},
+      {edited<Welcome>([](Welcome& m) { m.heartbeat_ms = 60001; }), "Welcome.heartbeat_ms"},
+      {edited<Welcome>([](Welcome& m) { m.scene_name = "../x"; }), "Welcome.scene_name: \"../x\", expected"},
+      {edited<Welcome>([](Welcome& m) { m.scene_name = ""; }), "Welcome.scene_name"},
+      {edited<Welcome>([](Welcome& m) { m.scene_name = "a/b"; }), "Welcome.scene_name"},
+      {edited<Welcome>([](Welcome& m) { m.scene_name = "a\\b"; }), "Welcome.scene_name"},
+      {edited<Welcome>([](Welcome& m) { m.scene_name = std::string("a\0b", 3); }), "Welcome.scene_name"},
+      {edited<Welcome>([](Welcome& m) { m.scene_name = ".."; }), "Welcome.scene_name"},
+      {edited<Welcome>([](Welcome& m) { m.scene_size = kMaxSceneBytes + 1; }), "Welcome.scene_size"},
+      {settings_edited([](auto& s) { s.max_depth = 0; }), "Welcome.settings.max_depth"},
+      {settings_edited([](auto& s) { s.max_depth = 1025; }), "Welcome.settings.max_depth"},
+      {settings_edited([](auto& s) { s.interleave = 17; }), "Welcome.settings.interleave"},
+      {settings_edited([](auto& s) { s.interleave = 0; }), "Welcome.settings.interleave"},
+      {settings_edited([](auto& s) { s.paths_per_set = (1 << 20) + 1; }), "Welcome.settings.paths_per_set"},
+      {settings_edited([](auto& s) { s.paths_per_set = -3; }), "Welcome.settings.paths_per_set"},
+      {settings_edited([](auto& s) { s.clamp = -0.5f; }), "Welcome.settings.clamp"},
+      {settings_edited([](auto& s) { s.clamp = INFINITY; }), "Welcome.settings.clamp"},
+      {settings_edited([](auto& s) { s.filter_normal_cos = 1.01f; }), "Welcome.settings.filter_normal_cos"},
+      {settings_edited([](auto& s) { s.filter_normal_cos = NAN; }), "Welcome.settings.filter_normal_cos"},
+      {settings_edited([](auto& s) { s.filter_depth_ratio = -1e-6f; }), "Welcome.settings.filter_depth_ratio"},
+      {settings_edited([](auto& s) { s.method = MethodKind(3); }), "Welcome.settings.method: 3, expected [0, 2]"},
+      {edited<SceneData>([](SceneData& m) { m.file_name = "dir/scene.glb"; }), "SceneData.file_name"},
+      {edited<SceneData>([](SceneData& m) { m.file_name = ""; }), "SceneData.file_name"},
+      {frame_edited([](auto& f) { f.width = 0; }), "FrameSetup.frame.width: 0"},
+      {frame_edited([](auto& f) { f.width = kMaxImageSide + 1; }), "FrameSetup.frame.width"},
+      {frame_edited([](auto& f) { f.height = -1; }), "FrameSetup.frame.height"},
+      {frame_edited([](auto& f) { f.sample_count = 0; }), "FrameSetup.frame.sample_count"},
+      {frame_edited([](auto& f) { f.jitter_x = -0.01f; }), "FrameSetup.frame.jitter_x"},
+      {frame_edited([](auto& f) { f.jitter_y = 1.01f; }), "FrameSetup.frame.jitter_y"},
+      {frame_edited([](auto& f) { f.jitter_y = NAN; }), "FrameSetup.frame.jitter_y"},
+      {frame_edited([](auto& f) { f.camera.position.y = NAN; }), "FrameSetup.frame.camera.position"},
+      {frame_edited([](auto& f) { f.camera.forward = glm::vec3(0); }), "FrameSetup.frame.camera.forward"},
+      {frame_edited([](auto& f) { f.camera.forward = {1e30f, 0, 0}; }), "FrameSetup.frame.camera.forward"},
+      {frame_edited([](auto& f) { f.camera.forward = {1e-30f, 0, 0}; }), "FrameSetup.frame.camera.forward"},
+      {frame_edited([](auto& f) { f.camera.up = glm::vec3(0); }), "FrameSetup.frame.camera.up"},
+      {frame_edited([](auto& f) { f.camera.up = -3.0f * f.camera.forward; }), "FrameSetup.frame.camera.up: parallel"},
+      {frame_edited([](auto& f) { f.camera.vfov = 0; }), "FrameSetup.frame.camera.vfov"},
+      {frame_edited([](auto& f) { f.camera.vfov = std::numbers::pi_v<float>; }), "FrameSetup.frame.camera.vfov"},
+      {edited<TileJobMsg>([](TileJobMsg& m) { m.tile.w = 0; }), "TileJob.tile.w: 0, expected [1, 1024]"},
+      {edited<TileJobMsg>([](TileJobMsg& m) { m.tile.h = kMaxTileSide + 1; }), "TileJob.tile.h"},
+      {edited<TileJobMsg>([](TileJobMsg& m) { m.tile.x = -1; }), "TileJob.tile.x"},
+      {edited<TileJobMsg>([](TileJobMsg& m) { m.tile.y = kMaxImageSide; }), "TileJob.tile.y"},
+      {edited<TileJobMsg>([](TileJobMsg& m) { m.tile.border = 65; }), "TileJob.tile.border"},
+      {edited<TileJobMsg>([](TileJobMsg& m) { m.tile.border = -1; }), "TileJob.tile.border"},
+      {edited<TileResult>([](TileResult& m) { m.tile.w = 1025; }), "TileResult.tile.w"},
+      {edited<TileResult>([](TileResult& m) { m.render_seconds = -1; }), "TileResult.render_seconds"},
+      {edited<TileResult>([](TileResult& m) { m.render_seconds = NAN; }), "TileResult.render_seconds"},
+  };
+  for (const Case& c : cases) {
+    DecodeResult d = decode_copy(encode(c.message));
+    EXPECT_FALSE(d.message) << c.error_starts;
+    EXPECT_EQ(d.error.rfind(c.error_starts, 0), 0u)
+        << "got \"" << d.error << "\", expected \"" << c.error_starts << "...\"";
+  }
+}
+
+TEST(Protocol, LimitsThemselvesAreAccepted) {
+  std::vector<Message> edges = {
+      edited<Hello>([](Hello& m) { m.threads = 4096; m.build_id.assign(kMaxString, 'b'); }),
+      edited<Welcome>([](Welcome& m) { m.credits = 64; m.heartbeat_ms = 10; m.scene_name = "a.b"; }),
+      edited<Welcome>([](Welcome& m) { m.scene_size = kMaxSceneBytes; m.settings.max_depth = 1024; }),
+      settings_edited([](auto& s) { s.filter_normal_cos = -1; s.clamp = 0; }),
+      frame_edited([](auto& f) { f.jitter_x = 0; f.jitter_y = 1; }),
+      frame_edited([](auto& f) { f.width = kMaxImageSide; f.height = 1; }),
+      edited<TileJobMsg>([](TileJobMsg& m) { m.tile = {kMaxImageSide - 1, 0, kMaxTileSide, 1, 64}; }),
+      edited<TileResult>([](TileResult& m) { m.tile = {0, 0, 1, 1, 0}; m.pixels.resize(1); }),
+  };
+  for (const Message& m : edges) {
+    DecodeResult d = decode_copy(encode(m));
+    ASSERT_TRUE(d.message) << d.error;
+    EXPECT_TRUE(same(*d.message, m));
+  }
+}
+
+// Raw byte patches the encoder cannot produce: each must fail on its length or
+// value check, before anything is allocated for it.
+TEST(Protocol, HugeLengthsAndBadBytesAreRejectedBeforeUse) {
+  auto patched = [](const Message& m, size_t offset, std::vector<uint8_t> value) {
+    std::vector<uint8_t> bytes = encode(m);
+    std::copy(value.begin(), value.end(), bytes.begin() + offset);
+    return decode_copy(bytes).error;
+  };
+  const std::vector<uint8_t> all_ones = {0xFF, 0xFF, 0xFF, 0xFF};
+  EXPECT_EQ(patched(sample<Hello>(), 8, all_ones), "Hello.build_id: length 4294967295 over the limit of 4096");
+  EXPECT_EQ(patched(sample<Hello>(), 8, {0, 0x10, 0, 0}), "Hello.build_id: truncated: length 4096, 26 bytes left");
+  SceneData scene = sample<SceneData>();
+  size_t bytes_at = 8 + 8 + 4 + scene.file_name.size();
+  EXPECT_EQ(patched(scene, bytes_at, all_ones), "SceneData.bytes: length 4294967295 over the limit of 536870912");
+  EXPECT_EQ(patched(scene, bytes_at, {0, 0, 0, 0x20}), "SceneData.bytes: truncated: length 536870912, 300 bytes left");
+  size_t pixels_at = 8 + 16 + 20 + 4 + 8 + 24;
+  EXPECT_EQ(patched(sample<TileResult>(), pixels_at, all_ones),
+            "TileResult.pixels: count 4294967295 over the limit of 1048576");
+  Welcome welcome = sample<Welcome>();
+  size_t method_at = 8 + 8 + 4 + welcome.scene_name.size() + 16;
+  EXPECT_EQ(patched(welcome, method_at, {7}), "Welcome.settings.method: 7, expected [0, 2]");
+  EXPECT_EQ(patched(welcome, method_at + 1 + 12 + 4, {2}), "Welcome.settings.filter: boolean byte 2, expected 0 or 1");
+}
+
+// ---- Socket helpers, over loopback with bounded waits.
+
+constexpr int kWaitMs = 5000;
+
+struct Pair {
+  zmq::context_t context;
+  zmq::socket_t router{context, zmq::socket_type::router};
+  zmq::socket_t dealer{context, zmq::socket_type::dealer};
+  std::string endpoint;
+
+  Pair() {
+    configure(router);
+    configure(dealer);
+    router.bind("tcp://127.0.0.1:*");
+    endpoint = router.get(zmq::sockopt::last_endpoint);
+    dealer.connect(endpoint);
+  }
+};
+
+TEST(ProtocolSocket, RouterAndDealerExchangeMessages) {
+  Pair p;
+  send(p.dealer, sample<Hello>());
+  std::optional<Received> hello = receive(p.router, kWaitMs, true);
+  ASSERT_TRUE(hello && hello->message) << (hello ? hello->error : "timed out");
+  EXPECT_TRUE(same(*hello->message, sample<Hello>()));
+  EXPECT_FALSE(hello->identity.empty());
+  EXPECT_EQ(hello->bytes, encode(sample<Hello>()).size());
+
+  for (const Message& m : {Message(sample_tile_result()), Message(sample<SceneData>())}) {
+    send_to(p.router, hello->identity, m);
+    std::optional<Received> back = receive(p.dealer, kWaitMs, false);
+    ASSERT_TRUE(back && back->message) << (back ? back->error : "timed out");
+    EXPECT_TRUE(same(*back->message, m));
+    EXPECT_TRUE(back->identity.empty());
+  }
+}
+
+TEST(ProtocolSocket, ReceiveTimesOutWithNullopt) {
+  Pair p;
+  auto start = std::chrono::steady_clock::now();
+  EXPECT_FALSE(receive(p.dealer, 50, false));
+  double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_GE(waited, 0.04);
+  EXPECT_LT(waited, 2.0);
+  EXPECT_FALSE(receive(p.router, 0, true));
+  EXPECT_FALSE(receive(p.router, -1, true));  // never waits forever
+}
+
+TEST(ProtocolSocket, GarbageAndStrayFramesGiveErrorsNotThrows) {
+  Pair p;
+  p.dealer.send(zmq::str_buffer("garbage"), zmq::send_flags::none);
+  std::optional<Received> garbage;
+  ASSERT_NO_THROW(garbage = receive(p.router, kWaitMs, true));
+  ASSERT_TRUE(garbage);
+  EXPECT_FALSE(garbage->message);
+  EXPECT_NE(garbage->error.find("shorter than the 8-byte header"), std::string::npos) << garbage->error;
+  EXPECT_EQ(garbage->bytes, 7u);
+
+  p.dealer.send(zmq::buffer(encode(Heartbeat{})), zmq::send_flags::sndmore);
+  p.dealer.send(zmq::str_buffer("extra"), zmq::send_flags::none);
+  std::optional<Received> two = receive(p.router, kWaitMs, true);
+  ASSERT_TRUE(two);
+  EXPECT_FALSE(two->message);
+  EXPECT_EQ(two->error, "3 frames, expected 2 ([identity, message])");
+
+  p.router.send(zmq::buffer(garbage->identity), zmq::send_flags::sndmore);
+  p.router.send(zmq::str_buffer("a"), zmq::send_flags::sndmore);
+  p.router.send(zmq::str_buffer("b"), zmq::send_flags::none);
+  std::optional<Received> stray = receive(p.dealer, kWaitMs, false);
+  ASSERT_TRUE(stray);
+  EXPECT_EQ(stray->error, "2 frames, expected 1 (one message)");
+
+  send(p.dealer, Bye{"still fine"});  // the sockets still work
+  std::optional<Received> bye = receive(p.router, kWaitMs, true);
+  ASSERT_TRUE(bye && bye->message);
+  EXPECT_TRUE(same(*bye->message, Bye{"still fine"}));
+}
+
+// Bytes that are not even ZMTP: zmq drops that connection, the router lives on.
+TEST(ProtocolSocket, RawTcpGarbageDoesNotDisturbTheRouter) {
+  Pair p;
+  int port = std::stoi(p.endpoint.substr(p.endpoint.rfind(':') + 1));
+  int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  ASSERT_GE(fd, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(uint16_t(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+  const char junk[] = "GET / HTTP/1.0\r\n\r\n\xff\xff\xff\xff\xff\xff\xff\xff\x7f";
+  EXPECT_GT(::write(fd, junk, sizeof junk), 0);
+  EXPECT_FALSE(receive(p.router, 200, true));
+  ::close(fd);
+
+  send(p.dealer, Heartbeat{});
+  std::optional<Received> beat = receive(p.router, kWaitMs, true);
+  ASSERT_TRUE(beat && beat->message) << (beat ? beat->error : "timed out");
+  EXPECT_EQ(type_of(*beat->message), MessageType::Heartbeat);
+}
+
+}  // namespace
+}  // namespace igi::protocol
