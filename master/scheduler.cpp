@@ -11,7 +11,8 @@ void Scheduler::remove_worker(const WorkerId& id) {
   if (it == workers_.end()) return;
   const std::set<uint64_t> held = it->second.jobs;
   workers_.erase(it);
-  for (uint64_t job_id : held) release(id, job_id);
+  // Newest first: each goes to the front, so the oldest ends up leading.
+  for (auto it = held.rbegin(); it != held.rend(); ++it) release(id, *it);
 }
 
 // A job lost its worker: back to the front of the queue unless another copy

@@ -231,7 +231,8 @@ void read(Reader& r, FrameSetupMsg& m) {
   f.seed = r.u32("frame.seed");
   f.sample_begin = r.u32("frame.sample_begin");
   f.sample_count = r.u32("frame.sample_count");
-  check_range(r, "frame.sample_count", f.sample_count, 1, UINT32_MAX);
+  // Sample indices sample_begin + i must not wrap around.
+  check_range(r, "frame.sample_count", f.sample_count, 1, int64_t(UINT32_MAX) - f.sample_begin);
   f.jitter_x = r.f32("frame.jitter_x");
   check_closed(r, "frame.jitter_x", f.jitter_x, 0.0f, 1.0f);
   f.jitter_y = r.f32("frame.jitter_y");

@@ -279,6 +279,7 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {frame_edited([](auto& f) { f.width = kMaxImageSide + 1; }), "FrameSetup.frame.width"},
       {frame_edited([](auto& f) { f.height = -1; }), "FrameSetup.frame.height"},
       {frame_edited([](auto& f) { f.sample_count = 0; }), "FrameSetup.frame.sample_count"},
+      {frame_edited([](auto& f) { f.sample_begin = UINT32_MAX; }), "FrameSetup.frame.sample_count: 4, expected [1, 0]"},
       {frame_edited([](auto& f) { f.jitter_x = -0.01f; }), "FrameSetup.frame.jitter_x"},
       {frame_edited([](auto& f) { f.jitter_y = 1.01f; }), "FrameSetup.frame.jitter_y"},
       {frame_edited([](auto& f) { f.jitter_y = NAN; }), "FrameSetup.frame.jitter_y"},
