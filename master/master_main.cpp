@@ -7,7 +7,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 
+#include "display/interactive_window.h"
 #include "frame_stats.h"
 #include "local_workers.h"
 #include "master_options.h"
@@ -45,7 +47,7 @@ std::string frame_path(const std::string& output, int frame, int frames) {
   return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
 }
 
-igi::FrameSetup frame_setup(const igi::MasterOptions& o, const igi::Scene& scene, int i) {
+igi::FrameSetup frame_setup(const igi::MasterOptions& o, const igi::Scene& scene, int i, bool progressive) {
   igi::FrameSetup f;
   f.frame_id = uint64_t(i);
   f.camera = scene.camera_or_auto();
@@ -54,7 +56,7 @@ igi::FrameSetup frame_setup(const igi::MasterOptions& o, const igi::Scene& scene
   f.seed = o.render.seed;
   const bool pt = o.render.settings.method == igi::MethodKind::PathTracer;
   f.sample_count = pt ? uint32_t(o.render.samples) : 1;
-  if (o.progressive && i > 0) {  // a new estimate each frame: new seed, new sub-pixel position
+  if (progressive && i > 0) {  // a new estimate each frame: new seed, new sub-pixel position
     f.seed += uint32_t(i);
     f.sample_begin = pt ? uint32_t(i * o.render.samples) : 0;
     glm::vec2 j = igi::sample_2d(uint32_t(i), 0, o.render.seed);
@@ -79,7 +81,7 @@ int run_headless(const igi::MasterOptions& o, const igi::Scene& scene, igi::Mast
   int next = 0, written = 0;
   auto idle_since = std::chrono::steady_clock::now();
   while (written < o.frames && !g_interrupted) {
-    while (next < o.frames && session.can_add_frame()) session.add_frame(frame_setup(o, scene, next++));
+    while (next < o.frames && session.can_add_frame()) session.add_frame(frame_setup(o, scene, next++, o.progressive));
     for (igi::CompletedFrame& f : session.pump(50)) {
       igi::Image image = std::move(f.image);
       if (o.progressive) {
@@ -106,6 +108,58 @@ int run_headless(const igi::MasterOptions& o, const igi::Scene& scene, igi::Mast
   return written == o.frames ? 0 : 1;
 }
 
+std::string status_line(const igi::CompletedFrame& f, size_t workers, int accumulated, double fps) {
+  char text[160];
+  const double s = f.record.seconds;
+  std::snprintf(text, sizeof text, "%.1f fps  %.0f ms/frame  %.1f Mrays/s  %zu workers  %d frames accumulated", fps,
+                1e3 * s, s > 0 ? f.record.rays.total() * 1e-6 / s : 0.0, workers, accumulated);
+  return text;
+}
+
+// The window: frames follow the camera; while it is still they accumulate.
+int run_interactive(const igi::MasterOptions& o, const igi::Scene& scene, igi::MasterSession& session,
+                    igi::LocalWorkers& workers) {
+  igi::InteractiveWindow window(o.render.width, o.render.height, "igi-master: " + o.render.scene);
+  igi::CameraController controller(scene.camera_or_auto(), 0.25f * scene.bounds().diagonal());
+  igi::Accumulator accumulator(o.render.width, o.render.height);
+  std::map<uint64_t, uint64_t> generation_of_frame;
+  uint64_t generation = controller.generation();
+  int pass = 0, next_id = 0;
+  auto last_frame = std::chrono::steady_clock::now();
+  while (window.poll(controller) && !g_interrupted) {
+    if (controller.generation() != generation) {  // the camera moved: start over
+      generation = controller.generation();
+      accumulator.reset();
+      pass = 0;
+    }
+    if (session.can_add_frame()) {
+      igi::FrameSetup f = frame_setup(o, scene, pass, true);  // pass p: seed + p, a new jitter
+      f.frame_id = uint64_t(next_id++);
+      f.camera = controller.camera();
+      generation_of_frame[f.frame_id] = generation;
+      session.add_frame(f);
+      ++pass;
+    }
+    for (igi::CompletedFrame& f : session.pump(2)) {
+      if (generation_of_frame[f.setup.frame_id] != generation) continue;  // rendered for an old camera
+      accumulator.add(f.image, 1.0);
+      const auto now = std::chrono::steady_clock::now();
+      const double fps = 1.0 / std::max(1e-6, std::chrono::duration<double>(now - last_frame).count());
+      last_frame = now;
+      window.show(accumulator.resolve(), o.render.exposure);
+      window.set_status(status_line(f, session.worker_count(), int(accumulator.weight()), fps));
+      if (!o.render.screenshot.empty() && accumulator.weight() >= o.screenshot_after) {
+        window.screenshot(o.render.screenshot);
+        g_interrupted = true;
+      }
+      window.present();
+    }
+  }
+  session.close("window closed");
+  workers.stop_all();
+  return 0;
+}
+
 int run(const igi::MasterOptions& o) {
   igi::Scene scene = igi::load_scene(o.render.scene);  // validates it, and gives the camera
   zmq::context_t context;
@@ -120,8 +174,8 @@ int run(const igi::MasterOptions& o) {
   workers.start(o.workers, local_endpoint(session.endpoint()), threads, extra);
   if (o.kill_worker_after > 0)
     session.on_accepted = [&](uint64_t n) { if (n == uint64_t(o.kill_worker_after)) workers.kill_one(0, SIGKILL); };
-  if (o.frames <= 0) throw std::invalid_argument("the window is not built yet: use --frames F");
-  return run_headless(o, scene, session, workers);
+  if (o.frames > 0) return run_headless(o, scene, session, workers);
+  return run_interactive(o, scene, session, workers);
 }
 
 }  // namespace

@@ -15,6 +15,9 @@ std::string master_usage(const std::string& program) {
          "  --progressive         headless: accumulate frames, advancing the seed\n"
          "  --camera-path orbit   headless: turn the camera about the scene, one step a frame\n"
          "  --stats FILE.json     per-frame statistics\n"
+         "  --screenshot FILE     window: save it after --screenshot-after N accumulated frames [4], then exit\n"
+         "window: drag with the left button to look, W/A/S/D/Q/E to move, R to reset, Esc to quit;\n"
+         "  while the camera is still, frames accumulate (new seed and sub-pixel position each)\n"
          "  --credits K           jobs a worker holds at once [2]\n"
          "  --heartbeat-ms MS     [250]   --timeout-ms MS  silent worker declared dead [1500]\n"
          "render options (as igi-render):\n" + render_usage(program);
@@ -46,6 +49,7 @@ MasterOptions parse_master_options(const std::vector<std::string>& args) {
     else if (a == "--progressive") o.progressive = true;
     else if (a == "--camera-path") o.camera_path = value();
     else if (a == "--stats") o.stats = value();
+    else if (a == "--screenshot-after") o.screenshot_after = std::max(1, to_int(a, value()));
     else if (a == "--credits") o.credits = std::max(1, to_int(a, value()));
     else if (a == "--heartbeat-ms") o.heartbeat_ms = std::max(10, to_int(a, value()));
     else if (a == "--timeout-ms") o.timeout_ms = std::max(50, to_int(a, value()));

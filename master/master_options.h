@@ -20,6 +20,7 @@ struct MasterOptions {
   int credits = 2;                // jobs a worker holds at once
   int heartbeat_ms = 250;
   int timeout_ms = 1500;          // a silent worker is dead after this
+  int screenshot_after = 4;       // window: save --screenshot after this many accumulated frames
   // Test hooks.
   int kill_worker_after = 0;      // SIGKILL local worker 0 after this many results
   int force_duplicates = 0;       // hand this many jobs to two workers on purpose

@@ -31,3 +31,26 @@ TEST(Window, ScreenshotUnderXvfbMatchesTheWrittenImage) {
 
 }  // namespace
 }  // namespace igi
+
+namespace igi {
+namespace {
+
+TEST(Window, MasterWindowShowsTheAccumulatedFramesOfTheCluster) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run not installed";
+  const std::string shot = test::output_path("master-window.png"), frames = test::output_path("master-prog.png");
+  const std::string common = std::string(" --workers 2 --worker-threads 1 --scene cornell --method igi --vpl-paths 8") +
+                             " --size 160x120 --quiet";
+  std::filesystem::remove(shot);
+  const std::string window = std::string("timeout -s KILL 60 xvfb-run -a -s '-screen 0 640x480x24' ") + IGI_MASTER_BINARY +
+                             common + " --screenshot " + shot + " --screenshot-after 4 >/dev/null 2>&1";
+  ASSERT_EQ(std::system(window.c_str()), 0) << window;
+  const std::string headless = std::string(IGI_MASTER_BINARY) + common + " --frames 4 --progressive -o " + frames +
+                               " >/dev/null 2>&1";
+  ASSERT_EQ(std::system(headless.c_str()), 0) << headless;
+  // The window accumulates exactly the frames a progressive headless run writes.
+  Image shown = read_image(shot), written = read_image(test::output_path("master-prog-0003.png"));
+  EXPECT_LT(max_abs_error(shown, written), 0.01);
+}
+
+}  // namespace
+}  // namespace igi

@@ -74,6 +74,8 @@ void RenderPool::run() {
     queue_.pop_front();
     auto frame = frames_.find(job.frame_id);
     if (frame == frames_.end()) continue;  // a frame we were never told about: drop
+    const FrameSetup& setup = frame->second->setup;
+    if (job.tile.x + job.tile.w > setup.width || job.tile.y + job.tile.h > setup.height) continue;  // outside the image
     std::shared_ptr<FrameState> state = frame->second;
     ++rendering_;
     lock.unlock();

@@ -1,0 +1,79 @@
+#include "display/interactive_window.h"
+
+#include <stdexcept>
+#include <vector>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <GL/gl.h>
+
+namespace igi {
+
+InteractiveWindow::InteractiveWindow(int width, int height, const std::string& title)
+    : title_(title), width_(width), height_(height) {
+  if (glfwInit() != GLFW_TRUE) throw std::runtime_error("cannot start GLFW (no display?)");
+  glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+  window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+  if (!window_) {
+    glfwTerminate();
+    throw std::runtime_error("cannot open a window");
+  }
+  glfwMakeContextCurrent(window_);
+  glfwSwapInterval(0);
+  last_time_ = glfwGetTime();
+}
+
+InteractiveWindow::~InteractiveWindow() {
+  glfwDestroyWindow(window_);
+  glfwTerminate();
+}
+
+bool InteractiveWindow::poll(CameraController& camera) {
+  glfwPollEvents();
+  const double now = glfwGetTime(), dt = now - last_time_;
+  last_time_ = now;
+  auto key = [&](int k) { return glfwGetKey(window_, k) == GLFW_PRESS ? 1.0f : 0.0f; };
+  if (key(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(window_, GLFW_TRUE);
+  if (key(GLFW_KEY_R)) camera.reset();
+  camera.move(key(GLFW_KEY_W) - key(GLFW_KEY_S), key(GLFW_KEY_D) - key(GLFW_KEY_A), key(GLFW_KEY_E) - key(GLFW_KEY_Q),
+              float(dt));
+  double x, y;
+  glfwGetCursorPos(window_, &x, &y);
+  const bool pressed = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  if (pressed && dragging_) camera.look(float(x - last_x_), float(y - last_y_));
+  dragging_ = pressed;
+  last_x_ = x;
+  last_y_ = y;
+  return !glfwWindowShouldClose(window_);
+}
+
+void InteractiveWindow::show(const Image& image, float exposure) {
+  const std::vector<unsigned char> rgb = to_srgb8(image, exposure);
+  glViewport(0, 0, width_, height_);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glRasterPos2f(-1.0f, 1.0f);
+  glPixelZoom(1.0f, -1.0f);  // image row 0 at the top
+  glDrawPixels(image.width, image.height, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+}
+
+void InteractiveWindow::present() { glfwSwapBuffers(window_); }
+
+void InteractiveWindow::set_status(const std::string& status) {
+  glfwSetWindowTitle(window_, (title_ + "  |  " + status).c_str());
+}
+
+void InteractiveWindow::screenshot(const std::string& path) {
+  std::vector<unsigned char> rgb(size_t(width_) * height_ * 3);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadBuffer(GL_BACK);  // the front buffer reads as zeros under Xvfb
+  glReadPixels(0, 0, width_, height_, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+  Image shot(width_, height_);
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x)
+      for (int c = 0; c < 3; ++c)
+        shot.at(x, height_ - 1 - y)[c] = srgb_to_linear(rgb[(size_t(y) * width_ + x) * 3 + c] / 255.0f);
+  write_image(shot, path);
+}
+
+}  // namespace igi

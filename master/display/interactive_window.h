@@ -1,0 +1,36 @@
+#pragma once
+// The master's window: shows the latest (accumulated) frame, turns keyboard
+// and mouse into camera moves, and shows a status line in its title bar.
+#include <memory>
+#include <string>
+
+#include "display/camera_controller.h"
+#include "image/image.h"
+
+struct GLFWwindow;
+
+namespace igi {
+
+class InteractiveWindow {
+ public:
+  // Throws std::runtime_error when no window can be opened.
+  InteractiveWindow(int width, int height, const std::string& title);
+  ~InteractiveWindow();
+  // Handles input since the last call; false once the user closed the window.
+  bool poll(CameraController& camera);
+  // Draws into the back buffer; present() makes it visible.
+  void show(const Image& image, float exposure);
+  void present();
+  void set_status(const std::string& status);
+  // Saves what the window shows (the back buffer) as an image file.
+  void screenshot(const std::string& path);
+
+ private:
+  GLFWwindow* window_ = nullptr;
+  std::string title_;
+  double last_time_ = 0.0, last_x_ = 0.0, last_y_ = 0.0;
+  bool dragging_ = false;
+  int width_, height_;
+};
+
+}  // namespace igi
