@@ -2,6 +2,7 @@
 
 #include <fstream>
 #include <stdexcept>
+#include <sys/resource.h>
 
 namespace igi {
 
@@ -19,10 +20,21 @@ static void write_frame(std::ofstream& out, const FrameRecord& f) {
   out << "}}";
 }
 
-void write_stats_json(const std::string& path, const std::vector<FrameRecord>& frames, uint64_t bad_messages) {
+double process_cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) + 1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+void write_stats_json(const std::string& path, const std::vector<FrameRecord>& frames, const RunTotals& totals) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot write statistics");
-  out << "{\n  \"bad_messages\": " << bad_messages << ",\n  \"frames\": [\n";
+  uint64_t tiles = 0;
+  for (const FrameRecord& f : frames) tiles += f.tiles;
+  out << "{\n  \"bad_messages\": " << totals.bad_messages << ",\n  \"master_cpu_seconds\": " << totals.master_cpu_seconds
+      << ",\n  \"wall_seconds\": " << totals.wall_seconds << ",\n  \"tiles\": " << tiles
+      << ",\n  \"master_cpu_us_per_tile\": " << (tiles ? 1e6 * totals.master_cpu_seconds / double(tiles) : 0.0)
+      << ",\n  \"frames\": [\n";
   for (size_t i = 0; i < frames.size(); ++i) {
     write_frame(out, frames[i]);
     out << (i + 1 < frames.size() ? ",\n" : "\n");

@@ -7,6 +7,14 @@
 
 namespace igi {
 
-void write_stats_json(const std::string& path, const std::vector<FrameRecord>& frames, uint64_t bad_messages);
+struct RunTotals {
+  uint64_t bad_messages = 0;
+  double master_cpu_seconds = 0.0;  // process CPU during the session loop (includes image writing unless --no-write)
+  double wall_seconds = 0.0;
+};
+
+void write_stats_json(const std::string& path, const std::vector<FrameRecord>& frames, const RunTotals& totals);
+// CPU time this process has used (user + system).
+double process_cpu_seconds();
 
 }  // namespace igi

@@ -8,9 +8,11 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <optional>
 
 #include "display/interactive_window.h"
 #include "frame_stats.h"
+#include "frame_writer.h"
 #include "local_workers.h"
 #include "master_options.h"
 #include "master_session.h"
@@ -78,17 +80,25 @@ int run_headless(const igi::MasterOptions& o, const igi::Scene& scene, igi::Mast
                  igi::LocalWorkers& workers) {
   igi::Accumulator accumulator(o.render.width, o.render.height);
   std::vector<igi::FrameRecord> records;
+  std::optional<igi::FrameWriter> writer(std::in_place, o.render.exposure);
   int next = 0, written = 0;
   auto idle_since = std::chrono::steady_clock::now();
+  const auto wall_start = std::chrono::steady_clock::now();
+  // The master's own cost: scheduling, messages, assembly, ZeroMQ's I/O thread;
+  // image files are written on other threads (run with --no-write to leave them out).
+  double session_cpu = 0.0;
   while (written < o.frames && !g_interrupted) {
+    const double cpu_before = igi::process_cpu_seconds();
     while (next < o.frames && session.can_add_frame()) session.add_frame(frame_setup(o, scene, next++, o.progressive));
-    for (igi::CompletedFrame& f : session.pump(50)) {
+    std::vector<igi::CompletedFrame> completed = session.pump(50);
+    session_cpu += igi::process_cpu_seconds() - cpu_before;
+    for (igi::CompletedFrame& f : completed) {
       igi::Image image = std::move(f.image);
       if (o.progressive) {
         accumulator.add(image, 1.0);
         image = accumulator.resolve();
       }
-      igi::write_image(image, frame_path(o.render.output, written, o.frames), o.render.exposure);
+      if (!o.no_write) writer->write(std::move(image), frame_path(o.render.output, written, o.frames));
       if (!o.render.quiet)
         std::printf("frame %d: %.1f ms, %.1f Mrays/s, %zu workers\n", written, 1e3 * f.record.seconds,
                     f.record.seconds > 0 ? f.record.rays.total() * 1e-6 / f.record.seconds : 0.0, session.worker_count());
@@ -102,9 +112,14 @@ int run_headless(const igi::MasterOptions& o, const igi::Scene& scene, igi::Mast
       break;
     }
   }
+  igi::RunTotals totals{session.bad_messages(), session_cpu,
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count()};
   session.close(written == o.frames ? "done" : "interrupted");
   workers.stop_all();
-  if (!o.stats.empty()) igi::write_stats_json(o.stats, records, session.bad_messages());
+  const std::string write_error = writer->error();
+  writer.reset();  // waits for the last images
+  if (!o.stats.empty()) igi::write_stats_json(o.stats, records, totals);
+  if (!write_error.empty()) throw std::runtime_error(write_error);
   return written == o.frames ? 0 : 1;
 }
 

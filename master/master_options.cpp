@@ -15,6 +15,7 @@ std::string master_usage(const std::string& program) {
          "  --progressive         headless: accumulate frames, advancing the seed\n"
          "  --camera-path orbit   headless: turn the camera about the scene, one step a frame\n"
          "  --stats FILE.json     per-frame statistics\n"
+         "  --no-write            headless: write no images (benchmarks)\n"
          "  --screenshot FILE     window: save it after --screenshot-after N accumulated frames [4], then exit\n"
          "window: drag with the left button to look, W/A/S/D/Q/E to move, R to reset, Esc to quit;\n"
          "  while the camera is still, frames accumulate (new seed and sub-pixel position each)\n"
@@ -49,6 +50,7 @@ MasterOptions parse_master_options(const std::vector<std::string>& args) {
     else if (a == "--progressive") o.progressive = true;
     else if (a == "--camera-path") o.camera_path = value();
     else if (a == "--stats") o.stats = value();
+    else if (a == "--no-write") o.no_write = true;
     else if (a == "--screenshot-after") o.screenshot_after = std::max(1, to_int(a, value()));
     else if (a == "--credits") o.credits = std::max(1, to_int(a, value()));
     else if (a == "--heartbeat-ms") o.heartbeat_ms = std::max(10, to_int(a, value()));

@@ -17,6 +17,7 @@ struct MasterOptions {
   bool progressive = false;       // headless: accumulate frames (seed advances)
   std::string camera_path;        // headless: "orbit" turns the camera about the scene
   std::string stats;              // per-frame statistics as JSON
+  bool no_write = false;          // headless benchmarks: render, count, write no images
   int credits = 2;                // jobs a worker holds at once
   int heartbeat_ms = 250;
   int timeout_ms = 1500;          // a silent worker is dead after this

@@ -104,7 +104,9 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
   peer.last_heard = peer.last_sent = Clock::now();
   peer.frames_sent.clear();
   scheduler_.remove_worker(identity);  // a reconnect: its old jobs go back first
-  scheduler_.add_worker(identity);
+  // Enough jobs to keep every thread busy while results travel.
+  const int credits = std::max<int>(options_.credits, 2 * int(std::min<uint32_t>(hello.threads, 32)));
+  scheduler_.add_worker(identity, credits);
   log(peer.name + " joined (" + std::to_string(hello.threads) + " threads)");
   protocol::Welcome w;
   w.session = session_id_;
@@ -112,7 +114,7 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
   w.scene_hash = scene_.hash;
   w.scene_size = scene_.bytes.size();
   w.settings = options_.render.settings;
-  w.credits = uint32_t(options_.credits);
+  w.credits = uint32_t(std::min(credits, 64));
   w.heartbeat_ms = uint32_t(options_.heartbeat_ms);
   send(identity, w);
 }

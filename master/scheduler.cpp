@@ -4,7 +4,9 @@
 
 namespace igi {
 
-void Scheduler::add_worker(const WorkerId& id) { workers_.try_emplace(id); }
+void Scheduler::add_worker(const WorkerId& id, int credits) {
+  workers_.try_emplace(id).first->second.credits = credits > 0 ? credits : credits_;
+}
 
 void Scheduler::remove_worker(const WorkerId& id) {
   auto it = workers_.find(id);
@@ -61,7 +63,7 @@ std::optional<uint64_t> Scheduler::pick_straggler(const WorkerId& id) const {
 
 std::optional<JobAssignment> Scheduler::next_job(const WorkerId& id) {
   auto w = workers_.find(id);
-  if (w == workers_.end() || int(w->second.jobs.size()) >= credits_) return std::nullopt;
+  if (w == workers_.end() || int(w->second.jobs.size()) >= w->second.credits) return std::nullopt;
   bool duplicate = false;
   std::optional<uint64_t> job_id = take_unassigned(id);
   if (!job_id) {

@@ -45,7 +45,8 @@ class Scheduler {
  public:
   Scheduler(int credits, int frames_in_flight) : credits_(credits), frames_in_flight_(frames_in_flight) {}
 
-  void add_worker(const WorkerId& id);
+  // credits: jobs this worker may hold; 0 means the scheduler's default.
+  void add_worker(const WorkerId& id, int credits = 0);
   // Forgets the worker; its outstanding jobs go back to the pool.
   void remove_worker(const WorkerId& id);
   bool has_worker(const WorkerId& id) const { return workers_.count(id) > 0; }
@@ -81,6 +82,7 @@ class Scheduler {
   };
   struct Worker {
     std::set<uint64_t> jobs;
+    int credits = 1;
   };
   std::optional<uint64_t> take_unassigned(const WorkerId& id);
   std::optional<uint64_t> pick_straggler(const WorkerId& id) const;

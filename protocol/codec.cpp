@@ -262,7 +262,8 @@ void write(Writer& w, const TileResult& m) {
   w.u64(m.rays.secondary);
   w.u32(static_cast<uint32_t>(m.pixels.size()));
   w.reserve(m.pixels.size() * kPixelBytes);
-  for (const glm::vec3& p : m.pixels) w.vec3(p);
+  static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+  w.floats(&m.pixels.data()->x, 3 * m.pixels.size());
 }
 
 // The count must match the tile before anything is allocated for it.
@@ -274,9 +275,9 @@ void read_pixels(Reader& r, TileResult& m) {
                          std::to_string(m.tile.h) + " = " + std::to_string(expected));
   if (!r.ok()) return;
   m.pixels.resize(n);
+  if (!r.floats("pixels", &m.pixels.data()->x, 3 * size_t(n))) return;
   for (uint32_t i = 0; i < n && r.ok(); ++i) {
-    m.pixels[i] = r.vec3("pixels");
-    glm::vec3 p = m.pixels[i];
+    const glm::vec3 p = m.pixels[i];
     if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
       r.fail("pixels", "pixel " + std::to_string(i) + " is (" + show(p.x) + ", " + show(p.y) + ", " + show(p.z) +
                            "), expected finite values");

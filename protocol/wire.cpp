@@ -1,6 +1,7 @@
 #include "wire.h"
 
 #include <bit>
+#include <cstring>
 
 namespace igi::protocol {
 
@@ -23,6 +24,14 @@ void Writer::vec3(glm::vec3 v) {
   f32(v.x);
   f32(v.y);
   f32(v.z);
+}
+
+// The wire is little-endian like every machine we build for: a block copy.
+static_assert(std::endian::native == std::endian::little, "the wire format assumes a little-endian host");
+
+void Writer::floats(const float* values, size_t n) {
+  const auto* p = reinterpret_cast<const uint8_t*>(values);
+  bytes_.insert(bytes_.end(), p, p + n * sizeof(float));
 }
 
 void Writer::string(std::string_view s) {
@@ -86,6 +95,13 @@ bool Reader::boolean(const char* field) {
   uint8_t v = u8(field);
   if (v > 1) fail(field, "boolean byte " + std::to_string(v) + ", expected 0 or 1");
   return v == 1;
+}
+
+bool Reader::floats(const char* field, float* out, size_t n) {
+  const uint8_t* p = take(field, n * sizeof(float));
+  if (!p) return false;
+  std::memcpy(out, p, n * sizeof(float));
+  return true;
 }
 
 glm::vec3 Reader::vec3(const char* field) {

@@ -30,6 +30,7 @@ class Writer {
   void f32(float v);                                       // IEEE-754 bits
   void boolean(bool v) { u8(v ? 1 : 0); }
   void vec3(glm::vec3 v);
+  void floats(const float* values, size_t n);
   void string(std::string_view s);             // u32 length + bytes
   void bytes(std::span<const uint8_t> bytes);  // u32 length + bytes
 
@@ -59,6 +60,8 @@ class Reader {
   float f32(const char* field);
   bool boolean(const char* field);  // 0 or 1; any other byte is an error
   glm::vec3 vec3(const char* field);
+  // n floats in one bounds check (pixel blocks); false when too few bytes are left.
+  bool floats(const char* field, float* out, size_t n);
   // u32 length (at most max_bytes) + bytes.
   std::string string(const char* field, size_t max_bytes);
   std::vector<uint8_t> bytes(const char* field, size_t max_bytes);

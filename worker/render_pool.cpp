@@ -5,10 +5,13 @@
 
 #include "scene/accel.h"
 
+#include <sys/eventfd.h>
+#include <unistd.h>
+
 namespace igi {
 
 RenderPool::RenderPool(const SceneContext& context, const RenderSettings& settings, int threads)
-    : context_(context), settings_(settings) {
+    : context_(context), settings_(settings), results_fd_(eventfd(0, EFD_NONBLOCK)) {
   for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { run(); });
 }
 
@@ -20,6 +23,7 @@ RenderPool::~RenderPool() {
   }
   wake_.notify_all();
   for (std::thread& t : threads_) t.join();
+  close(results_fd_);
 }
 
 void RenderPool::add_frame(const FrameSetup& frame) {
@@ -42,6 +46,8 @@ void RenderPool::add_job(const protocol::TileJobMsg& job) {
 
 std::vector<protocol::TileResult> RenderPool::take_results() {
   std::lock_guard lock(mutex_);
+  uint64_t count;
+  while (read(results_fd_, &count, sizeof count) > 0) {}
   return std::exchange(results_, {});
 }
 
@@ -83,6 +89,8 @@ void RenderPool::run() {
     lock.lock();
     --rendering_;
     results_.push_back(std::move(result));
+    const uint64_t one = 1;
+    (void)!write(results_fd_, &one, sizeof one);  // wakes the socket loop
   }
 }
 

@@ -24,6 +24,8 @@ class RenderPool {
   void add_frame(const FrameSetup& frame);
   void add_job(const protocol::TileJobMsg& job);
   std::vector<protocol::TileResult> take_results();
+  // Readable (poll) whenever results are waiting; take_results() clears it.
+  int results_fd() const { return results_fd_; }
   size_t busy() const;  // queued + rendering
 
  private:
@@ -44,6 +46,7 @@ class RenderPool {
   std::map<uint64_t, std::shared_ptr<FrameState>> frames_;
   size_t rendering_ = 0;
   bool stopping_ = false;
+  int results_fd_ = -1;  // eventfd
   std::vector<std::thread> threads_;
 };
 

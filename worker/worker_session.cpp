@@ -66,8 +66,8 @@ WorkerSession::Outcome WorkerSession::serve(zmq::context_t& context) {
   send(socket, protocol::Hello{options_.build_id, "native", uint32_t(options_.threads)});
   auto last_heard = Clock::now();
   for (;;) {
-    auto received = protocol::receive(socket, 2, false);
-    if (received) {
+    wait_for_work(socket);
+    while (auto received = protocol::receive(socket, 0, false)) {
       last_heard = Clock::now();
       if (!received->message) {
         log("dropped a bad message: " + received->error);
@@ -83,6 +83,13 @@ WorkerSession::Outcome WorkerSession::serve(zmq::context_t& context) {
     if (Clock::now() - last_heard > 4 * heartbeat + std::chrono::seconds(welcome_ ? 0 : 2))
       return Outcome::MasterLost;
   }
+}
+
+// Sleeps until a message arrives, a result is ready, or a few ms pass (heartbeats, loading).
+void WorkerSession::wait_for_work(zmq::socket_t& socket) {
+  std::vector<zmq::pollitem_t> items{{socket.handle(), 0, ZMQ_POLLIN, 0}};
+  if (loaded_ && loaded_->pool) items.push_back({nullptr, loaded_->pool->results_fd(), ZMQ_POLLIN, 0});
+  zmq::poll(items, std::chrono::milliseconds(5));
 }
 
 std::optional<WorkerSession::Outcome> WorkerSession::handle(zmq::socket_t& socket, const protocol::Message& m) {

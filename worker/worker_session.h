@@ -45,6 +45,7 @@ class WorkerSession {
   struct Loaded;  // scene, BVH, lights, pool
 
   Outcome serve(zmq::context_t& context);
+  void wait_for_work(zmq::socket_t& socket);
   std::optional<Outcome> handle(zmq::socket_t& socket, const protocol::Message& message);
   void on_welcome(zmq::socket_t& socket, const protocol::Welcome& welcome);
   void start_loading(const std::string& scene_path_or_name);
