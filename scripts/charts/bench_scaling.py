@@ -1,0 +1,137 @@
+#!/usr/bin/env python3
+"""Frame time and Mrays/s against the number of workers and the tile size,
+with the single-process render as the baseline, all in one run.
+
+Writes results/scaling/scaling.csv, scaling.png and summary.md, and prints the
+summary: the master's own CPU cost per tile, bytes per frame, and from them how
+many workers one master could feed at 20 frames per second.
+"""
+import argparse
+import csv
+import json
+import os
+import re
+import statistics
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+BUILD = os.path.join(ROOT, "build")
+OUT = os.path.join(ROOT, "results", "scaling")
+
+
+def render_args(a):
+    return ["--scene", a.scene, "--method", "igi", "--vpl-paths", str(a.paths), "--clamp", "0.05",
+            "--size", a.size, "--quiet"]
+
+
+def baseline(a):
+    """Single process, all threads: seconds per frame (one pass = one frame)."""
+    cmd = [os.path.join(BUILD, "master", "igi-render")] + render_args(a) + [
+        "--spp", str(a.frames), "-o", os.path.join(OUT, "baseline.exr")]
+    text = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
+    seconds = float(re.search(r", ([0-9.]+) s, ", text).group(1))
+    mrays = float(re.search(r"([0-9.]+) Mrays \(", text).group(1))
+    return seconds / a.frames, mrays / seconds
+
+
+def cluster(a, workers, threads, tile):
+    stats = os.path.join(OUT, "stats.json")
+    cmd = [os.path.join(BUILD, "master", "igi-master"), "--workers", str(workers), "--worker-threads", str(threads),
+           "--frames", str(a.frames), "--no-write", "--stats", stats, "--tile", str(tile),
+           "-o", os.path.join(OUT, "unused.exr")] + render_args(a)
+    subprocess.run(cmd, check=True, capture_output=True, text=True, timeout=600)
+    s = json.load(open(stats))
+    frames = s["frames"][2:] or s["frames"]  # skip the warm-up frames
+    rays = sum(f["rays"] for f in frames) / len(frames)
+    per_frame = s["wall_seconds"] / len(s["frames"])  # throughput: frames overlap (pipelining)
+    bytes_per_frame = statistics.median(
+        sum(w["bytes_in"] + w["bytes_out"] for w in f["workers"].values()) for f in frames)
+    return {"frame_s": per_frame, "mrays_s": rays * 1e-6 / per_frame, "latency_s": statistics.median(f["seconds"] for f in frames),
+            "master_us_per_tile": s["master_cpu_us_per_tile"], "tiles_per_frame": s["tiles"] / len(s["frames"]),
+            "bytes_per_frame": bytes_per_frame}
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__)
+    p.add_argument("--scene", default="cornell-blob")
+    p.add_argument("--size", default="640x480")
+    p.add_argument("--paths", type=int, default=6, help="light paths per VPL set (about 16 VPLs per set)")
+    p.add_argument("--frames", type=int, default=12)
+    p.add_argument("--workers", default="1,2,4,8")
+    p.add_argument("--tiles", default="16,32,64,128")
+    a = p.parse_args()
+    os.makedirs(OUT, exist_ok=True)
+    cores = os.cpu_count()
+    base_s, base_mrays = baseline(a)
+    rows = [{"kind": "single process", "workers": 0, "threads": cores, "tile": 32, "frame_s": base_s,
+             "mrays_s": base_mrays, "latency_s": base_s, "master_us_per_tile": 0, "tiles_per_frame": 0, "bytes_per_frame": 0}]
+    for n in map(int, a.workers.split(",")):
+        r = cluster(a, n, max(1, cores // n), 32)
+        rows.append({"kind": "workers", "workers": n, "threads": max(1, cores // n), "tile": 32, **r})
+        print(f"{n} workers: {1e3 * r['frame_s']:.1f} ms/frame, {r['mrays_s']:.1f} Mrays/s", file=sys.stderr)
+    for t in map(int, a.tiles.split(",")):
+        r = cluster(a, 2, max(1, cores // 2), t)
+        rows.append({"kind": "tile size", "workers": 2, "threads": max(1, cores // 2), "tile": t, **r})
+        print(f"tile {t}: {1e3 * r['frame_s']:.1f} ms/frame", file=sys.stderr)
+    with open(os.path.join(OUT, "scaling.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+    write_summary(a, rows, cores)
+    plot(a, rows)
+
+
+def write_summary(a, rows, cores):
+    base = rows[0]
+    two = next(r for r in rows if r["kind"] == "workers" and r["workers"] == 2)
+    cost = statistics.median(r["master_us_per_tile"] for r in rows[1:]) * 1e-6
+    w, h = map(int, a.size.split("x"))
+    lines = [f"Scene {a.scene}, {a.size}, igi, {a.paths} paths per set, {cores}-core machine, "
+             f"master and workers on the same machine.", "",
+             "| run | workers x threads | tile | ms/frame | Mrays/s | vs single process |", "|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['kind']} | {r['workers']} x {r['threads']} | {r['tile']} | {1e3 * r['frame_s']:.1f} | "
+                     f"{r['mrays_s']:.1f} | {100 * base['frame_s'] / r['frame_s']:.0f} % |")
+    lines += ["", f"Master CPU per tile (median over runs, ZeroMQ I/O included): {1e6 * cost:.0f} us; "
+              f"bytes per frame at {a.size}: {two['bytes_per_frame'] / 1e6:.2f} MB.", ""]
+    for (rw, rh) in [(640, 480), (1920, 1080)]:
+        tiles = -(-rw // 32) * -(-rh // 32)
+        load = 20 * tiles * cost  # master CPU seconds per second at 20 fps
+        mbps = 20 * rw * rh * 12 / 1e6
+        worker_tiles_s = two["tiles_per_frame"] / two["frame_s"] / 2  # one worker's share here
+        lines.append(f"- {rw}x{rh} at 20 fps: {20 * tiles} tiles/s, master CPU {100 * load:.0f} % of a core, "
+                     f"{mbps:.0f} MB/s of pixels; one master sustains {1 / (tiles * cost):.0f} fps, and feeds "
+                     f"{1 / cost / worker_tiles_s:.0f} workers as fast as this machine's ({worker_tiles_s:.0f} tiles/s each).")
+    text = "\n".join(lines) + "\n"
+    open(os.path.join(OUT, "summary.md"), "w").write(text)
+    print(text)
+
+
+def plot(a, rows):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4))
+    base = rows[0]
+    wr = [r for r in rows if r["kind"] == "workers"]
+    left.plot([r["workers"] for r in wr], [1e3 * r["frame_s"] for r in wr], "o-", label="master + N workers")
+    left.axhline(1e3 * base["frame_s"], color="gray", ls="--", label=f"single process ({base['threads']} threads)")
+    left.set_xlabel("workers (processes)")
+    left.set_ylabel("ms per frame")
+    left.set_title(f"{a.scene} {a.size}: frame time against workers")
+    left.legend()
+    tr = [r for r in rows if r["kind"] == "tile size"]
+    right.plot([r["tile"] for r in tr], [1e3 * r["frame_s"] for r in tr], "o-", label="2 workers")
+    right.axhline(1e3 * base["frame_s"], color="gray", ls="--", label="single process")
+    right.set_xscale("log", base=2)
+    right.set_xlabel("tile size (pixels)")
+    right.set_ylabel("ms per frame")
+    right.set_title("frame time against tile size")
+    right.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(OUT, "scaling.png"), dpi=110)
+
+
+if __name__ == "__main__":
+    main()
