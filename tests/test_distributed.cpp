@@ -3,6 +3,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -157,6 +158,37 @@ TEST(Distributed, WorkerWithoutTheSceneFileReceivesItFromTheMaster) {
   ASSERT_TRUE(fs::exists(dir / "cache"));
   EXPECT_EQ(std::distance(fs::directory_iterator(dir / "cache"), fs::directory_iterator{}), 1) << "one file, named by hash";
   EXPECT_TRUE(test::images_identical("dist-scene", read_image(out), single_process(scene)));
+}
+
+}  // namespace
+}  // namespace igi
+
+namespace igi {
+namespace {
+
+// Running means a state other than Z (zombie: dead, waiting to be reaped) or gone.
+bool running(int pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return false;
+  const size_t close = line.rfind(')');
+  return close != std::string::npos && line.size() > close + 2 && line[close + 2] != 'Z';
+}
+
+TEST(Distributed, LocalWorkersDieWithAKilledMaster) {
+  pid_t m = test::start(master("--workers 2 --frames 100000 --no-write --quiet -o " + test::output_path("orphans.exr")));
+  std::vector<int> workers;
+  for (int i = 0; i < 50 && workers.size() < 2; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    workers.clear();
+    auto r = test::run("pgrep -P " + std::to_string(m), 5);
+    std::istringstream pids(r.output);
+    for (int pid; pids >> pid;) workers.push_back(pid);
+  }
+  ASSERT_EQ(workers.size(), 2u) << "the master started its workers";
+  test::stop(m);  // SIGKILL: no chance to clean up
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  for (int w : workers) EXPECT_FALSE(running(w)) << "worker " << w << " outlived its master";
 }
 
 }  // namespace
