@@ -20,6 +20,26 @@ void add_quad(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, 
   scene.triangle_material.insert(scene.triangle_material.end(), 2, material);
 }
 
+void add_bumpy_sphere(Scene& s, glm::vec3 center, float radius, int rings,
+                      const std::function<float(float, float)>& bump, uint32_t material) {
+  const int segments = 2 * rings;
+  const uint32_t base = uint32_t(s.positions.size());
+  for (int i = 0; i <= rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      float theta = float(M_PI) * i / rings, phi = 2.0f * float(M_PI) * j / segments;
+      glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+      s.positions.push_back(center + radius * bump(theta, phi) * n);
+    }
+  auto index = [&](int i, int j) { return base + uint32_t(i * segments + (j % segments)); };
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      // The pole rows lose their degenerate triangle.
+      if (i != rings - 1) s.triangles.push_back({index(i, j), index(i + 1, j + 1), index(i + 1, j)});
+      if (i != 0) s.triangles.push_back({index(i, j), index(i, j + 1), index(i + 1, j + 1)});
+    }
+  s.triangle_material.resize(s.triangles.size(), material);
+}
+
 Scene make_cornell_box() {
   Scene s;
   s.name = "cornell";
@@ -109,25 +129,9 @@ Scene make_cornell_blob(int triangles) {
   s.triangle_material.resize(s.triangles.size());
   const uint32_t white = 0;
   const int rings = std::max(8, int(std::sqrt(triangles / 4.0)));
-  const int segments = 2 * rings;
-  const glm::vec3 center(0.278f, 0.17f, 0.28f);
-  auto point = [&](int i, int j) {
-    float theta = float(M_PI) * i / rings, phi = 2.0f * float(M_PI) * j / segments;
-    glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
-    float bump = 1.0f + 0.08f * std::sin(7.0f * theta) * std::sin(5.0f * phi);
-    return center + 0.15f * bump * n;
-  };
-  const uint32_t base = uint32_t(s.positions.size());
-  for (int i = 0; i <= rings; ++i)
-    for (int j = 0; j < segments; ++j) s.positions.push_back(point(i, j));
-  auto index = [&](int i, int j) { return base + uint32_t(i * segments + (j % segments)); };
-  for (int i = 0; i < rings; ++i)
-    for (int j = 0; j < segments; ++j) {
-      // Outward-facing winding; the pole rows lose their degenerate triangle.
-      if (i != rings - 1) s.triangles.push_back({index(i, j), index(i + 1, j + 1), index(i + 1, j)});
-      if (i != 0) s.triangles.push_back({index(i, j), index(i, j + 1), index(i + 1, j + 1)});
-    }
-  s.triangle_material.resize(s.triangles.size(), white);
+  add_bumpy_sphere(s, {0.278f, 0.17f, 0.28f}, 0.15f, rings,
+                   [](float theta, float phi) { return 1.0f + 0.08f * std::sin(7.0f * theta) * std::sin(5.0f * phi); },
+                   white);
   return s;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 // Scenes that need no file, selectable by name on every command line.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,5 +29,9 @@ Scene make_builtin_scene(const std::string& name);
 uint32_t add_material(Scene& scene, Material material);
 // Quad a-b-c-d as two triangles; the front face follows the a->b->c winding.
 void add_quad(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, uint32_t material);
+// A sphere of `rings` rings and 2 x rings segments (4 rings (rings - 1)
+// triangles, outward-facing), its radius scaled by bump(theta, phi).
+void add_bumpy_sphere(Scene& scene, glm::vec3 center, float radius, int rings,
+                      const std::function<float(float, float)>& bump, uint32_t material);
 
 }  // namespace igi

@@ -162,29 +162,15 @@ Scene make_large_scene(int triangles) {
   // 4 r (r - 1) triangles per sphere of r rings and 2 r segments.
   const double per_sphere = std::ceil(triangles / 9.0);
   const int rings = int(std::ceil(0.5 * (1.0 + std::sqrt(1.0 + per_sphere))));
-  const int segments = 2 * rings;
   for (int gi = 0; gi < 3; ++gi)
     for (int gj = 0; gj < 3; ++gj) {
       const float radius = 0.06f + 0.01f * float((gi + 2 * gj) % 3);
       const glm::vec3 center(0.1f + 0.175f * gi, radius, 0.12f + 0.16f * gj);
       const float lobes = 3.0f + float(gi + gj);
-      auto point = [&](int i, int j) {
-        float theta = float(M_PI) * i / rings, phi = 2.0f * float(M_PI) * j / segments;
-        glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
-        float bump = 1.0f + 0.1f * std::sin(lobes * 2.0f * theta) * std::sin(lobes * phi);
-        return center + radius * bump * n;
-      };
-      const uint32_t base = uint32_t(s.positions.size());
-      for (int i = 0; i <= rings; ++i)
-        for (int j = 0; j < segments; ++j) s.positions.push_back(point(i, j));
-      auto index = [&](int i, int j) { return base + uint32_t(i * segments + (j % segments)); };
-      for (int i = 0; i < rings; ++i)
-        for (int j = 0; j < segments; ++j) {
-          if (i != rings - 1) s.triangles.push_back({index(i, j), index(i + 1, j + 1), index(i + 1, j)});
-          if (i != 0) s.triangles.push_back({index(i, j), index(i, j + 1), index(i + 1, j + 1)});
-        }
+      add_bumpy_sphere(s, center, radius, rings,
+                       [lobes](float theta, float phi) { return 1.0f + 0.1f * std::sin(lobes * 2.0f * theta) * std::sin(lobes * phi); },
+                       clay);
     }
-  s.triangle_material.resize(s.triangles.size(), clay);
   group_by_material(s);
   return s;
 }

@@ -1,6 +1,5 @@
 #pragma once
-// A window that shows a rendered image (GLFW, legacy OpenGL: one
-// glDrawPixels a frame). Works under Xvfb with Mesa.
+// A window that shows one rendered image (igi-render --show).
 #include <string>
 
 #include "image/image.h"
@@ -14,8 +13,6 @@ struct WindowOptions {
   std::string screenshot;   // when set: save what the window shows as PNG, then close
 };
 
-// Whether a window can be opened here (a display exists and GLFW starts).
-bool window_available();
 // Blocks until the window closes. Throws std::runtime_error when none opens.
 void show_image(const Image& image, const WindowOptions& options);
 

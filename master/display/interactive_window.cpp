@@ -5,7 +5,8 @@
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
-#include <GL/gl.h>
+
+#include "display/gl_image.h"
 
 namespace igi {
 
@@ -48,13 +49,7 @@ bool InteractiveWindow::poll(CameraController& camera) {
 }
 
 void InteractiveWindow::show(const Image& image, float exposure) {
-  const std::vector<unsigned char> rgb = to_srgb8(image, exposure);
-  glViewport(0, 0, width_, height_);
-  glClear(GL_COLOR_BUFFER_BIT);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glRasterPos2f(-1.0f, 1.0f);
-  glPixelZoom(1.0f, -1.0f);  // image row 0 at the top
-  glDrawPixels(image.width, image.height, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+  draw_srgb8(to_srgb8(image, exposure), image.width, image.height);
 }
 
 void InteractiveWindow::present() { glfwSwapBuffers(window_); }
@@ -63,17 +58,6 @@ void InteractiveWindow::set_status(const std::string& status) {
   glfwSetWindowTitle(window_, (title_ + "  |  " + status).c_str());
 }
 
-void InteractiveWindow::screenshot(const std::string& path) {
-  std::vector<unsigned char> rgb(size_t(width_) * height_ * 3);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadBuffer(GL_BACK);  // the front buffer reads as zeros under Xvfb
-  glReadPixels(0, 0, width_, height_, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
-  Image shot(width_, height_);
-  for (int y = 0; y < height_; ++y)
-    for (int x = 0; x < width_; ++x)
-      for (int c = 0; c < 3; ++c)
-        shot.at(x, height_ - 1 - y)[c] = srgb_to_linear(rgb[(size_t(y) * width_ + x) * 3 + c] / 255.0f);
-  write_image(shot, path);
-}
+void InteractiveWindow::screenshot(const std::string& path) { write_image(read_back_buffer(width_, height_), path); }
 
 }  // namespace igi
