@@ -51,6 +51,7 @@ std::string render_usage(const std::string& program) {
          "  --vpl-sets N          ir/igi: N x N interleaved VPL sets [3]\n"
          "  --vpl-paths M         ir/igi: light paths per VPL set [16]\n"
          "  --clamp C             ir/igi: clamp 1/r^2 below distance C x scene diagonal, 0 = off [0]\n"
+         "  --compensate N        ir/igi: bias compensation, N eye samples per pixel (needs --clamp), 0 = off [0]\n"
          "  --no-filter           igi: skip the discontinuity buffer\n"
          "  --filter-normal C     igi: neighbours need normal dot above C [0.9]\n"
          "  --filter-depth R      igi: neighbours need relative depth difference below R [0.05]\n"
@@ -87,6 +88,11 @@ RenderOptions parse_render_options(const std::vector<std::string>& args) {
     else if (a == "--vpl-sets") s.interleave = to_int(a, value(), 1);
     else if (a == "--vpl-paths") s.paths_per_set = to_int(a, value(), 1);
     else if (a == "--clamp") s.clamp = to_float(a, value());
+    else if (a == "--compensate") {
+      s.compensation_samples = to_int(a, value(), 0);
+      if (s.compensation_samples > 256)  // the wire format's bound (protocol/codec.cpp)
+        throw std::invalid_argument("--compensate: expected at most 256, got '" + args[i] + "'");
+    }
     else if (a == "--no-filter") s.filter = false;
     else if (a == "--filter-normal") s.filter_normal_cos = to_float(a, value());
     else if (a == "--filter-depth") s.filter_depth_ratio = to_float(a, value());

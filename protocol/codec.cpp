@@ -17,6 +17,7 @@ constexpr int64_t kMaxThreads = 4096;
 constexpr int64_t kMaxDepth = 1024;
 constexpr int64_t kMaxInterleave = 16;
 constexpr int64_t kMaxPathsPerSet = 1 << 20;
+constexpr int64_t kMaxCompensationSamples = 256;
 constexpr int64_t kMaxCredits = 64;
 constexpr int64_t kMinHeartbeatMs = 10, kMaxHeartbeatMs = 60000;
 constexpr int64_t kMaxBorder = 64;
@@ -93,6 +94,7 @@ void write(Writer& w, const RenderSettings& s) {
   w.i32(s.interleave);
   w.i32(s.paths_per_set);
   w.f32(s.clamp);
+  w.i32(s.compensation_samples);
   w.boolean(s.filter);
   w.f32(s.filter_normal_cos);
   w.f32(s.filter_depth_ratio);
@@ -110,6 +112,8 @@ void read(Reader& r, RenderSettings& s) {
   check_range(r, "settings.paths_per_set", s.paths_per_set, 1, kMaxPathsPerSet);
   s.clamp = r.f32("settings.clamp");
   check_finite_non_negative(r, "settings.clamp", s.clamp);
+  s.compensation_samples = r.i32("settings.compensation_samples");
+  check_range(r, "settings.compensation_samples", s.compensation_samples, 0, kMaxCompensationSamples);
   s.filter = r.boolean("settings.filter");
   s.filter_normal_cos = r.f32("settings.filter_normal_cos");
   check_closed(r, "settings.filter_normal_cos", s.filter_normal_cos, -1.0f, 1.0f);

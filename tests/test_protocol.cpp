@@ -30,7 +30,8 @@ bool same(const TileJob& a, const TileJob& b) {
 }
 bool same(const RenderSettings& a, const RenderSettings& b) {
   return a.method == b.method && a.max_depth == b.max_depth && a.interleave == b.interleave &&
-         a.paths_per_set == b.paths_per_set && same(a.clamp, b.clamp) && a.filter == b.filter &&
+         a.paths_per_set == b.paths_per_set && same(a.clamp, b.clamp) &&
+         a.compensation_samples == b.compensation_samples && a.filter == b.filter &&
          same(a.filter_normal_cos, b.filter_normal_cos) && same(a.filter_depth_ratio, b.filter_depth_ratio);
 }
 bool same(const Hello& a, const Hello& b) {
@@ -80,7 +81,7 @@ TileResult sample_tile_result() {
 }
 
 std::vector<Message> samples() {
-  RenderSettings settings{MethodKind::InstantRadiosity, 7, 4, 64, 0.05f, false, 0.8f, 0.1f};
+  RenderSettings settings{MethodKind::InstantRadiosity, 7, 4, 64, 0.05f, 3, false, 0.8f, 0.1f};
   Camera camera{{1, 2, 3}, {0, -0.2f, -1}, {0.1f, 1, 0}, 0.9f};
   std::vector<uint8_t> scene(300);
   for (size_t i = 0; i < scene.size(); ++i) scene[i] = uint8_t(i * 7);
@@ -157,7 +158,7 @@ TEST(Protocol, RoundTripsEveryTypeFieldByField) {
 
 TEST(Protocol, HeaderAndFieldsAreLittleEndian) {
   std::vector<uint8_t> bytes = encode(SceneRequest{0x0102030405060708ull});
-  std::vector<uint8_t> expected = {'I', 'G', 'I', '1', 1, 0, uint8_t(MessageType::SceneRequest), 0,
+  std::vector<uint8_t> expected = {'I', 'G', 'I', '1', uint8_t(kVersion), 0, uint8_t(MessageType::SceneRequest), 0,
                                    8,   7,   6,   5,   4, 3, 2,                                   1};
   EXPECT_EQ(bytes, expected);
 }
@@ -200,10 +201,10 @@ TEST(Protocol, EverySingleByteCorruptionIsRejectedOrValid) {
 
 TEST(Protocol, OtherVersionIsNamedWithBothVersions) {
   std::vector<uint8_t> bytes = encode(sample<Hello>());
-  bytes[4] = 2;
+  bytes[4] = uint8_t(kVersion + 1);
   DecodeResult d = decode_copy(bytes);
   EXPECT_FALSE(d.message);
-  EXPECT_EQ(d.error, "protocol version 2, this build speaks 1");
+  EXPECT_EQ(d.error, "protocol version " + std::to_string(kVersion + 1) + ", this build speaks " + std::to_string(kVersion));
 }
 
 TEST(Protocol, HeaderErrors) {
@@ -269,6 +270,8 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {settings_edited([](auto& s) { s.paths_per_set = -3; }), "Welcome.settings.paths_per_set"},
       {settings_edited([](auto& s) { s.clamp = -0.5f; }), "Welcome.settings.clamp"},
       {settings_edited([](auto& s) { s.clamp = INFINITY; }), "Welcome.settings.clamp"},
+      {settings_edited([](auto& s) { s.compensation_samples = -1; }), "Welcome.settings.compensation_samples"},
+      {settings_edited([](auto& s) { s.compensation_samples = 257; }), "Welcome.settings.compensation_samples"},
       {settings_edited([](auto& s) { s.filter_normal_cos = 1.01f; }), "Welcome.settings.filter_normal_cos"},
       {settings_edited([](auto& s) { s.filter_normal_cos = NAN; }), "Welcome.settings.filter_normal_cos"},
       {settings_edited([](auto& s) { s.filter_depth_ratio = -1e-6f; }), "Welcome.settings.filter_depth_ratio"},
@@ -348,7 +351,8 @@ TEST(Protocol, HugeLengthsAndBadBytesAreRejectedBeforeUse) {
   Welcome welcome = sample<Welcome>();
   size_t method_at = 8 + 8 + 4 + welcome.scene_name.size() + 16;
   EXPECT_EQ(patched(welcome, method_at, {7}), "Welcome.settings.method: 7, expected [0, 2]");
-  EXPECT_EQ(patched(welcome, method_at + 1 + 12 + 4, {2}), "Welcome.settings.filter: boolean byte 2, expected 0 or 1");
+  // method u8, max_depth, interleave, paths_per_set i32, clamp f32, compensation_samples i32, then filter.
+  EXPECT_EQ(patched(welcome, method_at + 1 + 12 + 4 + 4, {2}), "Welcome.settings.filter: boolean byte 2, expected 0 or 1");
 }
 
 // ---- Socket helpers, over loopback with bounded waits.

@@ -21,6 +21,10 @@ struct RenderSettings {
   // clamp is the distance (a fraction of the diagonal) below which 1/r^2 stops
   // growing. 0 turns clamping off.
   float clamp = 0.0f;
+  // Bias compensation (Kollig and Keller): eye-path samples per pixel that
+  // add back the light the clamp cut (methods/bias_compensation.h). 0 = off;
+  // no effect without a clamp.
+  int compensation_samples = 0;
   // Discontinuity buffer (igi).
   bool filter = true;
   float filter_normal_cos = 0.9f;   // neighbours need dot(n, n') above this

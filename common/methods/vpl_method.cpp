@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "filter/discontinuity_buffer.h"
+#include "methods/bias_compensation.h"
 #include "methods/gbuffer.h"
 #include "methods/shadow_batch.h"
 #include "methods/vpl_contribution.h"
@@ -86,17 +87,13 @@ void VplMethod::shade(const std::vector<GSample>& gbuffer, const Region& region,
     for (glm::vec3& e : irradiance) e *= 1.0f / float(vpls_.set_count());
 }
 
-void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const {
-  const Region region = tile_region(job, frame_.width, frame_.height);
-  // Per-thread scratch: tiles come by the thousand, allocations would dominate.
-  thread_local std::vector<GSample> gbuffer;
-  thread_local std::vector<glm::vec3> irradiance, filtered;
-  thread_local FilterInput in;
-  build_gbuffer(context_.accel, frame_, region, settings_.max_depth, gbuffer, rays, log_);
-  shade(gbuffer, region, irradiance, rays);
-
+// Demodulated irradiance of the tile's own pixels: through the discontinuity
+// buffer (igi), or cropped from the region as it is (ir, or filter off).
+void VplMethod::filter_or_crop(const std::vector<GSample>& gbuffer, const Region& region, const TileJob& job,
+                               std::vector<glm::vec3>& irradiance, std::vector<glm::vec3>& filtered) const {
   filtered.resize(size_t(job.w) * job.h);
   if (interleaved() && settings_.filter) {
+    thread_local FilterInput in;
     in.x0 = region.x0; in.y0 = region.y0; in.width = region.width; in.height = region.height;
     std::swap(in.value, irradiance);
     in.depth.clear();
@@ -111,11 +108,31 @@ void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCou
     fs.depth_ratio = settings_.filter_depth_ratio;
     fs.fixed_scale = fixed_scale_;
     filter_discontinuity(in, fs, Rect{job.x, job.y, job.w, job.h}, filtered);
-  } else {
-    for (int y = 0; y < job.h; ++y)
-      for (int x = 0; x < job.w; ++x)
-        filtered[size_t(y) * job.w + x] = irradiance[size_t(job.y + y - region.y0) * region.width + (job.x + x - region.x0)];
+    std::swap(in.value, irradiance);
+    return;
   }
+  for (int y = 0; y < job.h; ++y)
+    for (int x = 0; x < job.w; ++x)
+      filtered[size_t(y) * job.w + x] = irradiance[size_t(job.y + y - region.y0) * region.width + (job.x + x - region.x0)];
+}
+
+void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const {
+  const Region region = tile_region(job, frame_.width, frame_.height);
+  // Per-thread scratch: tiles come by the thousand, allocations would dominate.
+  thread_local std::vector<GSample> gbuffer;
+  thread_local std::vector<glm::vec3> irradiance, filtered;
+  build_gbuffer(context_.accel, frame_, region, settings_.max_depth, gbuffer, rays, log_);
+  shade(gbuffer, region, irradiance, rays);
+  // The compensation joins the demodulated irradiance BEFORE the filter: it
+  // is as noisy as the VPL sums (a few hemisphere samples, one VPL set), the
+  // filter's cost does not depend on the values, and filtering it lowers
+  // relMSE. Measured with igi-accuracy (corner, 64x48, clamp 0.1, 4 samples,
+  // median of 3 seeds), relMSE filtered / added after the filter:
+  // M=1 0.0709 / 0.0718, M=16 0.0091 / 0.0094, M=64 0.0065 / 0.0068.
+  const BiasCompensation compensation(context_.accel, vpls_, interleaved(), clamp_bound_,
+                                      settings_.compensation_samples);
+  compensation.add(gbuffer, region, frame_.seed, irradiance, rays);
+  filter_or_crop(gbuffer, region, job, irradiance, filtered);
   for (int y = 0; y < job.h; ++y)
     for (int x = 0; x < job.w; ++x) {
       const GSample& g = gbuffer[size_t(job.y + y - region.y0) * region.width + (job.x + x - region.x0)];

@@ -4,6 +4,8 @@
 //  igi: pixel (x, y) sums only set (x mod N) + N (y mod N) of M VPLs; the
 //       discontinuity buffer then averages demodulated irradiance over the
 //       N x N window, so each pixel sees all sets at 1/S of the cost.
+// With a clamp, optional bias compensation (methods/bias_compensation.h)
+// adds back the clamped light before the filter.
 // Shadow rays go out in 16-wide packets that share one VPL (coherent).
 #include "methods/method.h"
 #include "methods/ray_log.h"
@@ -29,6 +31,8 @@ class VplMethod final : public Method {
                           PixelBatch& batch) const;
   void shade(const std::vector<GSample>& gbuffer, const Region& region,
              std::vector<glm::vec3>& irradiance, RayCounts& rays) const;
+  void filter_or_crop(const std::vector<GSample>& gbuffer, const Region& region, const TileJob& job,
+                      std::vector<glm::vec3>& irradiance, std::vector<glm::vec3>& filtered) const;
 
   SceneContext context_;
   RenderSettings settings_;

@@ -72,8 +72,10 @@ def plot_scene(scene, rows, out_dir):
             method = pts[0]["method"]
             marker = markers[style_index[method] % len(markers)]
             style_index[method] += 1
+            # Bias-compensated series ("... bc"): hollow markers beside their clamp's filled ones.
             ax.plot([r["seconds"] for r in pts], [r[key] for r in pts], linestyle="none", marker=marker, ms=4,
-                    color=METHOD_COLOURS.get(method, "gray"), alpha=0.6, label=name)
+                    color=METHOD_COLOURS.get(method, "gray"), alpha=0.6, label=name,
+                    fillstyle="none" if name.endswith(" bc") else "full")
         for method in ("pt", "ir", "igi"):
             front = pareto([r for r in rows if r["method"] == method], key)
             if front:

@@ -2,7 +2,8 @@
 // suite, all points measured in one run on one machine. Writes CSV rows
 //   scene,method,params,seconds,relmse,rmse,flip
 // (relMSE with epsilon kRelMseEpsilon = 0.01; FLIP: mean LDR-FLIP at 67 pixels
-// per degree of the images tonemapped as the PNG output does). Asserts nothing;
+// per degree of the images tonemapped as the PNG output does; rays of every
+// kind over all passes, per pixel). Asserts nothing;
 // scripts/charts/plot_accuracy.py turns the CSV into charts and headline.md.
 //
 //   igi-accuracy [--scenes a,b] [--size WxH] [--ref-spp N] [--refs DIR] [--out F.csv] [--quick]
@@ -10,7 +11,8 @@
 // References: pt with --ref-spp samples, cached as
 // DIR/<scene>-<w>x<h>-<spp>-<hash of settings>.exr so reruns reuse them.
 // Sweeps: pt over samples per pixel; ir and igi over VPL paths per set M and
-// progressive passes, the clamp, and (igi) the discontinuity filter.
+// progressive passes, the clamp, (igi) the discontinuity filter, and, for
+// clamped points, bias compensation with kCompensationSamples ("bc=on").
 // Unclamped VPL errors have infinite variance: a single seed is one draw of
 // a heavy-tailed figure, so each VPL point is the median over three seeds,
 // with the median seed's time.
@@ -32,6 +34,8 @@ namespace igi {
 namespace {
 
 namespace fs = std::filesystem;
+
+constexpr int kCompensationSamples = 4;  // eye samples per pixel when bc=on
 
 struct Options {
   std::vector<std::string> scenes = {"cornell", "corner", "rooms", "glossy", "large"};
@@ -113,18 +117,19 @@ const Image& cached_reference(const Prepared& p, const std::string& name, const 
 }
 
 struct Point {
-  double seconds, relmse, rmse, flip;
+  double seconds, relmse, rmse, flip, rays_per_pixel;
 };
 
-Point measure(const Image& image, double seconds, const Image& ref) {
-  return {seconds, rel_mse(image, ref), rmse(image, ref), mean_flip(image, ref)};
+Point measure(const OfflineResult& r, const Image& ref) {
+  const double pixels = double(r.image.width) * r.image.height;
+  return {r.seconds, rel_mse(r.image, ref), rmse(r.image, ref), mean_flip(r.image, ref), double(r.rays.total()) / pixels};
 }
 
 void write_row(std::ofstream& csv, const std::string& scene, const char* method, const std::string& params,
                const Point& p) {
   char line[512];
-  std::snprintf(line, sizeof line, "%s,%s,%s,%.4f,%.6g,%.6g,%.6g\n", scene.c_str(), method, params.c_str(), p.seconds,
-                p.relmse, p.rmse, p.flip);
+  std::snprintf(line, sizeof line, "%s,%s,%s,%.4f,%.6g,%.6g,%.6g,%.1f\n", scene.c_str(), method, params.c_str(),
+                p.seconds, p.relmse, p.rmse, p.flip, p.rays_per_pixel);
   csv << line;
   csv.flush();
   std::fputs(line, stderr);
@@ -136,7 +141,7 @@ void sweep_pt(const Prepared& p, const std::string& name, const Options& o, cons
   const int max_spp = o.quick ? 16 : std::max(16, o.ref_spp / 16);
   for (int spp = 1; spp <= max_spp; spp *= 2) {
     const OfflineResult r = render(p, pt, o, spp, 1);  // seed 1: independent of the reference's seed 7
-    write_row(csv, name, "pt", "spp=" + std::to_string(spp), measure(r.image, r.seconds, ref));
+    write_row(csv, name, "pt", "spp=" + std::to_string(spp), measure(r, ref));
   }
 }
 
@@ -145,35 +150,45 @@ Point median_point(const Prepared& p, const RenderSettings& s, const Options& o,
   std::vector<Point> points;
   for (uint32_t seed : {1u, 1001u, 2001u}) {
     const OfflineResult r = render(p, s, o, passes, seed);
-    points.push_back(measure(r.image, r.seconds, ref));
+    points.push_back(measure(r, ref));
   }
   std::sort(points.begin(), points.end(), [](const Point& a, const Point& b) { return a.relmse < b.relmse; });
   return points[1];
 }
 
-void sweep_vpl(const Prepared& p, const std::string& name, const Options& o, const Image& ref, std::ofstream& csv) {
+// One VPL series: every budget at one (method, filter, clamp, compensation).
+void sweep_budgets(const Prepared& p, const std::string& name, const Options& o, const Image& ref,
+                   RenderSettings s, std::ofstream& csv) {
   // (paths per set M, progressive passes): VPL budget up, then passes up.
   std::vector<std::pair<int, int>> budgets = {{1, 1}, {4, 1}, {16, 1}, {64, 1}, {16, 4}, {16, 16}};
   if (o.quick) budgets = {{2, 1}, {8, 1}, {8, 4}};
+  const bool ir = s.method == MethodKind::InstantRadiosity;
+  for (auto [m, passes] : budgets) {
+    // ir shades every VPL per pixel: its big budgets cost N^2 times igi's.
+    if (ir && m * passes > 64) continue;
+    s.paths_per_set = m;
+    char params[128];
+    std::snprintf(params, sizeof params, "M=%d;passes=%d;clamp=%g;filter=%s;bc=%s", m, passes, s.clamp,
+                  !ir && s.filter ? "on" : "off", s.compensation_samples > 0 ? "on" : "off");
+    write_row(csv, name, method_name(s.method), params, median_point(p, s, o, passes, ref));
+  }
+}
+
+void sweep_vpl(const Prepared& p, const std::string& name, const Options& o, const Image& ref, std::ofstream& csv) {
   const std::vector<float> clamps = o.quick ? std::vector<float>{0.0f, 0.05f} : std::vector<float>{0.0f, 0.02f, 0.1f};
   for (MethodKind kind : {MethodKind::InstantRadiosity, MethodKind::Igi})
     for (bool filter : {true, false}) {
       if (kind == MethodKind::InstantRadiosity && !filter) continue;  // ir has no filter
       for (float clamp : clamps)
-        for (auto [m, passes] : budgets) {
-          // ir shades every VPL per pixel: its big budgets cost N^2 times igi's.
-          if (kind == MethodKind::InstantRadiosity && m * passes > 64) continue;
+        // Bias compensation (Kollig and Keller) only where a clamp cut something.
+        for (int compensation : {0, kCompensationSamples}) {
+          if (compensation > 0 && clamp == 0.0f) continue;
           RenderSettings s;
           s.method = kind;
-          s.paths_per_set = m;
           s.clamp = clamp;
           s.filter = filter;
-          // Bias compensation (Kollig & Keller 2006) joins here as one more
-          // axis ("bc=on|off") once the renderer has it.
-          char params[128];
-          std::snprintf(params, sizeof params, "M=%d;passes=%d;clamp=%g;filter=%s;bc=off", m, passes, clamp,
-                        kind == MethodKind::Igi && filter ? "on" : "off");
-          write_row(csv, name, method_name(kind), params, median_point(p, s, o, passes, ref));
+          s.compensation_samples = compensation;
+          sweep_budgets(p, name, o, ref, s, csv);
         }
     }
 }
@@ -182,7 +197,7 @@ int run(const Options& o) {
   fs::create_directories(fs::path(o.out).parent_path().empty() ? fs::path(".") : fs::path(o.out).parent_path());
   std::ofstream csv(o.out);
   if (!csv) throw std::runtime_error(o.out + ": cannot write");
-  csv << "scene,method,params,seconds,relmse,rmse,flip\n";
+  csv << "scene,method,params,seconds,relmse,rmse,flip,rays_per_pixel\n";
   for (const std::string& name : o.scenes) {
     const Prepared p(load_scene(name));
     Image storage;

@@ -1,0 +1,83 @@
+#include "methods/bias_compensation.h"
+
+#include <cmath>
+
+#include "methods/vpl_contribution.h"
+#include "sampling/hash.h"
+#include "sampling/sobol.h"
+#include "sampling/warp.h"
+#include "scene/surface.h"
+
+namespace igi {
+
+void BiasCompensation::add(const std::vector<GSample>& gbuffer, const Region& region, uint32_t frame_seed,
+                           std::vector<glm::vec3>& irradiance, RayCounts& rays) const {
+  if (!enabled()) return;
+  for (int j = 0; j < region.height; ++j)
+    for (int i = 0; i < region.width; ++i) {
+      const size_t index = size_t(j) * region.width + i;
+      if (gbuffer[index].valid())
+        irradiance[index] += at_pixel(gbuffer[index], region.x0 + i, region.y0 + j, frame_seed, rays);
+    }
+}
+
+// Demodulated compensation at one pixel (global coordinates x, y).
+glm::vec3 BiasCompensation::at_pixel(const GSample& g, int x, int y, uint32_t frame_seed, RayCounts& rays) const {
+  const SurfacePoint& sp = g.surface;
+  // GGX receivers would need f cos / pdf from their lobe, not the albedo:
+  // skipped, they keep the clamp's loss.
+  if (sp.material->type != MaterialType::Diffuse) return glm::vec3(0.0f);
+  // The hemisphere on the viewer's side, as VPL shading uses it.
+  const bool front = glm::dot(g.wo, sp.geometric_normal) >= 0.0f;
+  const glm::vec3 n = front ? sp.shading_normal : -sp.shading_normal;
+  const glm::vec3 ng = front ? sp.geometric_normal : -sp.geometric_normal;
+  const Frame frame(n);
+  const uint32_t seed = hash(uint32_t(x), uint32_t(y), frame_seed);
+  const int set = interleaved_ ? vpls_.set_of_pixel(x, y) : -1;
+  glm::vec3 sum(0.0f);
+  for (int k = 0; k < samples_; ++k) {
+    const glm::vec3 wi = frame.to_world(cosine_hemisphere(sample_2d(uint32_t(k), 0, seed)));
+    const float cos_x = glm::dot(wi, n);
+    if (cos_x <= 0.0f || glm::dot(wi, ng) <= 0.0f) continue;  // below the surface: no light
+    // Past this distance G <= cos_x / d^2 <= b: the clamp cut nothing there.
+    const Ray ray{offset_origin(sp, wi), wi, 0.0f, std::sqrt(cos_x / bound_)};
+    Hit hit;
+    ++rays.secondary;
+    if (!accel_.intersect(ray, hit)) continue;
+    GSample hit_sample;
+    hit_sample.surface = surface_at(accel_.scene(), hit, wi);
+    if (hit_sample.surface.material->is_specular()) continue;
+    hit_sample.wo = -wi;
+    hit_sample.depth = 0.0f;
+    const float d2 = glm::dot(hit_sample.surface.position - sp.position, hit_sample.surface.position - sp.position);
+    const float cos_y = std::abs(glm::dot(wi, hit_sample.surface.shading_normal));
+    const float geometry_term = cos_x * cos_y / d2;
+    if (!(geometry_term > bound_)) continue;
+    // Le(y) too: the clamp cut the same share of the area VPLs' direct light (see the header).
+    const glm::vec3 radiance = hit_sample.surface.emitted() + radiance_towards(hit_sample, set, rays);
+    sum += radiance * ((geometry_term - bound_) / geometry_term);
+  }
+  return sum / float(samples_);
+}
+
+// L(y -> x), x along y.wo: the clamped VPL estimate of the pixel's own set
+// (igi) or of all sets (ir), times the albedo at y (contributions are
+// demodulated). Emission is the caller's: see the header.
+glm::vec3 BiasCompensation::radiance_towards(const GSample& y, int set, RayCounts& rays) const {
+  const VplShading shading{accel_.scene(), bound_};
+  const uint32_t begin = set >= 0 ? vpls_.set_begin[set] : 0;
+  const uint32_t end = set >= 0 ? vpls_.set_begin[set + 1] : uint32_t(vpls_.vpls.size());
+  glm::vec3 sum(0.0f);
+  for (uint32_t v = begin; v < end; ++v) {
+    ShadowQuery q;
+    const glm::vec3 c = shading.contribution(y, vpls_.vpls[v], q);
+    if (c == glm::vec3(0.0f)) continue;
+    ++rays.shadow;
+    if (!accel_.occluded(Ray{q.origin, q.direction, 0.0f, q.tfar})) sum += c;
+  }
+  // Each set alone estimates the full light; all S of them are averaged.
+  const float scale = set >= 0 ? 1.0f : 1.0f / float(vpls_.set_count());
+  return y.surface.albedo * sum * scale;
+}
+
+}  // namespace igi
