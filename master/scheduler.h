@@ -53,8 +53,6 @@ class Scheduler {
   size_t worker_count() const { return workers_.size(); }
 
   void add_frame(uint64_t frame_id, const std::vector<TileJob>& tiles);
-  // Frames not yet complete.
-  size_t frames_open() const { return frames_.size(); }
   bool can_add_frame() const { return int(frames_.size()) < frames_in_flight_; }
 
   // The next job for this worker, or nothing (no credit, or no work).

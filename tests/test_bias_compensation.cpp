@@ -25,18 +25,11 @@
 namespace igi {
 namespace {
 
+using test::luminance;
+using test::vpl_settings;
+
 constexpr int kWidth = 48, kHeight = 36;
 
-RenderSettings vpl_settings(MethodKind kind, int paths, float clamp, int compensation) {
-  RenderSettings s;
-  s.method = kind;
-  s.paths_per_set = paths;
-  s.clamp = clamp;
-  s.compensation_samples = compensation;
-  return s;
-}
-
-double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 // a. The spot lights one corner; the clamp cuts the VPLs crowded there.
 // Region: visible points within 0.5 m of the corner, as in test_stability.cpp.
@@ -60,7 +53,7 @@ TEST(BiasCompensation, CornerRegainsTheClampedEnergy) {
     return a / b - 1.0;
   };
   auto render = [&](float clamp, int samples) {
-    return p.render(vpl_settings(MethodKind::InstantRadiosity, 8, clamp, samples), kWidth, kHeight, 8, 1);
+    return p.render(vpl_settings(MethodKind::InstantRadiosity, 8, clamp, true, samples), kWidth, kHeight, 8, 1);
   };
   std::printf("[corner] ir M=8 x 8 passes, unclamped: corner against pt %+.1f %% (the estimate's own spread)\n",
               100 * bias(render(0.0f, 0)));
@@ -87,7 +80,7 @@ TEST(BiasCompensation, FurnaceHoldsAndOneLevelIsExactlyOneLevel) {
   const test::Prepared p(make_furnace(albedo, le));
   const double exact = le / (1.0 - albedo), reflected = exact - le;
   auto mean = [&](float clamp, int samples) {
-    const Image image = p.render(vpl_settings(MethodKind::InstantRadiosity, 8, clamp, samples), 32, 24, 4, 1);
+    const Image image = p.render(vpl_settings(MethodKind::InstantRadiosity, 8, clamp, true, samples), 32, 24, 4, 1);
     return luminance(image.mean());
   };
   // clamp 0.1 is 0.35 m: b = 8.3 > G = 0.25, nothing is cut, nothing added.
@@ -126,7 +119,7 @@ Image render_tiled(const Method& method, const FrameSetup& frame, int border, in
 TEST(BiasCompensation, TilesOfAnySizeAndOffsetMatchTheWholeFrameBitForBit) {
   const test::Prepared p(make_cornell_box());
   for (MethodKind kind : {MethodKind::InstantRadiosity, MethodKind::Igi}) {
-    const RenderSettings settings = vpl_settings(kind, 4, 0.05f, 2);
+    const RenderSettings settings = vpl_settings(kind, 4, 0.05f, true, 2);
     auto method = make_method(p.context(), settings);
     const FrameSetup frame = p.frame(61, 45, 3);
     method->begin_frame(frame);
@@ -137,7 +130,7 @@ TEST(BiasCompensation, TilesOfAnySizeAndOffsetMatchTheWholeFrameBitForBit) {
     EXPECT_TRUE(test::images_identical(name + "-37x23", render_tiled(*method, frame, border, 37, 23, 5, 11), whole));
     EXPECT_TRUE(test::images_identical(name + "-threads", p.render(settings, 61, 45, 1, 3, 2, 16), whole));
     // And the compensation does something here (the box has creases).
-    const Image plain = p.render(vpl_settings(kind, 4, 0.05f, 0), 61, 45, 1, 3);
+    const Image plain = p.render(vpl_settings(kind, 4, 0.05f, true, 0), 61, 45, 1, 3);
     EXPECT_GT(whole.mean().x, plain.mean().x) << "compensation adds light";
   }
 }
@@ -152,7 +145,7 @@ TEST(BiasCompensation, DistributedEqualsSingleProcessBitForBit) {
   auto r = test::run(command);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const test::Prepared p(make_cornell_box());
-  RenderSettings s = vpl_settings(MethodKind::Igi, 8, 0.1f, 2);
+  RenderSettings s = vpl_settings(MethodKind::Igi, 8, 0.1f, true, 2);
   EXPECT_TRUE(test::images_identical("bc-dist", read_image(out), p.render(s, w, h, 1, 1)));
 }
 

@@ -13,13 +13,8 @@
 namespace igi {
 namespace {
 
-RenderSettings vpl_settings(MethodKind kind, int paths, float clamp = 0.0f) {
-  RenderSettings s;
-  s.method = kind;
-  s.paths_per_set = paths;
-  s.clamp = clamp;
-  return s;
-}
+using test::luminance;
+using test::vpl_settings;
 
 const test::Prepared& cornell() {
   static test::Prepared p(make_cornell_box());

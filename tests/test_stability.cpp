@@ -32,20 +32,14 @@
 namespace igi {
 namespace {
 
+using test::luminance;
+using test::vpl_settings;
+
 constexpr int kWidth = 48, kHeight = 36;
 
 RenderSettings pt_settings() {
   RenderSettings s;
   s.method = MethodKind::PathTracer;
-  return s;
-}
-
-RenderSettings vpl_settings(MethodKind kind, int paths, float clamp, bool filter = true) {
-  RenderSettings s;
-  s.method = kind;
-  s.paths_per_set = paths;
-  s.clamp = clamp;
-  s.filter = filter;
   return s;
 }
 
@@ -73,7 +67,6 @@ std::vector<GSample> visible_points(const test::Prepared& p) {
   return gbuffer;
 }
 
-double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 // a. The corner scene's light lands in one corner; the clamp cuts the
 // 1/r^2 of the VPLs crowded there, so the corner itself goes dark.

@@ -51,11 +51,6 @@ std::vector<protocol::TileResult> RenderPool::take_results() {
   return std::exchange(results_, {});
 }
 
-size_t RenderPool::busy() const {
-  std::lock_guard lock(mutex_);
-  return queue_.size() + rendering_;
-}
-
 protocol::TileResult RenderPool::render(const protocol::TileJobMsg& job, FrameState& frame) {
   auto start = std::chrono::steady_clock::now();
   std::call_once(frame.begun, [&] { frame.method->begin_frame(frame.setup); });
@@ -83,11 +78,9 @@ void RenderPool::run() {
     const FrameSetup& setup = frame->second->setup;
     if (job.tile.x + job.tile.w > setup.width || job.tile.y + job.tile.h > setup.height) continue;  // outside the image
     std::shared_ptr<FrameState> state = frame->second;
-    ++rendering_;
     lock.unlock();
     protocol::TileResult result = render(job, *state);
     lock.lock();
-    --rendering_;
     results_.push_back(std::move(result));
     const uint64_t one = 1;
     (void)!write(results_fd_, &one, sizeof one);  // wakes the socket loop

@@ -26,7 +26,6 @@ class RenderPool {
   std::vector<protocol::TileResult> take_results();
   // Readable (poll) whenever results are waiting; take_results() clears it.
   int results_fd() const { return results_fd_; }
-  size_t busy() const;  // queued + rendering
 
  private:
   struct FrameState {
@@ -44,7 +43,6 @@ class RenderPool {
   std::deque<protocol::TileJobMsg> queue_;
   std::vector<protocol::TileResult> results_;
   std::map<uint64_t, std::shared_ptr<FrameState>> frames_;
-  size_t rendering_ = 0;
   bool stopping_ = false;
   int results_fd_ = -1;  // eventfd
   std::vector<std::thread> threads_;

@@ -50,14 +50,4 @@ Image abs_difference(const Image& a, const Image& b) {
   return d;
 }
 
-glm::dvec3 region_mean(const Image& image, int x, int y, int w, int h) {
-  int x0 = std::max(0, x), y0 = std::max(0, y);
-  int x1 = std::min(image.width, x + w), y1 = std::min(image.height, y + h);
-  glm::dvec3 sum(0.0);
-  for (int j = y0; j < y1; ++j)
-    for (int i = x0; i < x1; ++i) sum += glm::dvec3(image.at(i, j));
-  long n = long(std::max(0, x1 - x0)) * std::max(0, y1 - y0);
-  return n > 0 ? sum / double(n) : sum;
-}
-
 }  // namespace igi

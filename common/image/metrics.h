@@ -11,7 +11,5 @@ double rmse(const Image& image, const Image& reference);
 double max_abs_error(const Image& image, const Image& reference);
 // Per-pixel absolute difference, for diff images.
 Image abs_difference(const Image& a, const Image& b);
-// Mean of the image over a rectangle (clipped).
-glm::dvec3 region_mean(const Image& image, int x, int y, int w, int h);
 
 }  // namespace igi

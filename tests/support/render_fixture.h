@@ -8,6 +8,21 @@
 
 namespace igi::test {
 
+// Settings for the VPL methods (ir, igi) as the tests vary them.
+inline RenderSettings vpl_settings(MethodKind kind, int paths, float clamp = 0.0f, bool filter = true,
+                                   int compensation = 0) {
+  RenderSettings s;
+  s.method = kind;
+  s.paths_per_set = paths;
+  s.clamp = clamp;
+  s.filter = filter;
+  s.compensation_samples = compensation;
+  return s;
+}
+
+// Luminance in double, for sums over many pixels.
+inline double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
 struct Prepared {
   Scene scene;
   std::unique_ptr<Accel> accel;
