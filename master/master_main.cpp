@@ -41,8 +41,8 @@ std::string local_endpoint(std::string endpoint) {
   return endpoint;
 }
 
-std::string frame_path(const std::string& output, int frame, int frames) {
-  if (frames <= 1) return output;
+std::string frame_path(const std::string& output, int frame, int frames, int first) {
+  if (frames <= 1 && first == 0) return output;
   std::filesystem::path p(output);
   char suffix[16];
   std::snprintf(suffix, sizeof suffix, "-%04d", frame);
@@ -89,7 +89,8 @@ int run_headless(const igi::MasterOptions& o, const igi::Scene& scene, igi::Mast
   double session_cpu = 0.0;
   while (written < o.frames && !g_interrupted) {
     const double cpu_before = igi::process_cpu_seconds();
-    while (next < o.frames && session.can_add_frame()) session.add_frame(frame_setup(o, scene, next++, o.progressive));
+    while (next < o.frames && session.can_add_frame())
+      session.add_frame(frame_setup(o, scene, o.first_frame + next++, o.progressive));
     std::vector<igi::CompletedFrame> completed = session.pump(50);
     session_cpu += igi::process_cpu_seconds() - cpu_before;
     for (igi::CompletedFrame& f : completed) {
@@ -98,9 +99,10 @@ int run_headless(const igi::MasterOptions& o, const igi::Scene& scene, igi::Mast
         accumulator.add(image, 1.0);
         image = accumulator.resolve();
       }
-      if (!o.no_write) writer->write(std::move(image), frame_path(o.render.output, written, o.frames));
+      if (!o.no_write)
+        writer->write(std::move(image), frame_path(o.render.output, o.first_frame + written, o.frames, o.first_frame));
       if (!o.render.quiet)
-        std::printf("frame %d: %.1f ms, %.1f Mrays/s, %zu workers\n", written, 1e3 * f.record.seconds,
+        std::printf("frame %d: %.1f ms, %.1f Mrays/s, %zu workers\n", o.first_frame + written, 1e3 * f.record.seconds,
                     f.record.seconds > 0 ? f.record.rays.total() * 1e-6 / f.record.seconds : 0.0, session.worker_count());
       records.push_back(f.record);
       ++written;

@@ -12,6 +12,7 @@ std::string master_usage(const std::string& program) {
          "  --listen ENDPOINT     where workers connect [tcp://127.0.0.1:0 = loopback, any free port];\n"
          "                        name another interface (tcp://0.0.0.0:5555) to open it to a network\n"
          "  --frames F            headless: render F frames and write them (-o); default: a window\n"
+         "  --first-frame I       headless: start at frame I (camera path, seed and file names) [0]\n"
          "  --progressive         headless: accumulate frames, advancing the seed\n"
          "  --camera-path orbit   headless: turn the camera about the scene, one step a frame\n"
          "  --stats FILE.json     per-frame statistics\n"
@@ -47,6 +48,7 @@ MasterOptions parse_master_options(const std::vector<std::string>& args) {
     else if (a == "--worker-threads") o.worker_threads = to_int(a, value());
     else if (a == "--listen") o.listen = value();
     else if (a == "--frames") o.frames = to_int(a, value());
+    else if (a == "--first-frame") o.first_frame = to_int(a, value());
     else if (a == "--progressive") o.progressive = true;
     else if (a == "--camera-path") o.camera_path = value();
     else if (a == "--stats") o.stats = value();

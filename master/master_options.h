@@ -14,6 +14,7 @@ struct MasterOptions {
   int worker_threads = 0;         // threads per local worker; 0: cores / workers
   std::string listen = "tcp://127.0.0.1:0";  // port 0: any free port
   int frames = 0;                 // headless: render this many frames; 0: window
+  int first_frame = 0;            // headless: the index of the first (camera path, seed, file name)
   bool progressive = false;       // headless: accumulate frames (seed advances)
   std::string camera_path;        // headless: "orbit" turns the camera about the scene
   std::string stats;              // per-frame statistics as JSON
