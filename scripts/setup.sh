@@ -13,6 +13,7 @@ packages=(
   libgtest-dev
   xvfb xauth libgl1-mesa-dri
   python3-venv
+  clang-14 libclang-rt-14-dev
 )
 
 missing=()
