@@ -304,7 +304,8 @@ TEST(DiscontinuityBuffer, FastPathRoundsValuesToTheNearestQuantum) {
   const struct {
     float value, quantised;
   } cases[] = {{0.3f, 0.25f}, {0.4f, 0.5f}, {0.375f, 0.5f}, {0.6f, 0.5f}, {2.0f, 2.0f}};
-  for (const auto& [value, quantised] : cases) {
+  for (const auto& c : cases) {
+    const float value = c.value, quantised = c.quantised;
     const Scene plane = [value](int, int) { return Sample{5.0f, kUp, glm::vec3(value)}; };
     FilterSettings s = with_radius(1);
     s.fixed_scale = 4.0;

@@ -134,7 +134,7 @@ int accumulate_shadow_packet(const ShadowPacket& packet, size_t first, PixelBatc
   int traced = 0;
   for (int k = 0; k < 16; ++k) {
     // Embree sets tfar to -inf for occluded lanes.
-    const float lit = (packet.valid[k] != 0) & (packet.rays.tfar[k] >= 0.0f) ? 1.0f : 0.0f;
+    const float lit = ((packet.valid[k] != 0) & (packet.rays.tfar[k] >= 0.0f)) ? 1.0f : 0.0f;
     r[k] += packet.r[k] * lit;
     g[k] += packet.g[k] * lit;
     b[k] += packet.b[k] * lit;
