@@ -1,6 +1,7 @@
 #include "local_workers.h"
 
 #include <csignal>
+#include <fcntl.h>
 #include <filesystem>
 #include <stdexcept>
 #include <sys/prctl.h>
@@ -17,24 +18,49 @@ std::string find_worker_binary() {
   throw std::runtime_error("cannot find igi-worker next to " + self.string() + " (set IGI_WORKER_BINARY)");
 }
 
+namespace {
+
+constexpr int kCurveFd = 3;
+
+// A pipe holding `text` (a few hundred bytes: well under a pipe's buffer);
+// returns its read end. Both ends close on exec unless moved to kCurveFd.
+int pipe_with(const std::string& text) {
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error("cannot start a worker: pipe failed");
+  const bool written = write(fds[1], text.data(), text.size()) == ssize_t(text.size());
+  close(fds[1]);
+  if (!written) {
+    close(fds[0]);
+    throw std::runtime_error("cannot start a worker: cannot pass its keys");
+  }
+  return fds[0];
+}
+
+}  // namespace
+
 void LocalWorkers::start(int count, const std::string& endpoint, int threads_each,
-                         const std::vector<std::string>& extra_args) {
+                         const std::vector<std::string>& extra_args, const protocol::CurveClientKeys* curve) {
   const std::string binary = find_worker_binary();
   const pid_t parent = getpid();
   for (int i = 0; i < count; ++i) {
     std::vector<std::string> args{binary, "--connect", endpoint, "--threads", std::to_string(threads_each), "--quiet"};
+    if (curve) args.insert(args.end(), {"--curve-fd", std::to_string(kCurveFd)});
     args.insert(args.end(), extra_args.begin(), extra_args.end());
+    const int keys_fd = curve ? pipe_with(protocol::format_client_keys(*curve)) : -1;
     pid_t pid = fork();
     if (pid < 0) throw std::runtime_error("cannot start a worker: fork failed");
     if (pid == 0) {
       prctl(PR_SET_PDEATHSIG, SIGKILL);
       if (getppid() != parent) _exit(1);  // the master died before prctl took effect
+      // dup2 onto itself would keep close-on-exec, hence the explicit clear.
+      if (keys_fd >= 0 && (dup2(keys_fd, kCurveFd) < 0 || fcntl(kCurveFd, F_SETFD, 0) != 0)) _exit(1);
       std::vector<char*> argv;
       for (std::string& a : args) argv.push_back(a.data());
       argv.push_back(nullptr);
       execv(binary.c_str(), argv.data());
       _exit(127);
     }
+    if (keys_fd >= 0) close(keys_fd);
     pids_.push_back(pid);
   }
 }

@@ -2,9 +2,14 @@
 // igi-worker processes started by the master on this machine. They die with
 // the master however it ends: a normal exit or Ctrl-C stops them here, and a
 // crash or kill -9 reaches them through PR_SET_PDEATHSIG.
+//
+// With CURVE, each worker reads its keys from a pipe inherited as fd 3
+// (--curve-fd 3): never on a command line, where `ps` shows it to every user.
 #include <string>
 #include <sys/types.h>
 #include <vector>
+
+#include "protocol/curve.h"
 
 namespace igi {
 
@@ -16,8 +21,9 @@ class LocalWorkers {
   LocalWorkers& operator=(const LocalWorkers&) = delete;
 
   // Starts `count` workers connecting to `endpoint`. Throws when the worker
-  // binary cannot be found or started.
-  void start(int count, const std::string& endpoint, int threads_each, const std::vector<std::string>& extra_args);
+  // binary cannot be found or started. `curve`: the keys they connect with, or null.
+  void start(int count, const std::string& endpoint, int threads_each, const std::vector<std::string>& extra_args,
+             const protocol::CurveClientKeys* curve = nullptr);
   void kill_one(size_t index, int signal);
   void stop_all();
   const std::vector<pid_t>& pids() const { return pids_; }

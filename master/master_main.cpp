@@ -16,6 +16,7 @@
 #include "local_workers.h"
 #include "master_options.h"
 #include "master_session.h"
+#include "protocol/curve.h"
 #include "render/accumulator.h"
 #include "sampling/sobol.h"
 #include "scene/builtin_scenes.h"
@@ -177,18 +178,42 @@ int run_interactive(const igi::MasterOptions& o, const igi::Scene& scene, igi::M
   return 0;
 }
 
+// CURVE for the session: the master's keys, the workers it lets in, and a key
+// pair made now for its local workers (trusted, never written to a file).
+struct CurveSetup {
+  igi::protocol::CurveServerKeys server;
+  igi::protocol::CurveClientKeys local_workers;
+};
+
+std::optional<CurveSetup> curve_setup(const igi::MasterOptions& o) {
+  if (!o.curve) return std::nullopt;
+  CurveSetup c;
+  c.server.own = igi::protocol::read_secret_key_file(o.key_file);
+  if (!o.authorized_keys.empty()) c.server.authorized = igi::protocol::read_authorized_keys(o.authorized_keys);
+  if (c.server.authorized.empty() && o.workers == 0)
+    throw std::runtime_error(o.authorized_keys + ": no public keys: no worker could join");
+  c.local_workers = {c.server.own.public_key, igi::protocol::make_curve_keypair()};
+  c.server.authorized[c.local_workers.own.public_key] = "local worker";
+  return c;
+}
+
 int run(const igi::MasterOptions& o) {
+  const std::optional<CurveSetup> curve = curve_setup(o);  // bad key files stop us before anything is bound
   igi::Scene scene = igi::load_scene(o.render.scene);  // validates it, and gives the camera
   zmq::context_t context;
-  igi::MasterSession session(o, scene_source(o.render.scene), context);
-  std::fprintf(stderr, "igi-master: listening on %s\n", session.endpoint().c_str());
+  igi::MasterSession session(o, scene_source(o.render.scene), context, curve ? &curve->server : nullptr);
+  if (curve)
+    std::fprintf(stderr, "igi-master: listening on %s (CURVE; master public key %s; %zu authorised worker keys)\n",
+                 session.endpoint().c_str(), curve->server.own.public_key.c_str(), curve->server.authorized.size() - 1);
+  else
+    std::fprintf(stderr, "igi-master: listening on %s\n", session.endpoint().c_str());
   igi::LocalWorkers workers;
   const int threads = o.worker_threads > 0 ? o.worker_threads
                                            : std::max(1, int(std::thread::hardware_concurrency()) / std::max(1, o.workers));
   std::vector<std::string> extra;
   if (!igi::is_builtin_scene(o.render.scene))
     extra = {"--scene-dir", std::filesystem::absolute(o.render.scene).parent_path().string()};
-  workers.start(o.workers, local_endpoint(session.endpoint()), threads, extra);
+  workers.start(o.workers, local_endpoint(session.endpoint()), threads, extra, curve ? &curve->local_workers : nullptr);
   if (o.kill_worker_after > 0)
     session.on_accepted = [&](uint64_t n) { if (n == uint64_t(o.kill_worker_after)) workers.kill_one(0, SIGKILL); };
   if (o.frames > 0) return run_headless(o, scene, session, workers);

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "protocol/curve.h"
+
 namespace igi {
 
 std::string master_usage(const std::string& program) {
@@ -10,7 +12,13 @@ std::string master_usage(const std::string& program) {
          "  --workers N           local igi-worker processes to start (0: only remote ones) [2]\n"
          "  --worker-threads T    threads per local worker, 0 = cores / workers [0]\n"
          "  --listen ENDPOINT     where workers connect [tcp://127.0.0.1:0 = loopback, any free port];\n"
-         "                        name another interface (tcp://0.0.0.0:5555) to open it to a network\n"
+         "                        name another interface (tcp://0.0.0.0:5555) to open it to a network:\n"
+         "                        that needs CURVE (--key and --authorized-keys)\n"
+         "  --key FILE            the master's secret key (igi-keys new NAME writes NAME.key): turns on CURVE\n"
+         "                        authentication and encryption; workers get NAME.pub (--master-key)\n"
+         "  --authorized-keys P   workers allowed to connect: a folder of their .pub files, or a file\n"
+         "                        with one Z85 public key per line (local workers are always allowed)\n"
+         "  --curve               CURVE on a loopback endpoint too (needs --key)\n"
          "  --frames F            headless: render F frames and write them (-o); default: a window\n"
          "  --first-frame I       headless: start at frame I (camera path, seed and file names) [0]\n"
          "  --progressive         headless: accumulate frames, advancing the seed\n"
@@ -35,6 +43,21 @@ static int to_int(const std::string& option, const std::string& value) {
   throw std::invalid_argument(option + ": expected a non-negative integer, got '" + value + "'");
 }
 
+// Refuses what would expose workers' jobs and pixels, before anything is bound.
+static void check_security(MasterOptions& o) {
+  if (!protocol::is_local_endpoint(o.listen) && !o.curve)
+    throw std::invalid_argument("--listen " + o.listen +
+                                " can be reached from other machines, so CURVE authentication and encryption are "
+                                "required: give --key MASTER.key and --authorized-keys DIR (make keys with "
+                                "igi-keys new NAME), or listen on tcp://127.0.0.1");
+  if (o.curve && o.key_file.empty())
+    throw std::invalid_argument("CURVE needs the master's secret key: --key MASTER.key (igi-keys new MASTER)");
+  if (o.curve && o.authorized_keys.empty() && (o.workers == 0 || !protocol::is_local_endpoint(o.listen)))
+    throw std::invalid_argument("CURVE needs the workers' public keys: --authorized-keys DIR (their .pub files)");
+  if (!o.authorized_keys.empty() && !o.curve)
+    throw std::invalid_argument("--authorized-keys needs --key MASTER.key: without CURVE every peer is let in");
+}
+
 MasterOptions parse_master_options(const std::vector<std::string>& args) {
   MasterOptions o;
   std::vector<std::string> render_args;
@@ -47,6 +70,9 @@ MasterOptions parse_master_options(const std::vector<std::string>& args) {
     if (a == "--workers") o.workers = to_int(a, value());
     else if (a == "--worker-threads") o.worker_threads = to_int(a, value());
     else if (a == "--listen") o.listen = value();
+    else if (a == "--key") o.key_file = value(), o.curve = true;
+    else if (a == "--authorized-keys") o.authorized_keys = value();
+    else if (a == "--curve") o.curve = true;
     else if (a == "--frames") o.frames = to_int(a, value());
     else if (a == "--first-frame") o.first_frame = to_int(a, value());
     else if (a == "--progressive") o.progressive = true;
@@ -62,6 +88,7 @@ MasterOptions parse_master_options(const std::vector<std::string>& args) {
     else render_args.push_back(a);
   }
   o.render = parse_render_options(render_args);
+  if (!o.render.help) check_security(o);
   if (o.camera_path != "" && o.camera_path != "orbit")
     throw std::invalid_argument("--camera-path: expected 'orbit', got '" + o.camera_path + "'");
   return o;

@@ -13,6 +13,10 @@ struct MasterOptions {
   int workers = 2;                // local igi-worker processes to start
   int worker_threads = 0;         // threads per local worker; 0: cores / workers
   std::string listen = "tcp://127.0.0.1:0";  // port 0: any free port
+  // CURVE: required unless `listen` is local (protocol::is_local_endpoint).
+  bool curve = false;             // --curve, or implied by --key
+  std::string key_file;           // the master's NAME.key
+  std::string authorized_keys;    // a folder of workers' .pub files, or a list of keys
   int frames = 0;                 // headless: render this many frames; 0: window
   int first_frame = 0;            // headless: the index of the first (camera path, seed, file name)
   bool progressive = false;       // headless: accumulate frames (seed advances)

@@ -1,6 +1,7 @@
 #include "master_session.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
 
 #include "build_info.h"
@@ -10,14 +11,21 @@
 
 namespace igi {
 
-MasterSession::MasterSession(const MasterOptions& options, SceneSource scene, zmq::context_t& context)
+MasterSession::MasterSession(const MasterOptions& options, SceneSource scene, zmq::context_t& context,
+                             const protocol::CurveServerKeys* curve)
     : options_(options),
       scene_(std::move(scene)),
       router_(context, zmq::socket_type::router),
       scheduler_(options.credits, 2),
       session_id_(uint64_t(Clock::now().time_since_epoch().count())) {
-  protocol::configure(router_);
+  protocol::configure(router_, protocol::kMaxWorkerMessageBytes);
   router_.set(zmq::sockopt::router_mandatory, 1);  // a send to a vanished peer fails instead of vanishing
+  if (curve) {
+    zap_ = std::make_unique<protocol::ZapHandler>(context, curve->authorized);
+    protocol::make_curve_server(router_, curve->own);
+    monitor_ = std::make_unique<protocol::SocketMonitor>(
+        context, router_, ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL | ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL);
+  }
   router_.bind(options.listen);
   endpoint_ = router_.get(zmq::sockopt::last_endpoint);
   scheduler_.force_duplicates(options.force_duplicates);
@@ -59,7 +67,9 @@ std::vector<CompletedFrame> MasterSession::pump(int timeout_ms) {
   const auto end = Clock::now() + std::chrono::milliseconds(timeout_ms);
   std::vector<CompletedFrame> done;
   do {
-    if (auto received = protocol::receive(router_, 1, true)) {
+    wait_for_traffic(1);
+    serve_security();
+    if (auto received = protocol::receive(router_, 0, true)) {
       if (received->message) handle(received->identity, *received->message, received->bytes);
       else on_bad_message(received->identity, received->error);
     }
@@ -69,6 +79,39 @@ std::vector<CompletedFrame> MasterSession::pump(int timeout_ms) {
     for (CompletedFrame& f : take_completed()) done.push_back(std::move(f));
   } while (Clock::now() < end && done.empty());
   return done;
+}
+
+void MasterSession::wait_for_traffic(int timeout_ms) {
+  std::vector<zmq::pollitem_t> items{{router_.handle(), 0, ZMQ_POLLIN, 0}};
+  if (zap_) items.push_back({zap_->socket().handle(), 0, ZMQ_POLLIN, 0});
+  try {
+    zmq::poll(items, std::chrono::milliseconds(timeout_ms));
+  } catch (const zmq::error_t& e) {
+    if (e.num() != EINTR) throw;  // a signal: the caller's loop decides
+  }
+}
+
+// Handshakes wait for these answers; a peer is only a peer once they pass.
+void MasterSession::serve_security() {
+  if (zap_)
+    for (const protocol::ZapDecision& d : zap_->answer_waiting()) on_zap_decision(d);
+  if (!monitor_) return;
+  for (size_t n = monitor_->take_events().size(); n > 0; --n) {
+    // A flood of these is an attack or a misconfigured farm: log the first few, count all.
+    if (++failed_handshakes_ <= 5)
+      log("a peer failed the CURVE handshake (it does not use CURVE, or has another master public key)");
+  }
+}
+
+void MasterSession::on_zap_decision(const protocol::ZapDecision& d) {
+  if (d.allowed) return log("CURVE key '" + d.name + "' from " + d.address + " accepted");
+  ++refused_keys_;
+  // Each key once, and a bounded set: a peer may try a new key per connection.
+  if (refused_logged_.size() < 1000 && refused_logged_.insert(d.public_key).second)
+    std::fprintf(stderr,
+                 "igi-master: refused worker key %s from %s: not among --authorized-keys (%llu refused so far)\n",
+                 d.public_key.empty() ? "(not CURVE)" : d.public_key.c_str(), d.address.c_str(),
+                 static_cast<unsigned long long>(refused_keys_));
 }
 
 void MasterSession::handle(const std::string& identity, const protocol::Message& message, size_t bytes) {
@@ -206,6 +249,9 @@ std::vector<CompletedFrame> MasterSession::take_completed() {
 void MasterSession::close(const std::string& reason) {
   for (const auto& [identity, peer] : peers_) send(identity, protocol::Bye{reason});
   peers_.clear();
+  if (refused_keys_ + failed_handshakes_ > 0)
+    log("CURVE: refused " + std::to_string(refused_keys_) + " unknown worker keys; " +
+        std::to_string(failed_handshakes_) + " failed handshakes");
 }
 
 }  // namespace igi

@@ -6,9 +6,14 @@
 // Reliability lives here and only here: heartbeats both ways, a peer silent
 // for timeout_ms is dead and its jobs are issued again, the first result for
 // a job wins, and a frame is complete only when every job id is back.
+//
+// With CURVE keys the ROUTER is a CURVE server and the session answers
+// libzmq's ZAP requests itself (in pump(), no thread): only authorised worker
+// keys complete a handshake; others are logged and counted.
 #include <chrono>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -18,7 +23,10 @@
 
 #include "image/image.h"
 #include "master_options.h"
+#include "protocol/curve.h"
 #include "protocol/messages.h"
+#include "protocol/monitor.h"
+#include "protocol/zap.h"
 #include "scheduler.h"
 
 namespace igi {
@@ -53,7 +61,9 @@ struct CompletedFrame {
 
 class MasterSession {
  public:
-  MasterSession(const MasterOptions& options, SceneSource scene, zmq::context_t& context);
+  // `curve`: null for a plain socket. Binds options.listen; throws zmq::error_t when it cannot.
+  MasterSession(const MasterOptions& options, SceneSource scene, zmq::context_t& context,
+                const protocol::CurveServerKeys* curve = nullptr);
   std::string endpoint() const { return endpoint_; }
 
   // Queues a frame; jobs go out as workers have credit (at most two frames open).
@@ -66,6 +76,8 @@ class MasterSession {
 
   size_t worker_count() const { return scheduler_.worker_count(); }
   uint64_t bad_messages() const { return bad_messages_; }
+  uint64_t refused_keys() const { return refused_keys_; }              // CURVE keys the ZAP handler refused
+  uint64_t failed_handshakes() const { return failed_handshakes_; }    // peers without CURVE or the right master key
   // Called with every accepted result (test hooks, progress).
   std::function<void(uint64_t accepted)> on_accepted;
 
@@ -83,6 +95,9 @@ class MasterSession {
     std::optional<Clock::time_point> started;
   };
 
+  void wait_for_traffic(int timeout_ms);
+  void serve_security();
+  void on_zap_decision(const protocol::ZapDecision& decision);
   void handle(const std::string& identity, const protocol::Message& message, size_t bytes);
   void on_hello(const std::string& identity, const protocol::Hello& hello);
   void on_result(const std::string& identity, protocol::TileResult& result);
@@ -97,13 +112,17 @@ class MasterSession {
 
   MasterOptions options_;
   SceneSource scene_;
+  std::unique_ptr<protocol::ZapHandler> zap_;  // bound before router_, or CURVE would let every key in
   zmq::socket_t router_;
+  std::unique_ptr<protocol::SocketMonitor> monitor_;  // after router_: it watches it
   std::string endpoint_;
   Scheduler scheduler_;
   std::map<std::string, Peer> peers_;
   std::map<uint64_t, OpenFrame> frames_;
   uint64_t accepted_ = 0;
   uint64_t bad_messages_ = 0;
+  uint64_t refused_keys_ = 0, failed_handshakes_ = 0;
+  std::set<std::string> refused_logged_;  // each refused key is logged once
   uint64_t next_peer_ = 0;
   uint64_t session_id_;
 };

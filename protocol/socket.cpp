@@ -54,8 +54,8 @@ Frames receive_frames(zmq::socket_t& socket, size_t keep) {
 
 }  // namespace
 
-void configure(zmq::socket_t& socket) {
-  socket.set(zmq::sockopt::maxmsgsize, static_cast<int64_t>(kMaxMessageBytes));
+void configure(zmq::socket_t& socket, size_t max_bytes) {
+  socket.set(zmq::sockopt::maxmsgsize, static_cast<int64_t>(max_bytes));
   socket.set(zmq::sockopt::linger, 0);
 }
 

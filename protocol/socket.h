@@ -15,10 +15,15 @@
 
 namespace igi::protocol {
 
-// Options every socket gets, before bind/connect: ZMQ_MAXMSGSIZE =
-// kMaxMessageBytes (zmq drops a peer that sends more), linger 0 (close never
-// waits for unsent messages).
-void configure(zmq::socket_t& socket);
+// The most a worker ever sends: a TileResult of the largest tile, plus room
+// for its header. The master's socket takes no more from any peer, so an
+// unauthenticated one cannot make it allocate a scene's worth per message.
+inline constexpr size_t kMaxWorkerMessageBytes = size_t(kMaxTileSide) * kMaxTileSide * 3 * sizeof(float) + 65536;
+
+// Options every socket gets, before bind/connect: ZMQ_MAXMSGSIZE = max_bytes
+// (zmq drops the connection of a peer that sends more, and the rest go on),
+// linger 0 (close never waits for unsent messages).
+void configure(zmq::socket_t& socket, size_t max_bytes = kMaxMessageBytes);
 
 // Sends one message as one frame (DEALER side). Queues without blocking until
 // the socket's high-water mark (1000 messages by default); blocks past it.

@@ -1,7 +1,9 @@
 #include "scene_cache.h"
 
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <unistd.h>
 
@@ -9,15 +11,42 @@
 
 namespace igi {
 
+namespace {
+
+// A name the master sent, used as part of a file name: one path component,
+// no way up. The protocol refuses these too; the cache does not rely on it.
+bool is_plain_file_name(const std::string& name) {
+  return !name.empty() && name != "." && name != ".." &&
+         name.find_first_of(std::string("/\\\0", 3)) == std::string::npos;
+}
+
+// Creates `path` afresh (never through a link someone left there) and writes all of `bytes`.
+void write_new_file(const std::string& path, const std::vector<uint8_t>& bytes) {
+  std::filesystem::remove(path);  // a leftover of a killed worker; remove() does not follow links
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error("cannot create " + path + ": " + std::strerror(errno));
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n <= 0) break;
+    done += size_t(n);
+  }
+  const int error = errno;
+  ::close(fd);
+  if (done != bytes.size()) throw std::runtime_error("cannot write " + path + ": " + std::strerror(error));
+}
+
+}  // namespace
+
 SceneCache::SceneCache(std::string cache_dir, std::vector<std::string> search_dirs)
     : cache_dir_(std::move(cache_dir)), search_dirs_(std::move(search_dirs)) {}
 
 std::string SceneCache::cached_path(const std::string& file_name, uint64_t hash) const {
-  // The protocol has already refused names with '/', '\\' or "..".
-  return cache_dir_ + "/" + hash_hex(hash) + "-" + file_name;
+  return cache_dir_ + "/" + hash_hex(hash) + "-" + file_name;  // file_name: is_plain_file_name
 }
 
 std::optional<std::string> SceneCache::find(const std::string& file_name, uint64_t hash) const {
+  if (!is_plain_file_name(file_name)) return std::nullopt;
   std::vector<std::string> candidates{cached_path(file_name, hash)};
   for (const std::string& dir : search_dirs_) candidates.push_back(dir + "/" + file_name);
   for (const std::string& path : candidates) {
@@ -28,17 +57,15 @@ std::optional<std::string> SceneCache::find(const std::string& file_name, uint64
 }
 
 std::string SceneCache::store(const protocol::SceneData& data) const {
+  if (!is_plain_file_name(data.file_name))
+    throw std::runtime_error("scene name '" + data.file_name + "' is not a plain file name: not stored");
   if (content_hash(data.bytes) != data.scene_hash)
     throw std::runtime_error("scene bytes for '" + data.file_name + "' do not match their hash " +
                              hash_hex(data.scene_hash));
   std::filesystem::create_directories(cache_dir_);
   const std::string path = cached_path(data.file_name, data.scene_hash);
   const std::string temporary = path + ".part-" + std::to_string(getpid());
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(data.bytes.data()), std::streamsize(data.bytes.size()));
-    if (!out) throw std::runtime_error("cannot write " + temporary);
-  }
+  write_new_file(temporary, data.bytes);
   std::filesystem::rename(temporary, path);  // atomic: readers never see half a file
   return path;
 }

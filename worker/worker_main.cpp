@@ -1,7 +1,10 @@
 // igi-worker: renders tile jobs for an igi-master.
 //   igi-worker --connect tcp://HOST:PORT [--threads T] [--cache DIR] [--scene-dir DIR]... [--give-up S]
+//              [--master-key MASTER.pub --key WORKER.key]
 #include <cstdio>
+#include <stdexcept>
 #include <string>
+#include <unistd.h>
 
 #include "worker_session.h"
 
@@ -13,10 +16,28 @@ const char* kUsage =
     "  --cache DIR       where scenes received from the master are kept [igi-worker-cache]\n"
     "  --scene-dir DIR   also look here for scene files by name (repeatable) [.]\n"
     "  --give-up S       exit after S seconds without a master [60]\n"
+    "  --master-key FILE the master's public key (MASTER.pub) and\n"
+    "  --key FILE        this worker's secret key (igi-keys new NAME writes NAME.key): CURVE authentication\n"
+    "                    and encryption; the master must list NAME.pub in its --authorized-keys\n"
+    "  --curve-fd N      read both keys from file descriptor N (how igi-master passes them to local workers)\n"
     "  --quiet           no log lines\n";
+
+// Keys through an inherited descriptor: never on the command line, where any user sees them.
+igi::protocol::CurveClientKeys read_keys_from_fd(const std::string& fd_text) {
+  const int fd = std::stoi(fd_text);
+  const std::string source = "--curve-fd " + fd_text;
+  std::string text;
+  char buffer[4096];
+  ssize_t n;
+  while ((n = read(fd, buffer, sizeof buffer)) > 0 && text.size() < 65536) text.append(buffer, size_t(n));
+  if (n < 0) throw std::runtime_error(source + ": cannot read the keys");
+  close(fd);
+  return igi::protocol::parse_client_keys(text, source);
+}
 
 igi::WorkerOptions parse(int argc, char** argv) {
   igi::WorkerOptions o;
+  std::string master_key, key;
   bool dirs_given = false;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
@@ -35,9 +56,17 @@ igi::WorkerOptions parse(int argc, char** argv) {
     else if (a == "--give-up") o.give_up_seconds = std::stod(value());
     else if (a == "--build-id") o.build_id = value();  // tests: pretend to be another build
     else if (a == "--quiet") o.quiet = true;
+    else if (a == "--master-key") master_key = value();
+    else if (a == "--key") key = value();
+    else if (a == "--curve-fd") o.curve = read_keys_from_fd(value());
     else throw std::invalid_argument("unknown option '" + a + "'");
   }
   if (o.endpoint.empty()) throw std::invalid_argument("--connect is required");
+  if (master_key.empty() != key.empty())
+    throw std::invalid_argument("CURVE needs both --master-key MASTER.pub and --key WORKER.key");
+  if (!key.empty())
+    o.curve = igi::protocol::CurveClientKeys{igi::protocol::read_public_key_file(master_key),
+                                             igi::protocol::read_secret_key_file(key)};
   return o;
 }
 
@@ -51,8 +80,11 @@ int main(int argc, char** argv) {
     }
     igi::WorkerSession session(parse(argc, argv));
     return int(session.run());
-  } catch (const std::exception& e) {
+  } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "igi-worker: %s\n%s", e.what(), kUsage);
+    return 2;
+  } catch (const std::exception& e) {  // a key file, a socket: the message names it
+    std::fprintf(stderr, "igi-worker: %s\n", e.what());
     return 2;
   }
 }

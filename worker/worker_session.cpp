@@ -50,9 +50,11 @@ WorkerExit WorkerSession::run() {
     welcome_.reset();
     double silent = std::chrono::duration<double>(Clock::now() - last_contact).count();
     if (silent + backoff > options_.give_up_seconds) {
-      log("no master for " + std::to_string(int(silent)) + " s: giving up");
+      if (failed_handshakes_ == 0) log("no master for " + std::to_string(int(silent)) + " s: giving up");
+      else announce("no master for " + std::to_string(int(silent)) + " s: giving up; " + handshake_hint());
       return WorkerExit::GaveUp;
     }
+    if (failed_handshakes_ > 0) log(handshake_hint());
     log("master lost; reconnecting in " + std::to_string(int(backoff)) + " s");
     std::this_thread::sleep_for(std::chrono::duration<double>(backoff));
     backoff = std::min(backoff * 2.0, 32.0);
@@ -62,11 +64,16 @@ WorkerExit WorkerSession::run() {
 WorkerSession::Outcome WorkerSession::serve(zmq::context_t& context) {
   zmq::socket_t socket(context, zmq::socket_type::dealer);
   protocol::configure(socket);
+  if (options_.curve) protocol::make_curve_client(socket, *options_.curve);
+  protocol::SocketMonitor monitor(context, socket,
+                                  ZMQ_EVENT_HANDSHAKE_SUCCEEDED | ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL |
+                                      ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL | ZMQ_EVENT_HANDSHAKE_FAILED_AUTH);
   socket.connect(options_.endpoint);
   send(socket, protocol::Hello{options_.build_id, "native", uint32_t(options_.threads)});
   auto last_heard = Clock::now();
   for (;;) {
     wait_for_work(socket);
+    if (auto outcome = check_handshakes(monitor)) return *outcome;
     while (auto received = protocol::receive(socket, 0, false)) {
       last_heard = Clock::now();
       if (!received->message) {
@@ -83,6 +90,44 @@ WorkerSession::Outcome WorkerSession::serve(zmq::context_t& context) {
     if (Clock::now() - last_heard > 4 * heartbeat + std::chrono::seconds(welcome_ ? 0 : 2))
       return Outcome::MasterLost;
   }
+}
+
+void WorkerSession::announce(const std::string& text) const {
+  std::fprintf(stderr, "igi-worker: %s\n", text.c_str());  // even when quiet: it is why we exit
+}
+
+WorkerSession::Outcome WorkerSession::refused(const std::string& why) const {
+  announce(why);
+  return Outcome::Refused;
+}
+
+std::string WorkerSession::handshake_hint() const {
+  return std::to_string(failed_handshakes_) + " handshakes with the master at " + options_.endpoint + " failed" +
+         (options_.curve ? ": is --master-key the public key of that master's --key?" : ": is it an igi-master?");
+}
+
+// A refused handshake never becomes a message: zmq would retry it for ever.
+std::optional<WorkerSession::Outcome> WorkerSession::check_handshakes(protocol::SocketMonitor& monitor) {
+  const std::string& master = options_.endpoint;
+  for (const protocol::SocketEvent& e : monitor.take_events()) {
+    if (e.event == ZMQ_EVENT_HANDSHAKE_SUCCEEDED) {
+      failed_handshakes_ = 0;
+    } else if (e.event == ZMQ_EVENT_HANDSHAKE_FAILED_AUTH) {
+      const std::string key = options_.curve ? options_.curve->own.public_key : "none: no --key";
+      return refused("the master at " + master + " refused this worker's key (public key " + key + ", ZAP status " +
+                     std::to_string(e.value) + "): its operator must add this worker's NAME.pub to the master's "
+                     "--authorized-keys");
+    } else if (e.event == ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL &&
+               e.value == ZMQ_PROTOCOL_ERROR_ZMTP_MECHANISM_MISMATCH) {
+      return refused(options_.curve ? "the master at " + master + " does not use CURVE (no --key): connect without "
+                                          "--master-key and --key, or start the master with CURVE"
+                                    : "the master at " + master + " requires CURVE: give --master-key MASTER.pub and "
+                                          "--key WORKER.key (make keys with igi-keys new NAME)");
+    } else {
+      ++failed_handshakes_;  // a wrong --master-key, or a relay whose master is down: retried until --give-up
+    }
+  }
+  return std::nullopt;
 }
 
 // Sleeps until a message arrives, a result is ready, or a few ms pass (heartbeats, loading).

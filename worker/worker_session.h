@@ -6,6 +6,12 @@
 // Liveness: the master is presumed lost after 4 heartbeat intervals of
 // silence; the worker then reconnects with back-off 1 s, 2 s, ... 32 s and
 // gives up `give_up_seconds` after it last heard from a master.
+//
+// With CURVE keys the DEALER is a CURVE client. A handshake the master turns
+// down is reported by the socket monitor, not by a message. A refused key or
+// a mechanism mismatch (CURVE on one side only) ends the worker at once
+// (Refused); other failed handshakes (a wrong --master-key looks like a
+// dropped connection) are retried as a lost master, and giving up says so.
 #include <chrono>
 #include <future>
 #include <memory>
@@ -15,7 +21,9 @@
 
 #include <zmq.hpp>
 
+#include "protocol/curve.h"
 #include "protocol/messages.h"
+#include "protocol/monitor.h"
 #include "render_pool.h"
 #include "scene_cache.h"
 
@@ -28,6 +36,7 @@ struct WorkerOptions {
   std::vector<std::string> search_dirs{"."};
   double give_up_seconds = 60.0;
   std::string build_id;          // empty: this binary's
+  std::optional<protocol::CurveClientKeys> curve;  // empty: a plain connection
   bool quiet = false;
 };
 
@@ -46,6 +55,10 @@ class WorkerSession {
 
   Outcome serve(zmq::context_t& context);
   void wait_for_work(zmq::socket_t& socket);
+  std::optional<Outcome> check_handshakes(protocol::SocketMonitor& monitor);
+  void announce(const std::string& text) const;  // log() even when quiet
+  Outcome refused(const std::string& why) const;
+  std::string handshake_hint() const;
   std::optional<Outcome> handle(zmq::socket_t& socket, const protocol::Message& message);
   void on_welcome(zmq::socket_t& socket, const protocol::Welcome& welcome);
   void start_loading(const std::string& scene_path_or_name);
@@ -60,6 +73,7 @@ class WorkerSession {
   std::shared_ptr<Loaded> loaded_;
   std::vector<protocol::Message> waiting_;  // frames and jobs that came before the scene was ready
   Clock::time_point last_sent_;
+  int failed_handshakes_ = 0;  // in a row; reset by a handshake that succeeds
 };
 
 }  // namespace igi
