@@ -31,7 +31,8 @@ void write_stats_json(const std::string& path, const std::vector<FrameRecord>& f
   if (!out) throw std::runtime_error(path + ": cannot write statistics");
   uint64_t tiles = 0;
   for (const FrameRecord& f : frames) tiles += f.tiles;
-  out << "{\n  \"bad_messages\": " << totals.bad_messages << ",\n  \"master_cpu_seconds\": " << totals.master_cpu_seconds
+  out << "{\n  \"bad_messages\": " << totals.bad_messages << ",\n  \"refused_keys\": " << totals.refused_keys
+      << ",\n  \"failed_handshakes\": " << totals.failed_handshakes << ",\n  \"master_cpu_seconds\": " << totals.master_cpu_seconds
       << ",\n  \"wall_seconds\": " << totals.wall_seconds << ",\n  \"tiles\": " << tiles
       << ",\n  \"master_cpu_us_per_tile\": " << (tiles ? 1e6 * totals.master_cpu_seconds / double(tiles) : 0.0)
       << ",\n  \"frames\": [\n";

@@ -8,7 +8,9 @@
 namespace igi {
 
 struct RunTotals {
-  uint64_t bad_messages = 0;
+  uint64_t bad_messages = 0;       // frames that did not decode, dropped
+  uint64_t refused_keys = 0;       // CURVE: worker keys the ZAP handler refused
+  uint64_t failed_handshakes = 0;  // CURVE: peers without CURVE or the right master key
   double master_cpu_seconds = 0.0;  // process CPU during the session loop (includes image writing unless --no-write)
   double wall_seconds = 0.0;
 };

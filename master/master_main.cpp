@@ -115,8 +115,12 @@ int run_headless(const igi::MasterOptions& o, const igi::Scene& scene, igi::Mast
       break;
     }
   }
-  igi::RunTotals totals{session.bad_messages(), session_cpu,
-                        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count()};
+  igi::RunTotals totals;
+  totals.bad_messages = session.bad_messages();
+  totals.refused_keys = session.refused_keys();
+  totals.failed_handshakes = session.failed_handshakes();
+  totals.master_cpu_seconds = session_cpu;
+  totals.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   session.close(written == o.frames ? "done" : "interrupted");
   workers.stop_all();
   const std::string write_error = writer->error();
