@@ -20,6 +20,10 @@ MasterSession::MasterSession(const MasterOptions& options, SceneSource scene, zm
       session_id_(uint64_t(Clock::now().time_since_epoch().count())) {
   protocol::configure(router_, protocol::kMaxWorkerMessageBytes);
   router_.set(zmq::sockopt::router_mandatory, 1);  // a send to a vanished peer fails instead of vanishing
+  // A peer that has not finished the ZMTP handshake in 5 s (a port scanner,
+  // non-ZMTP bytes) is disconnected, rather than holding a descriptor for
+  // libzmq's default 30 s.
+  router_.set(zmq::sockopt::handshake_ivl, 5000);
   if (curve) {
     zap_ = std::make_unique<protocol::ZapHandler>(context, curve->authorized);
     protocol::make_curve_server(router_, curve->own);
