@@ -520,5 +520,99 @@ TEST(GltfLoader, SceneWithoutGeometryIsAnError) {
   expect_scene_error(b.write_gltf(test_dir(), "empty"), {"no geometry"});
 }
 
+// A texture the file asks for and the loader cannot read is broken input: an
+// error, not a silent fallback to baseColorFactor.
+TEST(GltfLoader, MissingTextureFileIsAnError) {
+  GltfBuilder b = lit_quad();
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", textured_material()))}});
+  b.add("images", {{"uri", "absent.png"}});
+  b.add("textures", {{"source", 0}});
+  expect_scene_error(b.write_gltf(test_dir(), "textured"), {"images[0]", "'absent.png'", "missing"});
+}
+
+TEST(GltfLoader, UndecodableTextureIsAnError) {
+  const fs::path dir = test_dir();
+  GltfBuilder b = lit_quad();
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", textured_material()))}});
+  b.add("images", {{"uri", "texture.png"}});
+  b.add("textures", {{"source", 0}});
+  write_bytes(dir / "texture.png", {'n', 'o', 't', ' ', 'a', 'n', ' ', 'i', 'm', 'a', 'g', 'e'});
+  expect_scene_error(b.write_gltf(dir, "garbage"), {"images[0]", "'texture.png'", "neither a PNG nor a JPEG"});
+  // A PNG header over broken data.
+  std::ifstream in(write_png(dir / "texture.png"), std::ios::binary);
+  std::vector<unsigned char> png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  png.resize(40);
+  write_bytes(dir / "texture.png", png);
+  expect_scene_error(b.write_gltf(dir, "cut"), {"images[0]", "'texture.png'", "cannot be decoded"});
+}
+
+TEST(GltfLoader, TextureHeaderTooLargeIsRejectedBeforeDecoding) {
+  const fs::path dir = test_dir();
+  std::ifstream in(write_png(dir / "texture.png"), std::ios::binary);
+  std::vector<unsigned char> png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (int at : {16, 20}) png[size_t(at)] = 0x7f;  // IHDR width and height: about 2^31
+  write_bytes(dir / "texture.png", png);
+  GltfBuilder b = lit_quad();
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", textured_material()))}});
+  b.add("images", {{"uri", "texture.png"}});
+  b.add("textures", {{"source", 0}});
+  expect_scene_error(b.write_gltf(dir, "huge"), {"images[0]", "at most 2^26 pixels"});
+}
+
+// A scene may name files beside it, never elsewhere: a scene from a peer
+// must not read the machine's other files.
+TEST(GltfLoader, ExternalFileOutsideTheSceneFolderIsRefused) {
+  const fs::path dir = test_dir();
+  fs::create_directories(dir / "scene");
+  GltfBuilder b = lit_quad();
+  b.write_gltf(dir, "quad");  // quad.bin beside scene/, not in it
+  b.doc["buffers"][0]["uri"] = "../quad.bin";
+  const fs::path path = dir / "scene" / "up.gltf";
+  std::ofstream(path) << b.doc.dump();
+  expect_scene_error(path, {"quad.bin", "refused: outside the scene's folder"});
+}
+
+TEST(GltfLoader, MemoryLoadResolvesExternalFilesOnlyInItsFolder) {
+  const fs::path dir = test_dir();
+  const fs::path path = lit_quad().write_gltf(dir, "quad");
+  std::ifstream in(path, std::ios::binary);
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(load_gltf_memory(bytes, "quad.gltf", dir.string()).scene.triangles.size(), 2u);
+  try {
+    load_gltf_memory(bytes, "quad.gltf");
+    ADD_FAILURE() << "an external buffer loaded without a resource folder";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("quad.gltf: "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("quad.bin"), std::string::npos) << e.what();
+  }
+}
+
+TEST(GltfLoader, CoordinatesBeyondFloatRangeAreAnError) {
+  GltfBuilder b = lit_quad();
+  b.doc["nodes"][0]["translation"] = {1e20, 0, 0};
+  expect_scene_error(b.write_gltf(test_dir(), "far"), {"world-space vertex 0", "within +-1e15 m"});
+  GltfBuilder camera = lit_quad();
+  camera.add("cameras", {{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}});
+  camera.add_root({{"camera", 0}, {"translation", {0, 0, 1e300}}});
+  expect_scene_error(camera.write_gltf(test_dir(), "camera"), {"nodes[1]", "cameras[0]", "within +-1e15 m"});
+}
+
+TEST(GltfLoader, InfiniteLightIntensityIsAnError) {
+  GltfBuilder b = lit_quad();
+  b.add_root({{"extensions", {{"KHR_lights_punctual",
+                               {{"light", b.add_light({{"type", "point"}, {"intensity", 1e300}})}}}}}});
+  expect_scene_error(b.write_gltf(test_dir(), "bright"), {"lights[0]", "not finite"});
+}
+
+// Float underflow: the triangles have area in double, none in the renderer's
+// float arithmetic, so the emitter cannot be sampled and the scene has no light.
+TEST(GltfLoader, EmitterTooSmallForFloatIsNoLight) {
+  GltfBuilder b = lit_quad();
+  b.doc["nodes"][0]["scale"] = {1e-30, 1e-30, 1e-30};
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", diffuse_material()))}});
+  const fs::path path = b.write_gltf(test_dir(), "tiny");
+  expect_scene_error(path, {"no light"});
+}
+
 }  // namespace
 }  // namespace igi

@@ -28,6 +28,11 @@ struct GltfDiagnostics {
   }
 };
 
+// World coordinates (metres) beyond +-kMaxCoordinate are an error: squared
+// distances and the scene's diagonal must stay finite in float, and float
+// resolution out there is a hundred million metres anyway.
+inline constexpr double kMaxCoordinate = 1e15;
+
 // "accessors[3]": how glTF paths name an array element in messages.
 inline std::string gltf_element(const std::string& array, size_t index) {
   return array + "[" + std::to_string(index) + "]";

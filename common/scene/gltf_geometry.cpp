@@ -65,8 +65,11 @@ std::optional<int> attribute(const tinygltf::Primitive& primitive, const char* n
   return it == primitive.attributes.end() ? std::nullopt : std::optional<int>(it->second);
 }
 
-// Sine of the angle at p0 below float precision: no area to hit or to sample.
+// Sine of the angle at p0 below float precision, or an area that the
+// renderer's float arithmetic (LightSet::triangle_area) rounds to zero, as
+// for tiny coordinates: no area to hit or to sample.
 bool zero_area(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2) {
+  if (!(0.5f * glm::length(glm::cross(p1 - p0, p2 - p0)) > 0.0f)) return true;
   const glm::dvec3 e1 = glm::dvec3(p1) - glm::dvec3(p0), e2 = glm::dvec3(p2) - glm::dvec3(p0);
   const double twice_area = glm::length(glm::cross(e1, e2));
   return !(twice_area > 1e-7 * glm::length(e1) * glm::length(e2));

@@ -1,6 +1,8 @@
 #include "scene/gltf_loader.h"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -40,13 +42,70 @@ std::vector<unsigned char> read_file(const std::string& path) {
   return bytes;
 }
 
-uint32_t read_u32(const std::vector<unsigned char>& bytes, size_t at) {
+// tinygltf's file access for external buffers and images, confined to one
+// folder. tinygltf tries each URI under the scene's folder and under ".";
+// anything that resolves outside the folder is reported missing, and named
+// in the error.
+struct ResourceFolder {
+  fs::path root;  // canonical; empty: no file may be read
+  std::vector<std::string> refused;
+
+  bool contains(const std::string& path) {
+    std::error_code error;
+    const fs::path target = fs::weakly_canonical(path, error);
+    bool inside = !root.empty() && !error;
+    if (inside) {
+      auto [root_end, unused] = std::mismatch(root.begin(), root.end(), target.begin(), target.end());
+      inside = root_end == root.end();
+    }
+    const bool known = std::find(refused.begin(), refused.end(), path) != refused.end();
+    if (!inside && !known && fs::exists(path, error)) refused.push_back(path);
+    return inside;
+  }
+};
+
+bool resource_exists(const std::string& path, void* folder) {
+  std::error_code error;
+  return static_cast<ResourceFolder*>(folder)->contains(path) && fs::is_regular_file(path, error);
+}
+
+std::string resource_path(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
+
+bool read_resource(std::vector<unsigned char>* out, std::string* error, const std::string& path,
+                   void* folder) {
+  if (!static_cast<ResourceFolder*>(folder)->contains(path)) {
+    *error = "outside the scene's folder";
+    return false;
+  }
+  try {
+    *out = read_file(path);
+  } catch (const SceneError& e) {
+    *error = e.what();
+    return false;
+  }
+  return true;
+}
+
+bool refuse_writes(std::string* error, const std::string&, const std::vector<unsigned char>&, void*) {
+  *error = "the loader writes no files";
+  return false;
+}
+
+ResourceFolder resource_folder(const std::string& dir) {
+  ResourceFolder folder;
+  std::error_code error;
+  if (!dir.empty()) folder.root = fs::weakly_canonical(dir, error);
+  if (error) folder.root.clear();
+  return folder;
+}
+
+uint32_t read_u32(std::span<const uint8_t> bytes, size_t at) {
   uint32_t value;  // GLB is little-endian, as is every machine this runs on
   std::memcpy(&value, bytes.data() + at, 4);
   return value;
 }
 
-bool is_glb(const std::string& path, const std::vector<unsigned char>& bytes) {
+bool is_glb(const std::string& path, std::span<const uint8_t> bytes) {
   if (bytes.size() >= 4 && read_u32(bytes, 0) == kGlbMagic) return true;
   std::string extension = fs::path(path).extension().string();
   for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -55,7 +114,7 @@ bool is_glb(const std::string& path, const std::vector<unsigned char>& bytes) {
 
 // Checks the GLB framing before tinygltf reads it, so that a truncated file
 // is reported as such and no chunk is read past the end of the bytes.
-void check_glb(const std::vector<unsigned char>& bytes, const GltfDiagnostics& diag) {
+void check_glb(std::span<const uint8_t> bytes, const GltfDiagnostics& diag) {
   const size_t size = bytes.size();
   if (size < kGlbHeaderBytes + kChunkHeaderBytes)
     diag.fail("GLB header",
@@ -97,27 +156,54 @@ void add_parser_warnings(const std::string& text, GltfDiagnostics& diag) {
     if (!line.empty()) diag.warnings.push_back(diag.file + ": " + line);
 }
 
-tinygltf::Model parse_model(const std::vector<unsigned char>& bytes, GltfDiagnostics& diag) {
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+std::string trimmed(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  return text;
+}
+
+tinygltf::Model parse_model(std::span<const uint8_t> bytes, const std::string& resource_dir,
+                            GltfDiagnostics& diag) {
+  // tinygltf takes 32-bit lengths; glTF caps .glb files at 4 GiB as well.
+  if (bytes.size() > UINT32_MAX) throw SceneError(diag.file + ": exceeds 4 GiB");
   const bool binary = is_glb(diag.file, bytes);
   if (binary) check_glb(bytes, diag);
+  ResourceFolder folder = resource_folder(resource_dir);
   tinygltf::TinyGLTF parser;
   parser.SetImageLoader(&keep_encoded_image, nullptr);
-  const std::string base_dir = fs::path(diag.file).parent_path().string();
+  parser.SetFsCallbacks({&resource_exists, &resource_path, &read_resource, &refuse_writes, &folder});
+  const std::string base_dir = folder.root.string();
   tinygltf::Model model;
   std::string error, warning;
   bool ok = false;
   try {
-    const unsigned size = unsigned(bytes.size());  // read_file capped it at 4 GiB
+    const unsigned size = unsigned(bytes.size());
     ok = binary ? parser.LoadBinaryFromMemory(&model, &error, &warning, bytes.data(), size, base_dir)
                 : parser.LoadASCIIFromString(&model, &error, &warning,
                                              reinterpret_cast<const char*>(bytes.data()), size, base_dir);
   } catch (const std::exception& e) {
     error = e.what();
   }
-  while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
+  error = trimmed(error);
+  for (const std::string& path : folder.refused)
+    error += (error.empty() ? "" : "; ") + path + " refused: outside the scene's folder";
   if (!ok) throw SceneError(diag.file + ": " + (error.empty() ? "not a valid glTF file" : error));
   add_parser_warnings(warning, diag);
+  for (const std::string& path : folder.refused)
+    diag.warnings.push_back(diag.file + ": " + path + " refused: outside the scene's folder");
   return model;
+}
+
+// Node transforms may carry finite object-space positions out of range.
+void check_world_extent(const Scene& scene, const GltfDiagnostics& diag) {
+  for (size_t i = 0; i < scene.positions.size(); ++i) {
+    const glm::vec3 p = scene.positions[i];
+    if (glm::any(glm::greaterThan(glm::abs(p), glm::vec3(float(kMaxCoordinate)))) || !finite(p))
+      diag.fail("meshes", "world-space vertex " + std::to_string(i) + " (after node transforms) at (" +
+                              std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
+                              "), expected coordinates within +-1e15 m");
+  }
 }
 
 // Scene::validate names the scene, not the file: prefix the file.
@@ -132,9 +218,15 @@ void validate_scene(const Scene& scene, const GltfDiagnostics& diag) {
 }  // namespace
 
 LoadedScene load_gltf(const std::string& path) {
+  const std::string folder = fs::path(path).parent_path().string();
+  return load_gltf_memory(read_file(path), path, folder.empty() ? "." : folder);
+}
+
+LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& name,
+                             const std::string& resource_dir) {
   GltfDiagnostics diag;
-  diag.file = path;
-  const tinygltf::Model model = parse_model(read_file(path), diag);
+  diag.file = name;
+  const tinygltf::Model model = parse_model(bytes, resource_dir, diag);
   check_buffer_views(model, diag);
   warn_unsupported_features(model, diag);
 
@@ -143,9 +235,10 @@ LoadedScene load_gltf(const std::string& path) {
   convert_materials(model, diag, scene);
   FlattenedNodes nodes = flatten_nodes(model, diag);
   add_mesh_instances(model, nodes.instances, diag, scene);
+  check_world_extent(scene, diag);
   scene.lights = std::move(nodes.lights);
   scene.camera = nodes.camera;
-  scene.name = nodes.scene_name.empty() ? fs::path(path).stem().string() : nodes.scene_name;
+  scene.name = nodes.scene_name.empty() ? fs::path(name).stem().string() : nodes.scene_name;
   validate_scene(scene, diag);
   loaded.warnings = std::move(diag.warnings);
   return loaded;

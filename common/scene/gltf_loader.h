@@ -15,6 +15,12 @@
 //    (stride 12, byteOffset 0) exceeds bufferView 2 (48 bytes)".
 // The finished scene passes Scene::validate(): it has triangles and a light.
 // Keeps no state between calls.
+//
+// External files (buffers, images) resolve only inside the scene's folder:
+// a URI that leads elsewhere ("../x", "/etc/x", a symlink out) is refused, so
+// a scene received from a peer cannot read the machine's other files.
+#include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -31,6 +37,14 @@ struct LoadedScene {
 
 // Binary when the file starts with the "glTF" magic or is named *.glb;
 // JSON otherwise.
+// External URIs resolve inside the file's folder.
 LoadedScene load_gltf(const std::string& path);
+
+// The same from bytes in memory (the fuzz targets, scenes off the wire).
+// `name` stands for the file in messages and, like a path, says .glb when
+// the bytes lack the magic. External URIs resolve inside `resource_dir`;
+// with an empty `resource_dir` every external URI is refused.
+LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& name,
+                             const std::string& resource_dir = "");
 
 }  // namespace igi

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstring>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -35,6 +36,11 @@ float srgb_to_linear(float c) {
 }
 
 // stb decodes to 4 channels of 8 or 16 bits, row 0 at the top (as Texture).
+std::string trimmed(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  return text;
+}
+
 Texture to_linear_texture(const tinygltf::Image& image) {
   Texture texture;
   texture.width = image.width;
@@ -56,6 +62,37 @@ Texture to_linear_texture(const tinygltf::Image& image) {
   return texture;
 }
 
+uint32_t big_endian(const unsigned char* at, int bytes) {
+  uint32_t value = 0;
+  for (int i = 0; i < bytes; ++i) value = value << 8 | at[i];
+  return value;
+}
+
+// Width and height from a PNG or JPEG header, read before decoding so that a
+// small file cannot make the decoder allocate gigabytes. nullopt: neither
+// format (glTF allows only these two), or a header cut short.
+std::optional<glm::ivec2> encoded_image_size(const unsigned char* bytes, size_t size) {
+  static const unsigned char png[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (size >= 24 && std::equal(png, png + 8, bytes) && std::memcmp(bytes + 12, "IHDR", 4) == 0)
+    return glm::ivec2(int(std::min(big_endian(bytes + 16, 4), uint32_t(INT_MAX))),
+                      int(std::min(big_endian(bytes + 20, 4), uint32_t(INT_MAX))));
+  if (size < 4 || bytes[0] != 0xFF || bytes[1] != 0xD8) return std::nullopt;
+  // JPEG: segments FF <marker> <u16 length> ... up to a start-of-frame.
+  for (size_t at = 2; at + 4 <= size;) {
+    if (bytes[at] != 0xFF) return std::nullopt;
+    const unsigned char marker = bytes[at + 1];
+    if (marker == 0xFF) { ++at; continue; }  // fill byte
+    const bool start_of_frame =
+        marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+    if (start_of_frame) {  // FF Cn, length, precision, height, width
+      if (at + 9 > size) return std::nullopt;
+      return glm::ivec2(big_endian(bytes + at + 7, 2), big_endian(bytes + at + 5, 2));
+    }
+    at += 2 + big_endian(bytes + at + 2, 2);
+  }
+  return std::nullopt;
+}
+
 // Converts materials in glTF order; decodes each used image once.
 class MaterialConverter {
  public:
@@ -70,7 +107,8 @@ class MaterialConverter {
   void warn_ignored_textures(const tinygltf::Material& source);
   int base_color_texture(const tinygltf::TextureInfo& info, const std::string& name);
   void warn_sampler(int sampler);
-  std::optional<Texture> decode_image(int image);
+  void check_image_size(const unsigned char* bytes, size_t size, const std::string& name);
+  Texture decode_image(int image);
 
   const tinygltf::Model& model_;
   GltfDiagnostics& diag_;
@@ -166,7 +204,11 @@ int MaterialConverter::base_color_texture(const tinygltf::TextureInfo& info, con
   const tinygltf::Texture& texture = model_.textures[size_t(info.index)];
   warn_sampler(texture.sampler);
   const int image = texture.source;
-  if (image < 0 || size_t(image) >= model_.images.size()) {
+  if (image >= 0 && size_t(image) >= model_.images.size())
+    diag_.fail(gltf_element("textures", size_t(info.index)),
+               "source " + std::to_string(image) + " does not exist (the file has " +
+                   std::to_string(model_.images.size()) + " images)");
+  if (image < 0) {  // e.g. only an extension's source (KHR_texture_basisu)
     diag_.warn_once("texture source",
                     gltf_element("textures", size_t(info.index)) +
                         " has no image source the loader can read: baseColorFactor is used");
@@ -174,14 +216,20 @@ int MaterialConverter::base_color_texture(const tinygltf::TextureInfo& info, con
   }
   auto cached = texture_of_image_.find(image);
   if (cached != texture_of_image_.end()) return cached->second;
-  std::optional<Texture> decoded = decode_image(image);
-  int slot = -1;
-  if (decoded) {
-    slot = int(scene_.textures.size());
-    scene_.textures.push_back(std::move(*decoded));
-  }
+  const int slot = int(scene_.textures.size());
+  scene_.textures.push_back(decode_image(image));
   texture_of_image_[image] = slot;
   return slot;
+}
+
+// Texels are stored as float4: 2^26 of them are 1 GiB.
+void MaterialConverter::check_image_size(const unsigned char* bytes, size_t size, const std::string& name) {
+  constexpr int64_t kMaxTexels = int64_t(1) << 26;
+  const std::optional<glm::ivec2> extent = encoded_image_size(bytes, size);
+  if (!extent) diag_.fail(name, "neither a PNG nor a JPEG image (or its header is cut short)");
+  if (extent->x <= 0 || extent->y <= 0 || int64_t(extent->x) * extent->y > kMaxTexels)
+    diag_.fail(name, std::to_string(extent->x) + " x " + std::to_string(extent->y) +
+                         " pixels, expected at least 1 x 1 and at most 2^26 pixels");
 }
 
 void MaterialConverter::warn_sampler(int sampler) {
@@ -198,22 +246,27 @@ void MaterialConverter::warn_sampler(int sampler) {
 
 // Images are decoded here rather than by tinygltf, after every bufferView
 // has been checked against its buffer (see parse_model in gltf_loader.cpp).
-std::optional<Texture> MaterialConverter::decode_image(int index) {
+// A texture the file asks for and the loader cannot read is an error, not a
+// silent fallback to baseColorFactor: the render would look plausible and wrong.
+Texture MaterialConverter::decode_image(int index) {
   const tinygltf::Image& image = model_.images[size_t(index)];
   const std::string name = gltf_element("images", size_t(index));
+  const std::string shown = image.uri.empty() ? name : name + " ('" + image.uri.substr(0, 200) + "')";
   const unsigned char* bytes = image.image.data();
   size_t size = image.image.size();
   if (image.bufferView >= 0) std::tie(bytes, size) = buffer_view_bytes(model_, image.bufferView, name, diag_);
+  if (size == 0 && image.bufferView >= 0) diag_.fail(shown, "the bufferView is empty");
+  if (size == 0) diag_.fail(shown, "the image file is missing, empty or outside the scene's folder");
+  if (size > size_t(INT_MAX)) diag_.fail(shown, std::to_string(size) + " bytes, over the 2 GiB image limit");
+  check_image_size(bytes, size, shown);
   std::string error, warning;
   tinygltf::Image decoded;
-  const bool ok = size > 0 && size <= size_t(INT_MAX) &&
-                  tinygltf::LoadImageData(&decoded, index, &error, &warning, 0, 0, bytes, int(size), nullptr);
-  if (!ok || decoded.component != 4 || (decoded.bits != 8 && decoded.bits != 16)) {
-    const std::string reason = error.empty() ? "" : " (" + error + ")";
-    diag_.warn_once("image " + name, name + " ('" + image.uri + "') could not be read or decoded" + reason +
-                                         ": baseColorFactor is used");
-    return std::nullopt;
-  }
+  const bool ok = tinygltf::LoadImageData(&decoded, index, &error, &warning, 0, 0, bytes, int(size), nullptr);
+  const size_t expected_bytes = size_t(decoded.width) * size_t(decoded.height) * 4 * size_t(decoded.bits / 8);
+  if (!ok || decoded.component != 4 || (decoded.bits != 8 && decoded.bits != 16) ||
+      decoded.image.size() != expected_bytes)
+    diag_.fail(shown, "cannot be decoded" + (error.empty() ? std::string() : " (" + trimmed(error) + ")") +
+                          ": expected a PNG or JPEG image");
   return to_linear_texture(decoded);
 }
 

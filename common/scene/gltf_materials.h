@@ -7,8 +7,10 @@
 //   metallic <  0.5                     -> Diffuse, albedo = baseColor
 // Emission is emissiveFactor * KHR_materials_emissive_strength, read as
 // radiance. Base colour textures are decoded from sRGB to linear on load;
-// alpha stays linear. Everything else a glTF material can say is reported
-// once through GltfDiagnostics and left out.
+// alpha stays linear. A used texture whose image is missing, is not a PNG or
+// JPEG, does not decode or exceeds 2^26 pixels is an error (SceneError).
+// Everything else a glTF material can say is reported once through
+// GltfDiagnostics and left out.
 #include "scene/gltf_diagnostics.h"
 #include "scene/scene.h"
 

@@ -27,6 +27,17 @@ glm::dmat4 local_transform(const tinygltf::Node& node) {
   return m;
 }
 
+// False for NaN too.
+bool in_range(glm::vec3 p) {
+  return glm::all(glm::lessThanEqual(glm::abs(p), glm::vec3(float(kMaxCoordinate))));
+}
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+std::string show(glm::vec3 p) {
+  return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")";
+}
+
 glm::vec3 world_point(const glm::dmat4& world, glm::dvec3 local) {
   return glm::vec3(world * glm::dvec4(local, 1.0));
 }
@@ -134,6 +145,9 @@ void NodeWalker::add_light(const tinygltf::Node& node, const std::string& name, 
   std::optional<PunctualLight> light = to_punctual(model_.lights[size_t(index)], size_t(index));
   if (!light) return;
   light->position = world_point(world, glm::dvec3(0.0));
+  if (!in_range(light->position))
+    diag_.fail(name, "the transform puts light " + std::to_string(index) + " at " + show(light->position) +
+                         ", expected coordinates within +-1e15 m");
   light->direction = glm::vec3(world_axis(world, glm::dvec3(0.0, 0.0, -1.0)));
   if (light->type != LightType::Point && light->direction == glm::vec3(0.0f))
     diag_.fail(name, "the transform collapses the direction of light " + std::to_string(index));
@@ -149,6 +163,8 @@ std::optional<PunctualLight> NodeWalker::to_punctual(const tinygltf::Light& ligh
   if (glm::any(glm::lessThan(color, glm::vec3(0.0f))) || !(light.intensity >= 0.0))
     diag_.fail(name, "color and intensity must not be negative");
   out.intensity = color * float(light.intensity);  // radiometric: W/sr or W/m^2
+  if (!finite(out.intensity))
+    diag_.fail(name, "color x intensity is not finite, expected finite radiometric intensity");
   if (light.type == "point") {
     out.type = LightType::Point;
   } else if (light.type == "spot") {
@@ -200,6 +216,9 @@ void NodeWalker::add_camera(const tinygltf::Node& node, const std::string& name,
     diag_.fail(name, "the transform collapses the view of " + camera_name);
   Camera out;
   out.position = world_point(world, glm::dvec3(0.0));
+  if (!in_range(out.position))
+    diag_.fail(name, "the transform puts " + camera_name + " at " + show(out.position) +
+                         ", expected coordinates within +-1e15 m");
   out.forward = glm::vec3(forward);
   out.up = glm::vec3(glm::normalize(true_up));
   out.vfov = float(yfov);

@@ -1,0 +1,155 @@
+#!/usr/bin/env python3
+"""Writes the broken scenes of this folder and MANIFEST (run from anywhere;
+the files are checked in, this documents how each was made).
+
+Each is a small emissive quad with exactly one thing broken. MANIFEST lists
+"file<TAB>substring the error message must contain"; tests/test_bad_scenes.cpp
+runs igi-render on each and checks the exit status and the message."""
+import base64, copy, json, os, struct
+
+here = os.path.dirname(os.path.abspath(__file__))
+os.chdir(here)
+manifest = []
+
+POSITIONS = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
+INDICES = [0, 1, 2, 0, 2, 3]
+UVS = [(0, 1), (1, 1), (1, 0), (0, 0)]
+
+
+def pack_bin(positions=POSITIONS, indices=INDICES, uvs=UVS):
+    data = b"".join(struct.pack("<3f", *p) for p in positions)
+    data += b"".join(struct.pack("<I", i) for i in indices)
+    data += b"".join(struct.pack("<2f", *uv) for uv in uvs)
+    return data
+
+
+def document(data, uri=None):
+    """A lit quad: positions, indices and uvs in one buffer, an emissive material."""
+    np, ni = len(POSITIONS), len(INDICES)
+    return {
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 2}, "indices": 1, "material": 0}]}],
+        "materials": [{"emissiveFactor": [1, 1, 1]}],
+        "buffers": [{"byteLength": len(data),
+                     "uri": uri or "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 12 * np},
+                        {"buffer": 0, "byteOffset": 12 * np, "byteLength": 4 * ni},
+                        {"buffer": 0, "byteOffset": 12 * np + 4 * ni, "byteLength": 8 * np}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": np, "type": "VEC3",
+                       "min": [-1, -1, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5125, "count": ni, "type": "SCALAR"},
+                      {"bufferView": 2, "componentType": 5126, "count": np, "type": "VEC2"}],
+    }
+
+
+def write(name, content, expected):
+    mode = "w" if isinstance(content, str) else "wb"
+    with open(name, mode) as f:
+        f.write(content)
+    manifest.append((name, expected))
+
+
+def gltf(name, doc, expected):
+    write(name, json.dumps(doc, indent=1), expected)
+
+
+def glb(doc, data, version=2, magic=b"glTF"):
+    doc = copy.deepcopy(doc)
+    del doc["buffers"][0]["uri"]
+    text = json.dumps(doc).encode()
+    text += b" " * (-len(text) % 4)
+    data += b"\0" * (-len(data) % 4)
+    chunks = struct.pack("<I4s", len(text), b"JSON") + text + struct.pack("<I4s", len(data), b"BIN\0") + data
+    return magic + struct.pack("<II", version, 12 + len(chunks)) + chunks
+
+
+data = pack_bin()
+base = document(data)
+
+# File framing.
+whole = glb(base, data)
+write("truncated.glb", whole[: len(whole) // 2], "truncated")
+write("wrong-magic.glb", glb(base, data, magic=b"gLTf"), "missing the 'glTF' magic")
+write("wrong-version.glb", glb(base, data, version=1), "version 1, expected 2")
+write("invalid-json.gltf", json.dumps(base)[:-40] + "]]", "parse error")
+gltf("missing-bin.gltf", document(data, uri="missing-bin.bin"), "missing-bin.bin")
+# A URI out of the scene's folder is refused even though the file exists.
+gltf("outside-folder.gltf", document(data, uri="../../test_bad_scenes.cpp"), "outside the scene's folder")
+
+# Accessors and buffers.
+doc = copy.deepcopy(base)
+doc["accessors"][0]["type"] = "VEC2"
+gltf("accessor-type-mismatch.gltf", doc, "accessors[0] (POSITION of meshes[0].primitives[0]): type VEC2, expected VEC3")
+doc = copy.deepcopy(base)
+doc["accessors"][0]["count"] = 5
+gltf("accessor-count-mismatch.gltf", doc, "count 5 (stride 12, byteOffset 0) exceeds bufferView 0 (48 bytes)")
+doc = copy.deepcopy(base)
+doc["accessors"][1]["count"] = 2**31
+gltf("huge-accessor-count.gltf", doc, "count 2147483648 (stride 4, byteOffset 0) exceeds bufferView 1")
+doc = copy.deepcopy(base)
+doc["bufferViews"][0]["byteLength"] = 2**40
+gltf("huge-buffer-view.gltf", doc, "bufferViews[0]: byteOffset 0 + byteLength 1099511627776 exceeds buffer 0")
+doc = copy.deepcopy(base)
+doc["buffers"][0]["byteLength"] = 2**40
+gltf("huge-buffer.gltf", doc, "Failed to decode 'uri'")
+write("indices-out-of-range.glb", glb(base, pack_bin(indices=[0, 1, 2, 0, 2, 7])),
+      "index 7 at element 5 is out of range: the primitive has 4 vertices")
+
+# Values.
+nan = float("nan")
+write("nan-position.glb", glb(base, pack_bin(positions=[(-1, -1, 0), (1, nan, 0), (1, 1, 0), (-1, 1, 0)])),
+      "accessors[0] (POSITION of meshes[0].primitives[0]): element 1 is not finite")
+inf = float("inf")
+gltf("infinite-position.gltf", document(pack_bin(positions=[(-1, -1, 0), (1, -1, 0), (inf, 1, 0), (-1, 1, 0)])),
+     "element 2 is not finite")
+doc = copy.deepcopy(base)
+doc["nodes"][0]["translation"] = [1e300, 0, 0]
+gltf("infinite-node-translation.gltf", doc, "expected coordinates within +-1e15 m")
+doc = copy.deepcopy(base)
+doc["materials"][0]["emissiveFactor"] = [0, 0, 0]
+doc["extensionsUsed"] = ["KHR_lights_punctual"]
+doc["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": 1e300}]}}
+doc["nodes"].append({"extensions": {"KHR_lights_punctual": {"light": 0}}})
+doc["scenes"][0]["nodes"].append(1)
+gltf("infinite-light-intensity.gltf", doc, "lights[0]: color x intensity is not finite")
+doc = copy.deepcopy(base)
+doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}]
+doc["nodes"].append({"camera": 0, "translation": [0, -1e300, 3]})
+doc["scenes"][0]["nodes"].append(1)
+gltf("infinite-camera.gltf", doc, "nodes[1]: the transform puts cameras[0] at (0.000000, -inf, 3.000000), expected coordinates within +-1e15 m")
+
+# Scene content.
+doc = copy.deepcopy(base)
+doc["materials"][0]["emissiveFactor"] = [0, 0, 0]
+gltf("no-light.gltf", doc, "no light")
+doc = copy.deepcopy(base)
+doc["scenes"][0]["nodes"] = []
+gltf("no-geometry.gltf", doc, "no geometry")
+
+# Textures.
+def textured(uri):
+    doc = copy.deepcopy(base)
+    doc["materials"][0]["pbrMetallicRoughness"] = {"baseColorTexture": {"index": 0}}
+    doc["textures"] = [{"source": 0}]
+    doc["images"] = [{"uri": uri}]
+    return doc
+
+gltf("missing-texture.gltf", textured("missing-texture.png"),
+     "images[0] ('missing-texture.png'): the image file is missing")
+write("garbage.png", bytes((i * 97 + 13) % 256 for i in range(64)), None)
+gltf("garbage-texture.gltf", textured("garbage.png"), "images[0] ('garbage.png'): neither a PNG nor a JPEG")
+png_header = b"\x89PNG\r\n\x1a\n" + struct.pack(">I4sIIBBBBB", 13, b"IHDR", 4, 4, 8, 6, 0, 0, 0) + b"\0\0\0\0"
+write("broken.png", png_header + struct.pack(">I4s", 16, b"IDAT") + b"not zlib data!!!" + b"\0" * 4, None)
+gltf("broken-texture.gltf", textured("broken.png"), "images[0] ('broken.png'): cannot be decoded")
+huge_png = b"\x89PNG\r\n\x1a\n" + struct.pack(">I4sIIBBBBB", 13, b"IHDR", 100000, 100000, 8, 6, 0, 0, 0) + b"\0\0\0\0"
+write("huge.png", huge_png, None)
+gltf("huge-texture.gltf", textured("huge.png"), "100000 x 100000 pixels")
+
+with open("MANIFEST", "w") as f:
+    f.write("# file<TAB>substring igi-render's error must contain (written by make_bad_scenes.py)\n")
+    for name, expected in manifest:
+        if expected is not None:
+            f.write(f"{name}\t{expected}\n")

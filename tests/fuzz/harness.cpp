@@ -1,0 +1,93 @@
+#include "fuzz/harness.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+
+#include "lighting/lights.h"
+#include "protocol/codec.h"
+#include "scene/gltf_loader.h"
+
+namespace igi::fuzz {
+namespace {
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+bool starts_with(const std::string& text, const std::string& prefix) { return text.rfind(prefix, 0) == 0; }
+
+std::string check_camera(const Camera& camera, const char* which) {
+  const bool ok = finite(camera.position) && finite(camera.forward) && finite(camera.up) &&
+                  std::isfinite(camera.vfov);
+  if (!ok)
+    return std::string(which) + " camera is not finite";
+  return {};
+}
+
+std::string check_lights(const Scene& scene) {
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const PunctualLight& light = scene.lights[i];
+    if (!finite(light.position) || !finite(light.direction) || !finite(light.intensity))
+      return "punctual light " + std::to_string(i) + " is not finite";
+  }
+  const LightSet lights(scene);
+  if (lights.empty()) return "the light set is empty, yet the scene validated";
+  return {};
+}
+
+// Every texture is looked up where its vertices map, as shading would.
+std::string check_textures(const Scene& scene) {
+  for (size_t i = 0; i < scene.textures.size(); ++i) {
+    const Texture& t = scene.textures[i];
+    if (t.width <= 0 || t.height <= 0 || t.texels.size() != size_t(t.width) * size_t(t.height))
+      return "texture " + std::to_string(i) + " has " + std::to_string(t.texels.size()) + " texels for " +
+             std::to_string(t.width) + " x " + std::to_string(t.height);
+    for (size_t v = 0; v < scene.uvs.size() && v < 4096; ++v) t.sample(scene.uvs[v]);
+  }
+  return {};
+}
+
+std::string check_loaded(const LoadedScene& loaded) {
+  const Scene& scene = loaded.scene;
+  const std::string prefix = std::string(kSceneInputName) + ": ";
+  for (const std::string& warning : loaded.warnings)
+    if (!starts_with(warning, prefix)) return "warning does not name the input: " + warning;
+  try {
+    scene.validate();
+  } catch (const SceneError& e) {
+    return std::string("a loaded scene fails validate(): ") + e.what();
+  }
+  if (scene.camera)
+    if (std::string error = check_camera(*scene.camera, "the file's"); !error.empty()) return error;
+  if (std::string error = check_camera(scene.camera_or_auto(), "the scene's"); !error.empty()) return error;
+  if (std::string error = check_lights(scene); !error.empty()) return error;
+  return check_textures(scene);
+}
+
+}  // namespace
+
+std::string check_decode(std::span<const uint8_t> bytes) {
+  const protocol::DecodeResult first = protocol::decode(bytes);
+  if (!first.message) return first.error.empty() ? "decode failed without an error message" : "";
+  if (!first.error.empty()) return "decode succeeded with an error: " + first.error;
+  const std::vector<uint8_t> encoded = protocol::encode(*first.message);
+  if (!std::equal(encoded.begin(), encoded.end(), bytes.begin(), bytes.end()))
+    return "re-encoding a decoded message gave other bytes (" + std::to_string(encoded.size()) + " vs " +
+           std::to_string(bytes.size()) + ")";
+  const protocol::DecodeResult second = protocol::decode(encoded);
+  if (!second.message) return "a re-encoded message does not decode: " + second.error;
+  if (second.message->index() != first.message->index()) return "a re-encoded message changed its type";
+  return {};
+}
+
+std::string check_scene(std::span<const uint8_t> bytes) {
+  try {
+    return check_loaded(load_gltf_memory(bytes, kSceneInputName));
+  } catch (const SceneError& e) {
+    const std::string prefix = std::string(kSceneInputName) + ": ";
+    return starts_with(e.what(), prefix) ? "" : std::string("error does not name the input: ") + e.what();
+  } catch (const std::exception& e) {
+    return std::string("unexpected exception (not SceneError): ") + e.what();
+  }
+}
+
+}  // namespace igi::fuzz

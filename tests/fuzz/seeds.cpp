@@ -1,0 +1,195 @@
+#include "fuzz/seeds.h"
+
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "protocol/codec.h"
+#include "scene/builtin_scenes.h"
+#include "scene/gltf_writer.h"
+#include "scene/scene_file.h"
+
+namespace igi::fuzz {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace protocol;
+
+RenderSettings settings() {
+  RenderSettings s;
+  s.clamp = 0.05f;
+  s.compensation_samples = 4;
+  return s;
+}
+
+TileResult tile_result() {
+  TileResult m;
+  m.frame_id = 3;
+  m.job_id = 17;
+  m.tile = {32, 64, 2, 2, 1};
+  m.render_seconds = 0.25f;
+  m.frame_state_hash = 0x1234abcd5678ef00;
+  m.rays = {4, 40, 12};
+  m.pixels = {{0.1f, 0.2f, 0.3f}, {1.0f, 0.5f, 0.0f}, {0.0f, 0.0f, 0.0f}, {7.5f, 2.0f, 1.0f}};
+  return m;
+}
+
+FrameSetupMsg frame_setup() {
+  FrameSetupMsg m;
+  m.frame.frame_id = 3;
+  m.frame.camera.position = {0.0f, 1.0f, 3.0f};
+  m.frame.width = 640;
+  m.frame.height = 480;
+  m.frame.seed = 99;
+  m.frame.sample_begin = 8;
+  m.frame.sample_count = 4;
+  m.frame.jitter_x = 0.25f;
+  return m;
+}
+
+std::string base64(const std::vector<uint8_t>& bytes) {
+  static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string text;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    const uint32_t n = uint32_t(bytes[i]) << 16 | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
+                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
+    for (size_t k = 0; k < 4; ++k) text += i + k <= bytes.size() ? digits[n >> (18 - 6 * k) & 63] : '=';
+  }
+  return text;
+}
+
+std::vector<uint8_t> read_all(const fs::path& path) {
+  std::optional<std::vector<uint8_t>> bytes = read_file_bytes(path.string());
+  if (!bytes) throw SceneError(path.string() + ": cannot read a seed written a moment ago");
+  return *bytes;
+}
+
+// The writer's .gltf refers to name.bin and name_textureN.png: inline them.
+std::vector<uint8_t> embedded_gltf(const fs::path& path) {
+  nlohmann::json doc = nlohmann::json::parse(read_all(path));
+  for (const char* array : {"buffers", "images"}) {
+    if (!doc.contains(array)) continue;
+    for (nlohmann::json& item : doc[array]) {
+      const std::string mime = array == std::string("images") ? "image/png" : "application/octet-stream";
+      const fs::path file = path.parent_path() / item["uri"].get<std::string>();
+      item["uri"] = "data:" + mime + ";base64," + base64(read_all(file));
+    }
+  }
+  const std::string text = doc.dump();
+  return {text.begin(), text.end()};
+}
+
+Scene textured_quad() {
+  Scene s;
+  s.name = "textured-quad";
+  Texture texture;
+  texture.width = texture.height = 2;
+  texture.texels = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 0.5f}};
+  s.textures.push_back(texture);
+  Material m;
+  m.name = "checker";
+  m.base_color_texture = 0;
+  m.alpha_mask = true;
+  s.materials.push_back(m);
+  s.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  s.normals = std::vector<glm::vec3>(4, {0, 0, 1});
+  s.uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+  s.triangles = {{0, 1, 2}, {0, 2, 3}};
+  s.triangle_material = {0, 0};
+  PunctualLight light;
+  light.position = {0, 0, 2};
+  s.lights.push_back(light);
+  return s;
+}
+
+Scene spot_and_camera() {
+  Scene s;
+  s.name = "spot-camera";
+  Material floor;
+  floor.type = MaterialType::Conductor;
+  floor.alpha = 0.2f;
+  add_quad(s, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, {-2, 0, -2}, add_material(s, floor));
+  Material glass;
+  glass.type = MaterialType::Glass;
+  glass.ior = 1.33f;
+  add_quad(s, {-0.5f, 0, 0}, {0.5f, 0, 0}, {0.5f, 1, 0}, {-0.5f, 1, 0}, add_material(s, glass));
+  PunctualLight spot;
+  spot.type = LightType::Spot;
+  spot.position = {0, 3, 0};
+  spot.direction = {0, -1, 0};
+  spot.intensity = glm::vec3(20.0f);
+  spot.inner_cone = 0.2f;
+  spot.outer_cone = 0.6f;
+  s.lights.push_back(spot);
+  s.camera = Camera{{0.0f, 1.5f, 4.0f}, glm::normalize(glm::vec3(0.0f, -0.3f, -1.0f)), {0, 1, 0}, 0.8f};
+  return s;
+}
+
+Scene directional_with_emitter() {
+  Scene s;
+  s.name = "sun-and-lamp";
+  Material mirror;
+  mirror.type = MaterialType::Mirror;
+  add_quad(s, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, {-1, 0, -1}, add_material(s, mirror));
+  Material lamp;
+  lamp.emission = glm::vec3(5.0f, 4.0f, 3.0f);
+  lamp.double_sided = false;
+  add_quad(s, {-0.2f, 1, -0.2f}, {-0.2f, 1, 0.2f}, {0.2f, 1, 0.2f}, {0.2f, 1, -0.2f}, add_material(s, lamp));
+  PunctualLight sun;
+  sun.type = LightType::Directional;
+  sun.direction = glm::normalize(glm::vec3(1, -2, 0.5f));
+  sun.intensity = glm::vec3(3.0f);
+  s.lights.push_back(sun);
+  return s;
+}
+
+}  // namespace
+
+std::vector<Seed> decode_seeds() {
+  Welcome welcome;
+  welcome.session = 42;
+  welcome.scene_name = "cornell.glb";
+  welcome.scene_hash = 0xfeedface;
+  welcome.scene_size = 4096;
+  welcome.settings = settings();
+  SceneData data;
+  data.scene_hash = 0xfeedface;
+  data.file_name = "cornell.glb";
+  data.bytes = {'g', 'l', 'T', 'F', 2, 0, 0, 0};
+  TileJobMsg job;
+  job.frame_id = 3;
+  job.job_id = 17;
+  job.tile = {32, 64, 40, 40, 1};
+  const std::vector<std::pair<std::string, Message>> messages = {
+      {"Hello", Hello{"0123456789ab clang-14", "avx512", 16}},
+      {"Welcome", welcome},
+      {"Refuse", Refuse{"build id differs"}},
+      {"SceneRequest", SceneRequest{0xfeedface}},
+      {"SceneData", data},
+      {"FrameSetup", frame_setup()},
+      {"TileJob", job},
+      {"TileResult", tile_result()},
+      {"Heartbeat", Heartbeat{}},
+      {"Bye", Bye{"shutting down"}},
+  };
+  std::vector<Seed> seeds;
+  for (const auto& [name, message] : messages) seeds.push_back({name + ".bin", encode(message)});
+  return seeds;
+}
+
+std::vector<Seed> scene_seeds(const std::string& scratch_dir) {
+  const fs::path dir(scratch_dir);
+  fs::create_directories(dir);
+  std::vector<Seed> seeds;
+  const Scene scenes[] = {make_cornell_box(), textured_quad(), spot_and_camera(), directional_with_emitter()};
+  for (const Scene& scene : scenes) {
+    const fs::path glb = dir / (scene.name + ".glb"), gltf = dir / (scene.name + ".gltf");
+    write_gltf(scene, glb.string());
+    write_gltf(scene, gltf.string());
+    seeds.push_back({glb.filename().string(), read_all(glb)});
+    seeds.push_back({gltf.filename().string(), embedded_gltf(gltf)});
+  }
+  return seeds;
+}
+
+}  // namespace igi::fuzz
