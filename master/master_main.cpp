@@ -2,7 +2,6 @@
 // writes them (--frames F) or shows them in a window.
 #include <atomic>
 #include <thread>
-#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +10,7 @@
 #include <optional>
 
 #include "display/interactive_window.h"
+#include "frame_plan.h"
 #include "frame_stats.h"
 #include "frame_writer.h"
 #include "local_workers.h"
@@ -18,7 +18,6 @@
 #include "master_session.h"
 #include "protocol/curve.h"
 #include "render/accumulator.h"
-#include "sampling/sobol.h"
 #include "scene/builtin_scenes.h"
 #include "scene/load_scene.h"
 #include "scene/scene_file.h"
@@ -50,33 +49,6 @@ std::string frame_path(const std::string& output, int frame, int frames, int fir
   return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
 }
 
-igi::FrameSetup frame_setup(const igi::MasterOptions& o, const igi::Scene& scene, int i, bool progressive) {
-  igi::FrameSetup f;
-  f.frame_id = uint64_t(i);
-  f.camera = scene.camera_or_auto();
-  f.width = o.render.width;
-  f.height = o.render.height;
-  f.seed = o.render.seed;
-  const bool pt = o.render.settings.method == igi::MethodKind::PathTracer;
-  f.sample_count = pt ? uint32_t(o.render.samples) : 1;
-  if (progressive && i > 0) {  // a new estimate each frame: new seed, new sub-pixel position
-    f.seed += uint32_t(i);
-    f.sample_begin = pt ? uint32_t(i * o.render.samples) : 0;
-    glm::vec2 j = igi::sample_2d(uint32_t(i), 0, o.render.seed);
-    f.jitter_x = j.x;
-    f.jitter_y = j.y;
-  }
-  if (o.camera_path == "orbit") {  // turn about the vertical axis through the scene's centre
-    const glm::vec3 c = scene.bounds().center();
-    const float angle = 0.02f * float(i);
-    const glm::mat3 r(glm::vec3(std::cos(angle), 0, -std::sin(angle)), glm::vec3(0, 1, 0),
-                      glm::vec3(std::sin(angle), 0, std::cos(angle)));
-    f.camera.position = c + r * (f.camera.position - c);
-    f.camera.forward = r * f.camera.forward;
-  }
-  return f;
-}
-
 int run_headless(const igi::MasterOptions& o, const igi::Scene& scene, igi::MasterSession& session,
                  igi::LocalWorkers& workers) {
   igi::Accumulator accumulator(o.render.width, o.render.height);
@@ -91,7 +63,7 @@ int run_headless(const igi::MasterOptions& o, const igi::Scene& scene, igi::Mast
   while (written < o.frames && !g_interrupted) {
     const double cpu_before = igi::process_cpu_seconds();
     while (next < o.frames && session.can_add_frame())
-      session.add_frame(frame_setup(o, scene, o.first_frame + next++, o.progressive));
+      session.add_frame(igi::plan_frame(o.render, o.camera_path, scene, o.first_frame + next++, o.progressive));
     std::vector<igi::CompletedFrame> completed = session.pump(50);
     session_cpu += igi::process_cpu_seconds() - cpu_before;
     for (igi::CompletedFrame& f : completed) {
@@ -155,7 +127,7 @@ int run_interactive(const igi::MasterOptions& o, const igi::Scene& scene, igi::M
       pass = 0;
     }
     if (session.can_add_frame()) {
-      igi::FrameSetup f = frame_setup(o, scene, pass, true);  // pass p: seed + p, a new jitter
+      igi::FrameSetup f = igi::plan_frame(o.render, o.camera_path, scene, pass, true);  // pass p: seed + p, a new jitter
       f.frame_id = uint64_t(next_id++);
       f.camera = controller.camera();
       generation_of_frame[f.frame_id] = generation;

@@ -1,6 +1,5 @@
 #include "frame_check.h"
 
-#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -8,6 +7,7 @@
 
 #include "image/metrics.h"
 #include "lighting/lights.h"
+#include "frame_plan.h"
 #include "render/offline_render.h"
 #include "scene/accel.h"
 #include "scene/load_scene.h"
@@ -37,21 +37,8 @@ ReferenceRenderer::ReferenceRenderer(const RenderOptions& options) : options_(op
 ReferenceRenderer::~ReferenceRenderer() = default;
 
 Image ReferenceRenderer::render(int i) const {
-  // Must stay the same arithmetic as frame_setup() in master/master_main.cpp
-  // (headless, not progressive, --camera-path orbit); if it drifts, every frame differs.
   const Scene& scene = prepared_->scene;
-  FrameSetup f;
-  f.frame_id = uint64_t(i);
-  f.camera = scene.camera_or_auto();
-  f.width = options_.width;
-  f.height = options_.height;
-  f.seed = options_.seed;
-  const glm::vec3 c = scene.bounds().center();
-  const float angle = 0.02f * float(i);
-  const glm::mat3 r(glm::vec3(std::cos(angle), 0, -std::sin(angle)), glm::vec3(0, 1, 0),
-                    glm::vec3(std::sin(angle), 0, std::cos(angle)));
-  f.camera.position = c + r * (f.camera.position - c);
-  f.camera.forward = r * f.camera.forward;
+  const FrameSetup f = plan_frame(options_, "orbit", scene, i, false);  // as igi-master --camera-path orbit
   FrameOptions frame_options;
   frame_options.tile_size = options_.tile_size;
   frame_options.threads = 2;

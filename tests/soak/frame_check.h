@@ -26,7 +26,7 @@ class ReferenceRenderer {
  public:
   explicit ReferenceRenderer(const RenderOptions& options);
   ~ReferenceRenderer();
-  // Frame i as igi-master --camera-path orbit renders it (frame_setup in master/master_main.cpp).
+  // Frame i as igi-master --camera-path orbit renders it (plan_frame in master/frame_plan.h).
   Image render(int frame) const;
 
  private:

@@ -1,0 +1,37 @@
+#include "frame_plan.h"
+
+#include <cmath>
+
+#include "sampling/sobol.h"
+
+namespace igi {
+
+FrameSetup plan_frame(const RenderOptions& render, const std::string& camera_path, const Scene& scene, int i,
+                      bool progressive) {
+  FrameSetup f;
+  f.frame_id = uint64_t(i);
+  f.camera = scene.camera_or_auto();
+  f.width = render.width;
+  f.height = render.height;
+  f.seed = render.seed;
+  const bool pt = render.settings.method == MethodKind::PathTracer;
+  f.sample_count = pt ? uint32_t(render.samples) : 1;
+  if (progressive && i > 0) {  // a new estimate each frame: new seed, new sub-pixel position
+    f.seed += uint32_t(i);
+    f.sample_begin = pt ? uint32_t(i * render.samples) : 0;
+    const glm::vec2 j = sample_2d(uint32_t(i), 0, render.seed);
+    f.jitter_x = j.x;
+    f.jitter_y = j.y;
+  }
+  if (camera_path == "orbit") {  // turn about the vertical axis through the scene's centre
+    const glm::vec3 c = scene.bounds().center();
+    const float angle = 0.02f * float(i);
+    const glm::mat3 r(glm::vec3(std::cos(angle), 0, -std::sin(angle)), glm::vec3(0, 1, 0),
+                      glm::vec3(std::sin(angle), 0, std::cos(angle)));
+    f.camera.position = c + r * (f.camera.position - c);
+    f.camera.forward = r * f.camera.forward;
+  }
+  return f;
+}
+
+}  // namespace igi
