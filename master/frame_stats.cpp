@@ -1,5 +1,6 @@
 #include "frame_stats.h"
 
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <sys/resource.h>
@@ -27,11 +28,13 @@ double process_cpu_seconds() {
 }
 
 void write_stats_json(const std::string& path, const std::vector<FrameRecord>& frames, const RunTotals& totals) {
-  std::ofstream out(path);
+  const std::string temporary = path + ".part";
+  std::ofstream out(temporary);
   if (!out) throw std::runtime_error(path + ": cannot write statistics");
   uint64_t tiles = 0;
   for (const FrameRecord& f : frames) tiles += f.tiles;
-  out << "{\n  \"bad_messages\": " << totals.bad_messages << ",\n  \"refused_keys\": " << totals.refused_keys
+  out << "{\n  \"complete\": " << (totals.complete ? "true" : "false") << ",\n  \"bad_messages\": " << totals.bad_messages
+      << ",\n  \"refused_keys\": " << totals.refused_keys
       << ",\n  \"failed_handshakes\": " << totals.failed_handshakes << ",\n  \"master_cpu_seconds\": " << totals.master_cpu_seconds
       << ",\n  \"wall_seconds\": " << totals.wall_seconds << ",\n  \"tiles\": " << tiles
       << ",\n  \"master_cpu_us_per_tile\": " << (tiles ? 1e6 * totals.master_cpu_seconds / double(tiles) : 0.0)
@@ -41,6 +44,9 @@ void write_stats_json(const std::string& path, const std::vector<FrameRecord>& f
     out << (i + 1 < frames.size() ? ",\n" : "\n");
   }
   out << "  ]\n}\n";
+  out.close();
+  if (!out) throw std::runtime_error(path + ": cannot write statistics");
+  std::filesystem::rename(temporary, path);
 }
 
 }  // namespace igi

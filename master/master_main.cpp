@@ -60,6 +60,17 @@ int run_headless(const igi::MasterOptions& o, const igi::Scene& scene, igi::Mast
   // The master's own cost: scheduling, messages, assembly, ZeroMQ's I/O thread;
   // image files are written on other threads (run with --no-write to leave them out).
   double session_cpu = 0.0;
+  auto totals_now = [&] {
+    igi::RunTotals t;
+    t.bad_messages = session.bad_messages();
+    t.refused_keys = session.refused_keys();
+    t.failed_handshakes = session.failed_handshakes();
+    t.master_cpu_seconds = session_cpu;
+    t.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    return t;
+  };
+  // The statistics so far, once a second: a master that is killed leaves them.
+  auto last_flush = wall_start;
   while (written < o.frames && !g_interrupted) {
     const double cpu_before = igi::process_cpu_seconds();
     while (next < o.frames && session.can_add_frame())
@@ -80,6 +91,10 @@ int run_headless(const igi::MasterOptions& o, const igi::Scene& scene, igi::Mast
       records.push_back(f.record);
       ++written;
     }
+    if (!o.stats.empty() && std::chrono::steady_clock::now() - last_flush > std::chrono::seconds(1)) {
+      igi::write_stats_json(o.stats, records, totals_now());
+      last_flush = std::chrono::steady_clock::now();
+    }
     if (session.worker_count() > 0) idle_since = std::chrono::steady_clock::now();
     if (std::chrono::steady_clock::now() - idle_since > std::chrono::seconds(60)) {
       std::fprintf(stderr, "igi-master: no worker for 60 s; start some with igi-worker --connect %s\n",
@@ -87,12 +102,8 @@ int run_headless(const igi::MasterOptions& o, const igi::Scene& scene, igi::Mast
       break;
     }
   }
-  igi::RunTotals totals;
-  totals.bad_messages = session.bad_messages();
-  totals.refused_keys = session.refused_keys();
-  totals.failed_handshakes = session.failed_handshakes();
-  totals.master_cpu_seconds = session_cpu;
-  totals.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  igi::RunTotals totals = totals_now();
+  totals.complete = true;
   session.close(written == o.frames ? "done" : "interrupted");
   workers.stop_all();
   const std::string write_error = writer->error();

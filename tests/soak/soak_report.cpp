@@ -30,7 +30,9 @@ MasterFigures read_master_figures(const std::string& dir, int runs) {
     if (!in) continue;
     const nlohmann::json stats = nlohmann::json::parse(in, nullptr, false);
     if (stats.is_discarded()) continue;
-    ++m.runs_finished;
+    // A killed master leaves its statistics as of its last flush (once a second).
+    if (stats.value("complete", false)) ++m.runs_finished;
+    ++m.runs_with_stats;
     m.bad_messages_json += stats.value("bad_messages", uint64_t(0));
     if (stats["frames"].empty()) continue;
     const nlohmann::json& last = stats["frames"].back();  // the scheduler's counts are totals over the run
@@ -77,11 +79,12 @@ int report(const SoakTotals& t, const FrameVerdict& frames, const MasterFigures&
               frames.identical, frames.differing.size());
   print_faults(t);
   std::printf("soak: tiles re-issued: %llu (duplicated near a frame's end: %llu, late results dropped: %llu), "
-              "from %d of %d master processes (the %d killed ones took their statistics with them)\n",
+              "from the statistics of %d of %d master processes (%d finished; killed ones up to their last "
+              "flush, once a second)\n",
               (unsigned long long)m.reissued, (unsigned long long)m.duplicated, (unsigned long long)m.late_dropped,
-              m.runs_finished, m.runs, m.runs - m.runs_finished);
-  std::printf("soak: bad messages dropped by the master: %llu (its logs, every process; statistics of finished "
-              "ones: %llu); workers declared dead: %llu\n", (unsigned long long)m.bad_messages_logged,
+              m.runs_with_stats, m.runs, m.runs_finished);
+  std::printf("soak: bad messages dropped by the master: %llu (its logs, every process; its statistics: %llu); "
+              "workers declared dead: %llu\n", (unsigned long long)m.bad_messages_logged,
               (unsigned long long)m.bad_messages_json, (unsigned long long)m.declared_dead);
   std::printf("soak: lost frames: %d\n", lost);
   print_restarts(t);

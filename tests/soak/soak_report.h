@@ -11,10 +11,10 @@
 namespace igi::soak {
 
 // The master's own figures: from the statistics JSON of each master process
-// that finished (a killed master's statistics die with it) and from the logs
-// of every master process.
+// (a killed one's as of its last flush, once a second) and from the logs of
+// every master process.
 struct MasterFigures {
-  int runs = 0, runs_finished = 0;
+  int runs = 0, runs_finished = 0, runs_with_stats = 0;  // master processes: all, complete, with statistics
   uint64_t reissued = 0, duplicated = 0, late_dropped = 0, bad_messages_json = 0;
   uint64_t bad_messages_logged = 0, declared_dead = 0;
 };
