@@ -18,6 +18,7 @@
 #include "support/image_compare.h"
 #include "support/process.h"
 #include "support/render_fixture.h"
+#include "support/sanitizers.h"
 
 namespace igi {
 namespace {
@@ -93,7 +94,8 @@ TEST(Distributed, WorkerKilledMidFrameLosesNothing) {
   double slowest = 0;
   for (auto& f : s["frames"]) slowest = std::max(slowest, f["seconds"].get<double>());
   std::printf("slowest frame with a worker killed: %.0f ms (timeout 300 ms)\n", 1e3 * slowest);
-  EXPECT_LT(slowest, 2 * 0.3 + 1.0) << "a kill delays a frame by about a timeout, not more";
+  // Slack for a loaded 2-core machine: 1 s, 5 s under a sanitizer (2.4 s seen under ASan with ctest -j2).
+  EXPECT_LT(slowest, 2 * 0.3 + 1.0 * test::kSlowdown) << "a kill delays a frame by about a timeout, not more";
 }
 
 TEST(Distributed, WorkerJoiningMidSessionGetsWork) {
