@@ -47,9 +47,16 @@ std::string render_usage(const std::string& program) {
          "  --threads T           render threads, 0 = all [0]\n"
          "  --tile T              tile size in pixels [32]\n"
          "  --seed S              frame seed [1]\n"
-         "  --max-depth D         pt: path length; ir/igi: specular chain [16]\n"
+         "  --path-depth D        pt: longest path in bounces, 0 = unbounded (Russian roulette) [0]\n"
+         "  --light-depth D       ir/igi: longest VPL light path, 0 = unbounded (Russian roulette) [0]\n"
+         "  --specular-depth D    ir/igi: mirrors and glass followed from the camera, 0 = unbounded [16]\n"
          "  --vpl-sets N          ir/igi: N x N interleaved VPL sets [3]\n"
          "  --vpl-paths M         ir/igi: light paths per VPL set [16]\n"
+         "  --aa S                ir/igi: S sub-samples per pixel (1, 4, 9, ...), each shaded by 1/S of the\n"
+         "                        pixel's light paths (anti-aliasing by VPL groups); needs M >= S [1]\n"
+         "  --glossy-threshold A  ir/igi: GGX surfaces with alpha below A gather their lobe with rays\n"
+         "                        instead of VPL light; 0 = VPLs shade every glossy surface [0.2]\n"
+         "  --glossy-rays K       ir/igi: gather rays per sub-sample of such a surface [1]\n"
          "  --clamp C             ir/igi: clamp 1/r^2 below distance C x scene diagonal, 0 = off [0]\n"
          "  --compensate N        ir/igi: bias compensation, N eye samples per pixel (needs --clamp), 0 = off [0]\n"
          "  --no-filter           igi: skip the discontinuity buffer\n"
@@ -84,15 +91,19 @@ RenderOptions parse_render_options(const std::vector<std::string>& args) {
     else if (a == "--threads") o.threads = to_int(a, value(), 0);
     else if (a == "--tile") o.tile_size = to_int(a, value(), 1);
     else if (a == "--seed") o.seed = uint32_t(to_int(a, value(), 0));
-    else if (a == "--max-depth") s.max_depth = to_int(a, value(), 1);
+    else if (a == "--path-depth") s.path_depth = to_int(a, value(), 0);
+    else if (a == "--light-depth") s.light_depth = to_int(a, value(), 0);
+    else if (a == "--specular-depth") s.specular_depth = to_int(a, value(), 0);
+    else if (a == "--max-depth")
+      throw std::invalid_argument("--max-depth was split: --path-depth (pt), --light-depth (VPL light paths) and "
+                                  "--specular-depth (mirrors and glass from the camera)");
     else if (a == "--vpl-sets") s.interleave = to_int(a, value(), 1);
     else if (a == "--vpl-paths") s.paths_per_set = to_int(a, value(), 1);
+    else if (a == "--aa") s.aa_samples = to_int(a, value(), 1);
+    else if (a == "--glossy-threshold") s.glossy_threshold = to_float(a, value());
+    else if (a == "--glossy-rays") s.glossy_rays = to_int(a, value(), 1);
     else if (a == "--clamp") s.clamp = to_float(a, value());
-    else if (a == "--compensate") {
-      s.compensation_samples = to_int(a, value(), 0);
-      if (s.compensation_samples > 256)  // the wire format's bound (protocol/codec.cpp)
-        throw std::invalid_argument("--compensate: expected at most 256, got '" + args[i] + "'");
-    }
+    else if (a == "--compensate") s.compensation_samples = to_int(a, value(), 0);
     else if (a == "--no-filter") s.filter = false;
     else if (a == "--filter-normal") s.filter_normal_cos = to_float(a, value());
     else if (a == "--filter-depth") s.filter_depth_ratio = to_float(a, value());
@@ -102,6 +113,7 @@ RenderOptions parse_render_options(const std::vector<std::string>& args) {
     else if (a == "--screenshot") { o.show = true; o.screenshot = value(); }
     else throw std::invalid_argument("unknown option '" + a + "' (see --help)");
   }
+  if (auto error = settings_error(o.settings)) throw std::invalid_argument(*error);
   return o;
 }
 

@@ -2,11 +2,13 @@
 // validates its fields right after reading them; the limits are listed first.
 #include "protocol/codec.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 
+#include "methods/subpixel.h"
 #include "protocol/wire.h"
 
 namespace igi::protocol {
@@ -14,10 +16,7 @@ namespace {
 
 constexpr size_t kHeaderBytes = 8;
 constexpr int64_t kMaxThreads = 4096;
-constexpr int64_t kMaxDepth = 1024;
-constexpr int64_t kMaxInterleave = 16;
-constexpr int64_t kMaxPathsPerSet = 1 << 20;
-constexpr int64_t kMaxCompensationSamples = 256;
+// Settings bounds are the command lines' (methods/settings.h).
 constexpr int64_t kMaxCredits = 64;
 constexpr int64_t kMinHeartbeatMs = 10, kMaxHeartbeatMs = 60000;
 constexpr int64_t kMaxBorder = 64;
@@ -90,9 +89,14 @@ void check_camera(Reader& r, const Camera& camera) {
 
 void write(Writer& w, const RenderSettings& s) {
   w.u8(static_cast<uint8_t>(s.method));
-  w.i32(s.max_depth);
+  w.i32(s.path_depth);
+  w.i32(s.light_depth);
+  w.i32(s.specular_depth);
   w.i32(s.interleave);
   w.i32(s.paths_per_set);
+  w.i32(s.aa_samples);
+  w.f32(s.glossy_threshold);
+  w.i32(s.glossy_rays);
   w.f32(s.clamp);
   w.i32(s.compensation_samples);
   w.boolean(s.filter);
@@ -104,12 +108,23 @@ void read(Reader& r, RenderSettings& s) {
   uint8_t method = r.u8("settings.method");
   check_range(r, "settings.method", method, 0, static_cast<uint8_t>(MethodKind::Igi));
   if (r.ok()) s.method = static_cast<MethodKind>(method);
-  s.max_depth = r.i32("settings.max_depth");
-  check_range(r, "settings.max_depth", s.max_depth, 1, kMaxDepth);
+  s.path_depth = r.i32("settings.path_depth");
+  check_range(r, "settings.path_depth", s.path_depth, 0, kMaxDepth);
+  s.light_depth = r.i32("settings.light_depth");
+  check_range(r, "settings.light_depth", s.light_depth, 0, kMaxDepth);
+  s.specular_depth = r.i32("settings.specular_depth");
+  check_range(r, "settings.specular_depth", s.specular_depth, 0, kMaxDepth);
   s.interleave = r.i32("settings.interleave");
   check_range(r, "settings.interleave", s.interleave, 1, kMaxInterleave);
   s.paths_per_set = r.i32("settings.paths_per_set");
   check_range(r, "settings.paths_per_set", s.paths_per_set, 1, kMaxPathsPerSet);
+  s.aa_samples = r.i32("settings.aa_samples");
+  check_range(r, "settings.aa_samples", s.aa_samples, 1, std::min(kMaxAntialiasSamples, s.paths_per_set));
+  if (r.ok() && subpixel_side(s.aa_samples) == 0) r.fail("settings.aa_samples", std::to_string(s.aa_samples) + ", expected a square number");
+  s.glossy_threshold = r.f32("settings.glossy_threshold");
+  check_closed(r, "settings.glossy_threshold", s.glossy_threshold, 0.0f, 1.0f);
+  s.glossy_rays = r.i32("settings.glossy_rays");
+  check_range(r, "settings.glossy_rays", s.glossy_rays, 1, kMaxGlossyRays);
   s.clamp = r.f32("settings.clamp");
   check_finite_non_negative(r, "settings.clamp", s.clamp);
   s.compensation_samples = r.i32("settings.compensation_samples");

@@ -38,9 +38,7 @@ TEST(BiasCompensation, CornerRegainsTheClampedEnergy) {
   RenderSettings pt;
   pt.method = MethodKind::PathTracer;
   const Image ref = p.render(pt, kWidth, kHeight, 512, 7);
-  std::vector<GSample> g;
-  RayCounts rays;
-  build_gbuffer(*p.accel, p.frame(kWidth, kHeight), Region{0, 0, kWidth, kHeight}, 16, g, rays);
+  const std::vector<GSample> g = p.visible_points(kWidth, kHeight);
   const glm::vec3 corner(4.0f, 0.0f, 4.0f);
   // sum(image) / sum(pt) - 1 over the corner region.
   auto bias = [&](const Image& image) {

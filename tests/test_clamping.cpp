@@ -15,9 +15,7 @@ namespace {
 // Pixels whose visible point lies within `distance` of another surface,
 // found by short probe rays over the hemisphere.
 std::vector<bool> crease_mask(const test::Prepared& p, const FrameSetup& frame, float distance) {
-  std::vector<GSample> gbuffer;
-  RayCounts rays;
-  build_gbuffer(*p.accel, frame, Region{0, 0, frame.width, frame.height}, 16, gbuffer, rays);
+  const std::vector<GSample> gbuffer = p.visible_points(frame.width, frame.height);
   std::vector<bool> mask(gbuffer.size(), false);
   for (size_t i = 0; i < gbuffer.size(); ++i) {
     const GSample& g = gbuffer[i];

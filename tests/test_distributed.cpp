@@ -66,6 +66,24 @@ TEST(Distributed, TwoWorkersMatchTheSingleProcessRenderBitForBit) {
   EXPECT_TRUE(test::images_identical("dist-two", read_image(out), single_process()));
 }
 
+// Anti-aliasing by VPL groups, the glossy gather (glossy) and exact spot
+// light (corner), with compensation: workers give the one-process image.
+TEST(Distributed, AntialiasingGlossyGatherAndExactLightsMatchOneProcess) {
+  for (const std::string scene : {"glossy", "corner"}) {
+    const std::string out = test::output_path("dist-quality-" + scene + ".exr");
+    auto r = test::run(master("--workers 2 --frames 1 --aa 4 --clamp 0.05 --compensate 2 -o " + out, scene));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    test::Prepared p(load_scene(scene));
+    RenderSettings s;
+    s.method = MethodKind::Igi;
+    s.paths_per_set = 8;
+    s.aa_samples = 4;
+    s.clamp = 0.05f;
+    s.compensation_samples = 2;
+    EXPECT_TRUE(test::images_identical("dist-quality-" + scene, read_image(out), p.render(s, kWidth, kHeight, 1, 1)));
+  }
+}
+
 TEST(Distributed, DuplicatedTilesGiveTheSameImage) {
   const std::string out = test::output_path("dist-dup.exr"), stats = test::output_path("dist-dup.json");
   auto r = test::run(master("--workers 2 --frames 1 --credits 1 --test-force-duplicates 40 -o " + out + " --stats " + stats));

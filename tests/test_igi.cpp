@@ -7,6 +7,7 @@
 #include "image/metrics.h"
 #include "methods/vpl_method.h"
 #include "scene/builtin_scenes.h"
+#include "scene/load_scene.h"
 #include "support/image_compare.h"
 #include "support/render_fixture.h"
 
@@ -41,17 +42,38 @@ Image render_tiled(const Method& method, const FrameSetup& frame, int border, in
   return image;
 }
 
-class TileInvariance : public ::testing::TestWithParam<MethodKind> {};
+struct TileCase {
+  std::string name;
+  std::string scene;
+  RenderSettings settings;
+};
+
+// Every option that changes how a pixel is shaded, on a scene where it acts:
+// anti-aliasing, the glossy gather (glossy), exact spot light (corner),
+// bias compensation.
+std::vector<TileCase> tile_cases() {
+  RenderSettings all = vpl_settings(MethodKind::Igi, 4, 0.05f, true, 2);
+  all.aa_samples = 4;
+  RenderSettings ir_all = all;
+  ir_all.method = MethodKind::InstantRadiosity;
+  return {{"ir", "cornell", vpl_settings(MethodKind::InstantRadiosity, 4, 0.05f)},
+          {"igi", "cornell", vpl_settings(MethodKind::Igi, 4, 0.05f)},
+          {"igi_aa_glossy_compensation", "glossy", all},
+          {"ir_aa_glossy_compensation", "glossy", ir_all},
+          {"igi_aa_spot", "corner", all}};
+}
+
+class TileInvariance : public ::testing::TestWithParam<TileCase> {};
 
 TEST_P(TileInvariance, TilesOfAnySizeAndOffsetMatchTheWholeFrameBitForBit) {
-  const test::Prepared& p = cornell();
-  RenderSettings settings = vpl_settings(GetParam(), 4, 0.05f);
+  const test::Prepared p(load_scene(GetParam().scene));
+  const RenderSettings& settings = GetParam().settings;
   auto method = make_method(p.context(), settings);
   FrameSetup frame = p.frame(83, 61, 3);
   method->begin_frame(frame);
   const int border = tile_border(settings);
   Image whole = render_tiled(*method, frame, border, frame.width, frame.height, 0, 0);
-  const std::string name = std::string("tiles-") + method_name(GetParam());
+  const std::string name = "tiles-" + GetParam().name;
   EXPECT_TRUE(test::images_identical(name + "-8x8", render_tiled(*method, frame, border, 8, 8, 0, 0), whole));
   EXPECT_TRUE(test::images_identical(name + "-40x40", render_tiled(*method, frame, border, 40, 40, 0, 0), whole));
   EXPECT_TRUE(test::images_identical(name + "-37x23", render_tiled(*method, frame, border, 37, 23, 5, 11), whole));
@@ -60,8 +82,8 @@ TEST_P(TileInvariance, TilesOfAnySizeAndOffsetMatchTheWholeFrameBitForBit) {
   EXPECT_TRUE(test::images_identical(name + "-1thread", p.render(settings, 83, 61, 1, 3, 1, 13), whole));
 }
 
-INSTANTIATE_TEST_SUITE_P(Igi, TileInvariance, ::testing::Values(MethodKind::InstantRadiosity, MethodKind::Igi),
-                         [](const auto& info) { return std::string(method_name(info.param)); });
+INSTANTIATE_TEST_SUITE_P(Igi, TileInvariance, ::testing::ValuesIn(tile_cases()),
+                         [](const auto& info) { return info.param.name; });
 
 // Path-traced reference of the Cornell box, computed once per test run.
 const Image& cornell_reference() {

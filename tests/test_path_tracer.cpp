@@ -16,12 +16,13 @@ struct Rendered {
   RayCounts rays;
 };
 
-Rendered render_pt(const Scene& scene, int size, int spp, uint32_t seed = 1, int max_depth = 16) {
+// path_depth 0: the default, unbounded paths ended by Russian roulette.
+Rendered render_pt(const Scene& scene, int size, int spp, uint32_t seed = 1, int path_depth = 0) {
   Accel accel(scene);
   LightSet lights(scene);
   RenderSettings settings;
   settings.method = MethodKind::PathTracer;
-  settings.max_depth = max_depth;
+  settings.path_depth = path_depth;
   FrameSetup frame;
   frame.camera = scene.camera_or_auto();
   frame.width = frame.height = size;
@@ -46,14 +47,27 @@ class WhiteFurnace : public ::testing::TestWithParam<float> {};
 
 TEST_P(WhiteFurnace, ClosedSphereGivesEmissionOverOneMinusAlbedo) {
   const float albedo = GetParam(), emission = 1.0f;
-  Rendered r = render_pt(make_furnace(albedo, emission), 24, 32, 1, 256);
+  Rendered r = render_pt(make_furnace(albedo, emission), 24, 32);  // the default path length
   auto [mean, error] = mean_and_error(r.image);
   const double expected = emission / (1.0 - albedo);
   // Statistical tolerance: five standard errors, plus 0.5 % for the sphere's facets.
   EXPECT_NEAR(mean, expected, 5.0 * error + 0.005 * expected) << "standard error " << error;
 }
 
-INSTANTIATE_TEST_SUITE_P(PathTracer, WhiteFurnace, ::testing::Values(0.0f, 0.5f, 0.8f));
+// 0.9 and 0.95: paths of tens of bounces, where a fixed cap of 16 would lose
+// 0.9^16 = 18.5 % and 0.95^16 = 44 % of the answer.
+INSTANTIATE_TEST_SUITE_P(PathTracer, WhiteFurnace, ::testing::Values(0.0f, 0.5f, 0.8f, 0.9f, 0.95f));
+
+// The same at a fixed cap: the test above can fail. Paths of at most D
+// surfaces sum the first D terms of the series: Le (1 - a^D) / (1 - a).
+TEST(PathTracer, CappedPathsLoseTheTailOfTheSeries) {
+  const float albedo = 0.9f;
+  Rendered r = render_pt(make_furnace(albedo, 1.0f), 24, 32, 1, 16);
+  auto [mean, error] = mean_and_error(r.image);
+  const double expected = (1.0 - std::pow(albedo, 16.0)) / (1.0 - albedo);
+  EXPECT_NEAR(mean, expected, 5.0 * error + 0.005 * expected) << "standard error " << error;
+  EXPECT_LT(mean, 0.9 * 10.0) << "a cap of 16 must lose ~18 % of Le / (1 - a) = 10";
+}
 
 TEST(PathTracer, DiffusePlaneUnderPointLightMatchesInverseSquareLaw) {
   // Lambertian plane y = 0 of albedo a, point light of intensity I at height h:

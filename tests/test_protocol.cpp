@@ -29,8 +29,10 @@ bool same(const TileJob& a, const TileJob& b) {
   return a.x == b.x && a.y == b.y && a.w == b.w && a.h == b.h && a.border == b.border;
 }
 bool same(const RenderSettings& a, const RenderSettings& b) {
-  return a.method == b.method && a.max_depth == b.max_depth && a.interleave == b.interleave &&
-         a.paths_per_set == b.paths_per_set && same(a.clamp, b.clamp) &&
+  return a.method == b.method && a.path_depth == b.path_depth && a.light_depth == b.light_depth &&
+         a.specular_depth == b.specular_depth && a.interleave == b.interleave &&
+         a.paths_per_set == b.paths_per_set && a.aa_samples == b.aa_samples &&
+         same(a.glossy_threshold, b.glossy_threshold) && a.glossy_rays == b.glossy_rays && same(a.clamp, b.clamp) &&
          a.compensation_samples == b.compensation_samples && a.filter == b.filter &&
          same(a.filter_normal_cos, b.filter_normal_cos) && same(a.filter_depth_ratio, b.filter_depth_ratio);
 }
@@ -81,7 +83,7 @@ TileResult sample_tile_result() {
 }
 
 std::vector<Message> samples() {
-  RenderSettings settings{MethodKind::InstantRadiosity, 7, 4, 64, 0.05f, 3, false, 0.8f, 0.1f};
+  RenderSettings settings{MethodKind::InstantRadiosity, 7, 5, 3, 4, 64, 9, 0.3f, 2, 0.05f, 3, false, 0.8f, 0.1f};
   Camera camera{{1, 2, 3}, {0, -0.2f, -1}, {0.1f, 1, 0}, 0.9f};
   std::vector<uint8_t> scene(300);
   for (size_t i = 0; i < scene.size(); ++i) scene[i] = uint8_t(i * 7);
@@ -262,8 +264,17 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {edited<Welcome>([](Welcome& m) { m.scene_name = std::string("a\0b", 3); }), "Welcome.scene_name"},
       {edited<Welcome>([](Welcome& m) { m.scene_name = ".."; }), "Welcome.scene_name"},
       {edited<Welcome>([](Welcome& m) { m.scene_size = kMaxSceneBytes + 1; }), "Welcome.scene_size"},
-      {settings_edited([](auto& s) { s.max_depth = 0; }), "Welcome.settings.max_depth"},
-      {settings_edited([](auto& s) { s.max_depth = 1025; }), "Welcome.settings.max_depth"},
+      {settings_edited([](auto& s) { s.path_depth = -1; }), "Welcome.settings.path_depth"},
+      {settings_edited([](auto& s) { s.light_depth = 1025; }), "Welcome.settings.light_depth"},
+      {settings_edited([](auto& s) { s.specular_depth = -2; }), "Welcome.settings.specular_depth"},
+      {settings_edited([](auto& s) { s.aa_samples = 0; }), "Welcome.settings.aa_samples"},
+      {settings_edited([](auto& s) { s.aa_samples = 8; }), "Welcome.settings.aa_samples: 8, expected a square"},
+      {settings_edited([](auto& s) { s.aa_samples = 81; }), "Welcome.settings.aa_samples"},
+      {settings_edited([](auto& s) { s.aa_samples = 16; s.paths_per_set = 9; }), "Welcome.settings.aa_samples"},
+      {settings_edited([](auto& s) { s.glossy_threshold = -0.1f; }), "Welcome.settings.glossy_threshold"},
+      {settings_edited([](auto& s) { s.glossy_threshold = NAN; }), "Welcome.settings.glossy_threshold"},
+      {settings_edited([](auto& s) { s.glossy_rays = 0; }), "Welcome.settings.glossy_rays"},
+      {settings_edited([](auto& s) { s.glossy_rays = 65; }), "Welcome.settings.glossy_rays"},
       {settings_edited([](auto& s) { s.interleave = 17; }), "Welcome.settings.interleave"},
       {settings_edited([](auto& s) { s.interleave = 0; }), "Welcome.settings.interleave"},
       {settings_edited([](auto& s) { s.paths_per_set = (1 << 20) + 1; }), "Welcome.settings.paths_per_set"},
@@ -316,8 +327,9 @@ TEST(Protocol, LimitsThemselvesAreAccepted) {
   std::vector<Message> edges = {
       edited<Hello>([](Hello& m) { m.threads = 4096; m.build_id.assign(kMaxString, 'b'); }),
       edited<Welcome>([](Welcome& m) { m.credits = 64; m.heartbeat_ms = 10; m.scene_name = "a.b"; }),
-      edited<Welcome>([](Welcome& m) { m.scene_size = kMaxSceneBytes; m.settings.max_depth = 1024; }),
+      edited<Welcome>([](Welcome& m) { m.scene_size = kMaxSceneBytes; m.settings.path_depth = 1024; m.settings.specular_depth = 0; }),
       settings_edited([](auto& s) { s.filter_normal_cos = -1; s.clamp = 0; }),
+      settings_edited([](auto& s) { s.aa_samples = 64; s.paths_per_set = 64; s.glossy_threshold = 1; s.glossy_rays = 64; }),
       frame_edited([](auto& f) { f.jitter_x = 0; f.jitter_y = 1; }),
       frame_edited([](auto& f) { f.width = kMaxImageSide; f.height = 1; }),
       edited<TileJobMsg>([](TileJobMsg& m) { m.tile = {kMaxImageSide - 1, 0, kMaxTileSide, 1, 64}; }),
@@ -351,8 +363,9 @@ TEST(Protocol, HugeLengthsAndBadBytesAreRejectedBeforeUse) {
   Welcome welcome = sample<Welcome>();
   size_t method_at = 8 + 8 + 4 + welcome.scene_name.size() + 16;
   EXPECT_EQ(patched(welcome, method_at, {7}), "Welcome.settings.method: 7, expected [0, 2]");
-  // method u8, max_depth, interleave, paths_per_set i32, clamp f32, compensation_samples i32, then filter.
-  EXPECT_EQ(patched(welcome, method_at + 1 + 12 + 4 + 4, {2}), "Welcome.settings.filter: boolean byte 2, expected 0 or 1");
+  // method u8; path, light and specular depth, interleave, paths_per_set, aa_samples i32; glossy_threshold
+  // f32; glossy_rays i32; clamp f32; compensation_samples i32; then filter.
+  EXPECT_EQ(patched(welcome, method_at + 1 + 24 + 4 + 4 + 4 + 4, {2}), "Welcome.settings.filter: boolean byte 2, expected 0 or 1");
 }
 
 // ---- Socket helpers, over loopback with bounded waits.

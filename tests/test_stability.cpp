@@ -61,10 +61,7 @@ const Image& reference(const std::string& name, int spp) {
 
 // Visible points (pixel centres) of the camera's frame.
 std::vector<GSample> visible_points(const test::Prepared& p) {
-  std::vector<GSample> gbuffer;
-  RayCounts rays;
-  build_gbuffer(*p.accel, p.frame(kWidth, kHeight), Region{0, 0, kWidth, kHeight}, 16, gbuffer, rays);
-  return gbuffer;
+  return p.visible_points(kWidth, kHeight);
 }
 
 

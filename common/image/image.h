@@ -1,6 +1,8 @@
 #pragma once
 // Linear RGB float images and their files. EXR (and any float format
 // OpenImageIO knows) stores linear values; PNG/JPEG store clamped sRGB.
+#include <algorithm>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,11 @@ struct Image {
   glm::vec3& at(int x, int y) { return pixels[size_t(y) * width + x]; }
   const glm::vec3& at(int x, int y) const { return pixels[size_t(y) * width + x]; }
   glm::vec3 mean() const;
+  // Copies a w x h row-major block (a tile's pixels) to (x, y); the block must lie inside.
+  void paste(std::span<const glm::vec3> block, int x, int y, int w, int h) {
+    for (int row = 0; row < h; ++row)
+      std::copy_n(block.begin() + ptrdiff_t(row) * w, w, pixels.begin() + ptrdiff_t(y + row) * width + x);
+  }
 };
 
 // Throws std::runtime_error naming the path on failure.

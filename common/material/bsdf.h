@@ -30,4 +30,14 @@ std::optional<BsdfSample> bsdf_sample(const SurfacePoint& sp, glm::vec3 wo, glm:
 // Fresnel reflectance of a smooth dielectric; cos_i may be negative (inside).
 float fresnel_dielectric(float cos_i, float eta);
 
+// How the VPL methods treat a material (RenderSettings::glossy_threshold):
+// a GGX lobe sharper than the threshold is gathered with BSDF-sampled rays;
+// VPLs neither sit on nor shade it, nor mirrors and glass.
+inline bool is_gathered_glossy(const Material& m, float glossy_threshold) {
+  return m.type == MaterialType::Conductor && m.alpha < glossy_threshold;
+}
+inline bool receives_vpls(const Material& m, float glossy_threshold) {
+  return !m.is_specular() && !is_gathered_glossy(m, glossy_threshold);
+}
+
 }  // namespace igi

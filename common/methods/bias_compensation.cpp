@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "methods/subpixel.h"
 #include "methods/vpl_contribution.h"
 #include "sampling/hash.h"
 #include "sampling/sobol.h"
@@ -10,19 +11,22 @@
 
 namespace igi {
 
-void BiasCompensation::add(const std::vector<GSample>& gbuffer, const Region& region, uint32_t frame_seed,
-                           std::vector<glm::vec3>& irradiance, RayCounts& rays) const {
+void BiasCompensation::add(const GBuffer& gbuffer, uint32_t frame_seed, std::vector<glm::vec3>& irradiance,
+                           RayCounts& rays) const {
   if (!enabled()) return;
-  for (int j = 0; j < region.height; ++j)
-    for (int i = 0; i < region.width; ++i) {
-      const size_t index = size_t(j) * region.width + i;
-      if (gbuffer[index].valid())
-        irradiance[index] += at_pixel(gbuffer[index], region.x0 + i, region.y0 + j, frame_seed, rays);
-    }
+  const Region& region = gbuffer.region;
+  for (int k = 0; k < gbuffer.samples; ++k)
+    for (int j = 0; j < region.height; ++j)
+      for (int i = 0; i < region.width; ++i) {
+        const size_t index = size_t(k) * region.pixels() + size_t(j) * region.width + i;
+        if (gbuffer.layers[index].valid())
+          irradiance[index] += at_sample(gbuffer.layers[index], region.x0 + i, region.y0 + j, k, frame_seed, rays);
+      }
 }
 
-// Demodulated compensation at one pixel (global coordinates x, y).
-glm::vec3 BiasCompensation::at_pixel(const GSample& g, int x, int y, uint32_t frame_seed, RayCounts& rays) const {
+// Demodulated compensation at sub-sample k of pixel (x, y) (global coordinates).
+glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int k, uint32_t frame_seed,
+                                      RayCounts& rays) const {
   const SurfacePoint& sp = g.surface;
   // GGX receivers would need f cos / pdf from their lobe, not the albedo:
   // skipped, they keep the clamp's loss.
@@ -32,8 +36,9 @@ glm::vec3 BiasCompensation::at_pixel(const GSample& g, int x, int y, uint32_t fr
   const glm::vec3 n = front ? sp.shading_normal : -sp.shading_normal;
   const glm::vec3 ng = front ? sp.geometric_normal : -sp.geometric_normal;
   const Frame frame(n);
-  const uint32_t seed = hash(uint32_t(x), uint32_t(y), frame_seed);
+  const uint32_t seed = hash(hash(uint32_t(x), uint32_t(y), frame_seed), uint32_t(k));
   const int set = interleaved_ ? vpls_.set_of_pixel(x, y) : -1;
+  const int group = group_of_subsample(x, y, k, vpls_.groups);
   glm::vec3 sum(0.0f);
   for (int k = 0; k < samples_; ++k) {
     const glm::vec3 wi = frame.to_world(cosine_hemisphere(sample_2d(uint32_t(k), 0, seed)));
@@ -54,30 +59,33 @@ glm::vec3 BiasCompensation::at_pixel(const GSample& g, int x, int y, uint32_t fr
     const float geometry_term = cos_x * cos_y / d2;
     if (!(geometry_term > bound_)) continue;
     // Le(y) too: the clamp cut the same share of the area VPLs' direct light (see the header).
-    const glm::vec3 radiance = hit_sample.surface.emitted() + radiance_towards(hit_sample, set, rays);
+    const glm::vec3 radiance = hit_sample.surface.emitted() + radiance_towards(hit_sample, set, group, rays);
     sum += radiance * ((geometry_term - bound_) / geometry_term);
   }
   return sum / float(samples_);
 }
 
-// L(y -> x), x along y.wo: the clamped VPL estimate of the pixel's own set
-// (igi) or of all sets (ir), times the albedo at y (contributions are
+// L(y -> x), x along y.wo: the clamped VPL estimate of the sample's own
+// group of its set (igi) or of all sets (ir), scaled like the sample's VPL
+// sum, plus the exact lights, times the albedo at y (contributions are
 // demodulated). Emission is the caller's: see the header.
-glm::vec3 BiasCompensation::radiance_towards(const GSample& y, int set, RayCounts& rays) const {
+glm::vec3 BiasCompensation::radiance_towards(const GSample& y, int set, int group, RayCounts& rays) const {
   const VplShading shading{accel_.scene(), bound_};
-  const uint32_t begin = set >= 0 ? vpls_.set_begin[set] : 0;
-  const uint32_t end = set >= 0 ? vpls_.set_begin[set + 1] : uint32_t(vpls_.vpls.size());
-  glm::vec3 sum(0.0f);
-  for (uint32_t v = begin; v < end; ++v) {
+  auto unoccluded = [&](const Vpl& v) {
     ShadowQuery q;
-    const glm::vec3 c = shading.contribution(y, vpls_.vpls[v], q);
-    if (c == glm::vec3(0.0f)) continue;
+    const glm::vec3 c = shading.contribution(y, v, q);
+    if (c == glm::vec3(0.0f)) return c;
     ++rays.shadow;
-    if (!accel_.occluded(Ray{q.origin, q.direction, 0.0f, q.tfar})) sum += c;
-  }
-  // Each set alone estimates the full light; all S of them are averaged.
-  const float scale = set >= 0 ? 1.0f : 1.0f / float(vpls_.set_count());
-  return y.surface.albedo * sum * scale;
+    return accel_.occluded(Ray{q.origin, q.direction, 0.0f, q.tfar}) ? glm::vec3(0.0f) : c;
+  };
+  glm::vec3 sum(0.0f);
+  for (int s = set >= 0 ? set : 0; s < (set >= 0 ? set + 1 : vpls_.set_count()); ++s)
+    for (uint32_t v = vpls_.group_first(s, group); v < vpls_.group_end(s, group); ++v) sum += unoccluded(vpls_.vpls[v]);
+  // Each set alone estimates the full light (ir averages all S), and each
+  // group 1 / G of it.
+  sum *= float(vpls_.groups) / (set >= 0 ? 1.0f : float(vpls_.set_count()));
+  for (const Vpl& v : exact_) sum += unoccluded(v);
+  return y.surface.albedo * sum;
 }
 
 }  // namespace igi

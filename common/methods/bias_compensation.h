@@ -22,9 +22,17 @@
 // (tests/test_bias_compensation.cpp): with Le(y) one level gives 1.775
 // against its analytic 1.778; without it 1.440.
 //
-// Random numbers: sample_2d(k, 0, hash(x, y, frame seed)) in GLOBAL pixel
-// coordinates, so a pixel's compensation is the same in whatever tile, thread
-// or process renders it. All methods are const and thread-safe.
+// With anti-aliasing (methods/subpixel.h) each sub-sample compensates on its
+// own, and L(y -> x) is its own group's estimate scaled by the group count,
+// like the sub-sample's VPL sum. Exact point, spot and directional lights
+// (never clamped, methods/direct_lights.h) light y too: their light reflected
+// over the short hop is what the clamp cut from the VPLs their paths left on y.
+//
+// Random numbers: sample_2d(i, 0, hash(hash(x, y, frame seed), k)) in GLOBAL
+// pixel coordinates (x, y), sub-sample k, so a pixel's compensation is the
+// same in whatever tile, thread or process renders it. All methods are const
+// and thread-safe.
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -40,23 +48,26 @@ class BiasCompensation {
  public:
   // igi (interleaved): a pixel uses its own set; ir: all sets, scaled 1 / S.
   // The references must outlive the object (one tile's work).
-  BiasCompensation(const Accel& accel, const VplSets& vpls, bool interleaved, float clamp_bound, int samples)
-      : accel_(accel), vpls_(vpls), interleaved_(interleaved), bound_(clamp_bound), samples_(samples) {}
+  BiasCompensation(const Accel& accel, const VplSets& vpls, std::span<const Vpl> exact_lights, bool interleaved,
+                   float clamp_bound, int samples)
+      : accel_(accel), vpls_(vpls), exact_(exact_lights), interleaved_(interleaved), bound_(clamp_bound),
+        samples_(samples) {}
 
   // Off without samples or without a finite clamp (then nothing is missing).
   bool enabled() const { return samples_ > 0 && bound_ < INFINITY && !vpls_.vpls.empty(); }
 
-  // Adds the compensation to `irradiance`, one demodulated entry per G-buffer
-  // sample of `region` (border pixels included: the filter reads them).
-  void add(const std::vector<GSample>& gbuffer, const Region& region, uint32_t frame_seed,
-           std::vector<glm::vec3>& irradiance, RayCounts& rays) const;
+  // Adds the compensation to `irradiance`, one demodulated entry per
+  // sub-sample of the G-buffer, indexed like its layers (border pixels
+  // included: the filter reads them).
+  void add(const GBuffer& gbuffer, uint32_t frame_seed, std::vector<glm::vec3>& irradiance, RayCounts& rays) const;
 
  private:
-  glm::vec3 at_pixel(const GSample& g, int x, int y, uint32_t frame_seed, RayCounts& rays) const;
-  glm::vec3 radiance_towards(const GSample& y, int set, RayCounts& rays) const;
+  glm::vec3 at_sample(const GSample& g, int x, int y, int k, uint32_t frame_seed, RayCounts& rays) const;
+  glm::vec3 radiance_towards(const GSample& y, int set, int group, RayCounts& rays) const;
 
   const Accel& accel_;
   const VplSets& vpls_;
+  std::span<const Vpl> exact_;
   bool interleaved_;
   float bound_;
   int samples_;

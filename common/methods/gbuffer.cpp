@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "material/bsdf.h"
+#include "methods/subpixel.h"
 #include "sampling/hash.h"
 #include "scene/camera_rays.h"
 
@@ -17,11 +18,8 @@ Region tile_region(const TileJob& job, int image_width, int image_height) {
   return r;
 }
 
-namespace {
-
-// Follows mirrors and glass from a first hit to a non-specular surface.
-void resolve_chain(const Accel& accel, Ray ray, Hit hit, glm::uvec3 pixel_and_seed, int max_depth,
-                   GSample& g, RayCounts& rays) {
+void follow_specular_chain(const Accel& accel, Ray ray, Hit hit, uint32_t seed, int specular_depth, GSample& g,
+                           RayCounts& rays) {
   const Scene& scene = accel.scene();
   float travelled = 0.0f;
   for (int depth = 0;; ++depth) {
@@ -34,59 +32,72 @@ void resolve_chain(const Accel& accel, Ray ray, Hit hit, glm::uvec3 pixel_and_se
       g.depth = travelled;
       return;
     }
-    if (depth + 1 >= max_depth) return;
-    const uint32_t pixel_seed = hash(pixel_and_seed.x, pixel_and_seed.y, pixel_and_seed.z);
-    float u_lobe = float(hash(pixel_seed, uint32_t(depth)) >> 8) * 0x1p-24f;
+    if (depth + 1 >= specular_depth) return;
+    const float u_lobe = float(hash(seed, uint32_t(depth)) >> 8) * 0x1p-24f;
     auto bs = bsdf_sample(sp, -ray.direction, glm::vec2(0.5f), u_lobe);
     if (!bs) return;
     g.throughput *= bs->weight;
-    ray = Ray{offset_origin(sp, bs->wi), bs->wi};
+    ray = Ray{offset_origin(sp, bs->wi), bs->wi, 0.0f, 1e30f, ray.mask};
     ++rays.secondary;
     if (!accel.intersect(ray, hit)) return;
   }
 }
 
-}  // namespace
+namespace {
 
-void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& region, int max_depth,
-                   std::vector<GSample>& out, RayCounts& rays, RayLog* log) {
-  out.assign(size_t(region.width) * region.height, GSample{});
-  CameraBasis camera(frame.camera, frame.width, frame.height);
+// One 4x4 block of one layer as a 16-wide packet.
+void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis& camera, glm::vec2 offset,
+                 int bx, int by, int k, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log) {
+  const Region& region = out.region;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  for (int by = 0; by < region.height; by += 4)
-    for (int bx = 0; bx < region.width; bx += 4) {
-      alignas(64) int valid[16];
-      alignas(64) RTCRayHit16 packet;
-      for (int i = 0; i < 16; ++i) {
-        const int x = bx + (i & 3), y = by + (i >> 2);
-        valid[i] = x < region.width && y < region.height ? -1 : 0;
-        glm::vec3 d = glm::normalize(camera.direction(float(region.x0 + x) + frame.jitter_x, float(region.y0 + y) + frame.jitter_y));
-        packet.ray.org_x[i] = camera.origin.x; packet.ray.org_y[i] = camera.origin.y; packet.ray.org_z[i] = camera.origin.z;
-        packet.ray.dir_x[i] = d.x; packet.ray.dir_y[i] = d.y; packet.ray.dir_z[i] = d.z;
-        packet.ray.tnear[i] = 0.0f; packet.ray.tfar[i] = INFINITY;
-        packet.ray.mask[i] = ~0u; packet.ray.flags[i] = 0; packet.ray.time[i] = 0.0f;
-        packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-        packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
-        rays.primary += valid[i] ? 1 : 0;
-      }
-      if (log) {
-        log->primary.emplace_back();
-        std::copy_n(valid, 16, log->primary.back().valid);
-        log->primary.back().rays = packet;
-      }
-      rtcIntersect16(valid, accel.handle(), &context, &packet);
-      for (int i = 0; i < 16; ++i) {
-        const int x = bx + (i & 3), y = by + (i >> 2);
-        if (!valid[i] || packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
-        Ray ray{camera.origin, {packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]}};
-        Hit hit{packet.ray.tfar[i], accel.triangle_index(packet.hit.geomID[i], packet.hit.primID[i]),
-                {packet.hit.u[i], packet.hit.v[i]}};
-        const glm::uvec3 pixel_and_seed(uint32_t(region.x0 + x), uint32_t(region.y0 + y), frame.seed);
-        resolve_chain(accel, ray, hit, pixel_and_seed, max_depth, out[size_t(y) * region.width + x], rays);
-      }
-    }
+  alignas(64) int valid[16];
+  alignas(64) RTCRayHit16 packet;
+  for (int i = 0; i < 16; ++i) {
+    const int x = bx + (i & 3), y = by + (i >> 2);
+    valid[i] = x < region.width && y < region.height ? -1 : 0;
+    glm::vec3 d = glm::normalize(camera.direction(float(region.x0 + x) + offset.x, float(region.y0 + y) + offset.y));
+    packet.ray.org_x[i] = camera.origin.x; packet.ray.org_y[i] = camera.origin.y; packet.ray.org_z[i] = camera.origin.z;
+    packet.ray.dir_x[i] = d.x; packet.ray.dir_y[i] = d.y; packet.ray.dir_z[i] = d.z;
+    packet.ray.tnear[i] = 0.0f; packet.ray.tfar[i] = INFINITY;
+    packet.ray.mask[i] = kCameraRayMask; packet.ray.flags[i] = 0; packet.ray.time[i] = 0.0f;
+    packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    rays.primary += valid[i] ? 1 : 0;
+  }
+  if (log) {
+    log->primary.emplace_back();
+    std::copy_n(valid, 16, log->primary.back().valid);
+    log->primary.back().rays = packet;
+  }
+  rtcIntersect16(valid, accel.handle(), &context, &packet);
+  for (int i = 0; i < 16; ++i) {
+    const int x = bx + (i & 3), y = by + (i >> 2);
+    if (!valid[i] || packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+    Ray ray{camera.origin, {packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]}, 0.0f, 1e30f, kCameraRayMask};
+    Hit hit{packet.ray.tfar[i], accel.triangle_index(packet.hit.geomID[i], packet.hit.primID[i]),
+            {packet.hit.u[i], packet.hit.v[i]}};
+    const uint32_t seed = hash(hash(uint32_t(region.x0 + x), uint32_t(region.y0 + y), frame.seed), uint32_t(k));
+    follow_specular_chain(accel, ray, hit, seed, specular_depth, out.at(k, size_t(y) * region.width + x), rays);
+  }
+}
+
+}  // namespace
+
+void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& region, int samples,
+                   int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log) {
+  out.region = region;
+  out.samples = samples;
+  out.layers.assign(size_t(samples) * region.pixels(), GSample{});
+  const CameraBasis camera(frame.camera, frame.width, frame.height);
+  const int side = subpixel_side(samples);
+  for (int k = 0; k < samples; ++k) {
+    const glm::vec2 offset = subpixel_offset(k, side, frame.jitter_x, frame.jitter_y);
+    for (int by = 0; by < region.height; by += 4)
+      for (int bx = 0; bx < region.width; bx += 4)
+        trace_block(accel, frame, camera, offset, bx, by, k, specular_depth, out, rays, log);
+  }
 }
 
 }  // namespace igi

@@ -48,8 +48,12 @@ glm::vec3 PathTracer::radiance(Ray ray, uint32_t sample_index, uint32_t pixel_se
   bool specular_bounce = true;  // the camera "bounce": emission counts in full
   float bsdf_pdf_prev = 0.0f;
   glm::vec3 prev_position = ray.origin;
-  for (int depth = 0; depth < settings_.max_depth; ++depth) {
+  const int max_depth = depth_limit(settings_.path_depth);
+  for (int depth = 0; depth < max_depth; ++depth) {
     Hit hit;
+    // Camera rays and what mirrors and glass show of them skip the back of
+    // single-sided faces; after a diffuse or glossy bounce every face is opaque.
+    ray.mask = specular_bounce ? kCameraRayMask : kOpaqueRayMask;
     if (!context_.accel.intersect(ray, hit)) break;
     SurfacePoint sp = surface_at(scene, hit, ray.direction);
     const glm::vec3 wo = -ray.direction;

@@ -11,12 +11,37 @@ enum class MethodKind : uint8_t { PathTracer, InstantRadiosity, Igi };
 const char* method_name(MethodKind kind);
 std::optional<MethodKind> parse_method(const std::string& name);
 
+// A path length of 0 means unbounded: Russian roulette alone ends the path,
+// under this safety cap (albedo 0.9 leaves 0.9^256 ~ 2e-12 of the light there).
+inline constexpr int kDepthSafetyCap = 256;
+inline int depth_limit(int depth) { return depth > 0 ? depth : kDepthSafetyCap; }
+
+// Bounds of the options, shared by the command lines and the wire format.
+inline constexpr int kMaxDepth = 1024;
+inline constexpr int kMaxInterleave = 16;
+inline constexpr int kMaxPathsPerSet = 1 << 20;
+inline constexpr int kMaxCompensationSamples = 256;
+inline constexpr int kMaxAntialiasSamples = 64;  // 8 x 8 sub-samples
+inline constexpr int kMaxGlossyRays = 64;
+
 struct RenderSettings {
   MethodKind method = MethodKind::Igi;
-  int max_depth = 16;          // pt: path vertices; igi/ir: specular chain length
+  // Path lengths, in surface interactions after the camera or the light; 0 = unbounded.
+  int path_depth = 0;       // pt: the whole path
+  int light_depth = 0;      // ir/igi: VPL light paths
+  int specular_depth = 16;  // ir/igi: mirrors and glass followed from the camera
   // Instant radiosity / IGI.
   int interleave = 3;          // N: N x N VPL sets, pixel set = (x mod N) + N (y mod N)
   int paths_per_set = 16;      // M: light paths started per VPL set
+  // Anti-aliasing by VPL groups: S = s x s stratified sub-samples per pixel,
+  // each shaded by 1/S of the pixel's light paths (methods/subpixel.h). 1 = off.
+  int aa_samples = 1;
+  // GGX surfaces with alpha below this are too sharp for VPLs (each would show
+  // as a highlight of its own): their lobe is gathered with BSDF-sampled rays
+  // shaded by the VPLs where they land (methods/glossy_gather.h), and light
+  // paths pass through them without leaving VPLs. 0 = VPLs shade every GGX surface.
+  float glossy_threshold = 0.2f;
+  int glossy_rays = 1;         // gather rays per sub-sample of such a surface
   // Geometry-term bound, scale-free: G <= 1 / (clamp * scene diagonal)^2, so
   // clamp is the distance (a fraction of the diagonal) below which 1/r^2 stops
   // growing. 0 turns clamping off.
@@ -30,6 +55,10 @@ struct RenderSettings {
   float filter_normal_cos = 0.9f;   // neighbours need dot(n, n') above this
   float filter_depth_ratio = 0.05f; // and |d - d'| below this fraction of d
 };
+
+// What is wrong with the settings, named as igi-render's option (e.g.
+// "--aa: ..."), or nothing when every field is in range and they fit together.
+std::optional<std::string> settings_error(const RenderSettings& settings);
 
 }  // namespace igi
 

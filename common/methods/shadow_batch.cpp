@@ -1,24 +1,27 @@
 #include "methods/shadow_batch.h"
 
 #include <algorithm>
+#include <cfloat>
 
 namespace igi {
 
 void PixelBatch::clear() {
   for (auto* v : {&ox, &oy, &oz, &px, &py, &pz, &nx, &ny, &nz, &gx, &gy, &gz}) v->clear();
   index.clear();
+  sample.clear();
   fast.clear();
   chunk_fast.clear();
   count = 0;
 }
 
-void PixelBatch::add(uint32_t gbuffer_index, const GSample& g) {
+void PixelBatch::add(uint32_t id, const GSample& g) {
   const SurfacePoint& sp = g.surface;
   const bool front = glm::dot(g.wo, sp.geometric_normal) >= 0.0f;
   const glm::vec3 n = front ? sp.shading_normal : -sp.shading_normal;
   const glm::vec3 ng = front ? sp.geometric_normal : -sp.geometric_normal;
   const glm::vec3 o = offset_origin(sp, ng);
-  index.push_back(gbuffer_index);
+  index.push_back(id);
+  sample.push_back(&g);
   ox.push_back(o.x); oy.push_back(o.y); oz.push_back(o.z);
   px.push_back(sp.position.x); py.push_back(sp.position.y); pz.push_back(sp.position.z);
   nx.push_back(n.x); ny.push_back(n.y); nz.push_back(n.z);
@@ -30,6 +33,7 @@ void PixelBatch::add(uint32_t gbuffer_index, const GSample& g) {
 void PixelBatch::pad() {
   while (index.size() % 16 != 0) {
     index.push_back(0);
+    sample.push_back(nullptr);
     for (auto* v : {&ox, &oy, &oz, &px, &py, &pz, &nx, &ny, &nz, &gx, &gy, &gz}) v->push_back(0.0f);
     fast.push_back(1);  // inert: zero normals give no contribution
   }
@@ -72,8 +76,9 @@ void fill_fast_lanes(const PixelBatch& b, size_t first, const Vpl& vpl, float bo
     const float side = wx * gx[k] + wy * gy[k] + wz * gz[k];
     const float cos_y = -(wx * mx + wy * my + wz * mz);
     const float g = std::min(cos_x * cos_y / dist2, bound);
-    // Bitwise &, not &&: no branches, so the loop vectorises.
-    const bool visible = (cos_x > 0.0f) & (side > 0.0f) & (cos_y > 0.0f);
+    // Bitwise &, not &&: no branches, so the loop vectorises. A VPL on the
+    // point itself (dist2 0, unclamped) gives an infinite or NaN g: no light.
+    const bool visible = (cos_x > 0.0f) & (side > 0.0f) & (cos_y > 0.0f) & (g <= FLT_MAX);
     g_out[k] = visible ? g : 0.0f;
     dir_x[k] = wx; dir_y[k] = wy; dir_z[k] = wz;
     tfar[k] = dist * (1.0f - kShadowEpsilon);
@@ -82,7 +87,7 @@ void fill_fast_lanes(const PixelBatch& b, size_t first, const Vpl& vpl, float bo
   std::copy_n(b.oy.data() + first, 16, rays.org_y);
   std::copy_n(b.oz.data() + first, 16, rays.org_z);
   std::fill_n(rays.tnear, 16, 0.0f);
-  std::fill_n(rays.mask, 16, ~0u);
+  std::fill_n(rays.mask, 16, kOpaqueRayMask);
   std::fill_n(rays.flags, 16, 0u);
   std::fill_n(rays.time, 16, 0.0f);
 }
@@ -95,7 +100,7 @@ bool vpl_is_diffuse_emitter(const Vpl& vpl, const Scene& scene) {
 }  // namespace
 
 void fill_shadow_packet(const PixelBatch& batch, size_t first, const Vpl& vpl, const VplShading& shading,
-                        const std::vector<GSample>& gbuffer, ShadowPacket& packet) {
+                        ShadowPacket& packet) {
   const bool fast_vpl = vpl_is_diffuse_emitter(vpl, shading.scene);
   alignas(64) float g[16];
   if (fast_vpl) {
@@ -115,13 +120,13 @@ void fill_shadow_packet(const PixelBatch& batch, size_t first, const Vpl& vpl, c
     const size_t i = first + k;
     if (i >= batch.count || (fast_vpl && batch.fast[i])) continue;
     ShadowQuery q{};
-    glm::vec3 c = shading.contribution(gbuffer[batch.index[i]], vpl, q);
+    glm::vec3 c = shading.contribution(*batch.sample[i], vpl, q);
     packet.r[k] = c.x; packet.g[k] = c.y; packet.b[k] = c.z;
     packet.valid[k] = c.x > 0.0f || c.y > 0.0f || c.z > 0.0f ? -1 : 0;
     packet.rays.org_x[k] = q.origin.x; packet.rays.org_y[k] = q.origin.y; packet.rays.org_z[k] = q.origin.z;
     packet.rays.dir_x[k] = q.direction.x; packet.rays.dir_y[k] = q.direction.y; packet.rays.dir_z[k] = q.direction.z;
     packet.rays.tnear[k] = 0.0f; packet.rays.tfar[k] = q.tfar;
-    packet.rays.mask[k] = ~0u; packet.rays.flags[k] = 0; packet.rays.time[k] = 0.0f;
+    packet.rays.mask[k] = kOpaqueRayMask; packet.rays.flags[k] = 0; packet.rays.time[k] = 0.0f;
   }
   if (!fast_vpl)
     for (size_t k = batch.count > first ? batch.count - first : 0; k < 16; ++k) packet.valid[k] = 0;
@@ -133,14 +138,34 @@ int accumulate_shadow_packet(const ShadowPacket& packet, size_t first, PixelBatc
   float* __restrict b = batch.sum_b.data() + first;
   int traced = 0;
   for (int k = 0; k < 16; ++k) {
-    // Embree sets tfar to -inf for occluded lanes.
-    const float lit = ((packet.valid[k] != 0) & (packet.rays.tfar[k] >= 0.0f)) ? 1.0f : 0.0f;
-    r[k] += packet.r[k] * lit;
-    g[k] += packet.g[k] * lit;
-    b[k] += packet.b[k] * lit;
+    // Embree sets tfar to -inf for occluded lanes. A select, not a product
+    // with 0: an inactive lane's stale value must not reach the sum.
+    const bool lit = (packet.valid[k] != 0) & (packet.rays.tfar[k] >= 0.0f);
+    r[k] += lit ? packet.r[k] : 0.0f;
+    g[k] += lit ? packet.g[k] : 0.0f;
+    b[k] += lit ? packet.b[k] : 0.0f;
     traced += packet.valid[k] != 0;
   }
   return traced;
+}
+
+void shade_batch(PixelBatch& batch, std::span<const Vpl> vpls, const VplShading& shading, RTCScene scene,
+                 RayCounts& rays, RayLog* log) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  thread_local ShadowPacket packet;
+  for (const Vpl& vpl : vpls)
+    for (size_t first = 0; first < batch.count; first += 16) {
+      fill_shadow_packet(batch, first, vpl, shading, packet);
+      if (log) {
+        log->shadow.emplace_back();
+        std::copy_n(packet.valid, 16, log->shadow.back().valid);
+        log->shadow.back().rays = packet.rays;
+      }
+      rtcOccluded16(packet.valid, scene, &context, &packet.rays);
+      rays.shadow += accumulate_shadow_packet(packet, first, batch);
+    }
 }
 
 }  // namespace igi

@@ -6,18 +6,21 @@
 // vpl_contribution.h. Each lane's arithmetic is independent of its
 // neighbours, so a pixel's result does not depend on the packet it is in.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <embree3/rtcore.h>
 
 #include "methods/gbuffer.h"
+#include "methods/ray_log.h"
 #include "methods/vpl_contribution.h"
 
 namespace igi {
 
-// One set's valid pixels, padded to a multiple of 16 lanes.
+// Shading points (one set's pixels, say), padded to a multiple of 16 lanes.
 struct PixelBatch {
-  std::vector<uint32_t> index;  // into the G-buffer
+  std::vector<uint32_t> index;    // the caller's id of each point
+  std::vector<const GSample*> sample;  // the point itself (general lanes read it)
   std::vector<float> ox, oy, oz;  // shadow-ray origin, nudged to the viewer's side
   std::vector<float> px, py, pz;  // surface position
   std::vector<float> nx, ny, nz;  // shading normal, facing the viewer
@@ -28,7 +31,8 @@ struct PixelBatch {
   size_t count = 0;
 
   void clear();
-  void add(uint32_t gbuffer_index, const GSample& g);
+  // `g` must be valid and outlive the batch.
+  void add(uint32_t id, const GSample& g);
   void pad();  // to a multiple of 16, with inert lanes
 };
 
@@ -40,9 +44,15 @@ struct alignas(64) ShadowPacket {
 
 // Fills `packet` for lanes [first, first + 16) of `batch` against `vpl`.
 void fill_shadow_packet(const PixelBatch& batch, size_t first, const Vpl& vpl, const VplShading& shading,
-                        const std::vector<GSample>& gbuffer, ShadowPacket& packet);
+                        ShadowPacket& packet);
 // After tracing: adds the unoccluded lanes' contributions to the batch sums.
 // Returns the number of rays the packet traced.
 int accumulate_shadow_packet(const ShadowPacket& packet, size_t first, PixelBatch& batch);
+
+// Every VPL of `vpls` against every point of the padded batch, one coherent
+// packet per VPL and 16 points, added to the batch's sums. `log`, if given,
+// records each packet (benchmarks; one thread only).
+void shade_batch(PixelBatch& batch, std::span<const Vpl> vpls, const VplShading& shading, RTCScene scene,
+                 RayCounts& rays, RayLog* log = nullptr);
 
 }  // namespace igi

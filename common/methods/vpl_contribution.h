@@ -72,7 +72,8 @@ struct VplShading {
     }
     glm::vec3 f = demodulated_bsdf(g, wi);
     glm::vec3 c = f * emitted * g_term;
-    if (c.x <= 0.0f && c.y <= 0.0f && c.z <= 0.0f) return glm::vec3(0.0f);
+    // Nothing, or a VPL on the point itself (unclamped: infinite or NaN).
+    if (!(c.x + c.y + c.z > 0.0f) || !std::isfinite(c.x + c.y + c.z)) return glm::vec3(0.0f);
     q.origin = offset_origin(sp, wi);
     q.direction = wi;
     q.tfar = std::isinf(distance) ? INFINITY : distance * (1.0f - kShadowEpsilon);

@@ -2,18 +2,35 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "filter/discontinuity_buffer.h"
 #include "methods/bias_compensation.h"
-#include "methods/gbuffer.h"
-#include "methods/shadow_batch.h"
+#include "methods/direct_lights.h"
+#include "methods/subpixel.h"
 #include "methods/vpl_contribution.h"
 #include "vpl/vpl_generator.h"
 
 namespace igi {
 
+// Per-thread buffers: tiles come by the thousand, allocations would dominate.
+// Shading points are numbered k * P + p for sub-sample k of region pixel p
+// (P pixels), then S P + h for gather hit h.
+struct VplMethod::Scratch {
+  GBuffer gbuffer;
+  GlossyHits hits;
+  std::vector<std::vector<uint32_t>> hits_by_group;  // per (set, group): gather hits
+  PixelBatch batch;
+  std::vector<glm::vec3> sums;      // VPL sums per shading point
+  std::vector<glm::vec3> direct;    // exact lights per shading point (inner sub-samples, hits)
+  std::vector<glm::vec3> value;     // demodulated irradiance per sub-sample: the filter's input
+  std::vector<glm::vec3> filtered;  // per layer, the tile's own pixels
+  FilterInput filter_input;
+};
+
 VplMethod::VplMethod(const SceneContext& context, const RenderSettings& settings)
-    : context_(context), settings_(settings) {
+    : context_(context), settings_(settings), exact_(exact_lights(context.scene)) {
+  if (auto error = settings_error(settings)) throw std::invalid_argument(*error);
   if (settings.clamp > 0.0f) {
     float d = settings.clamp * context.scene.bounds().diagonal();
     clamp_bound_ = 1.0f / (d * d);
@@ -30,10 +47,11 @@ void VplMethod::begin_frame(const FrameSetup& frame) {
   fixed_scale_ = filter_fixed_scale(flux / std::max(1, vpls_.set_count()) / (diagonal * diagonal));
 }
 
-// The valid pixels of set s (all pixels for ir), in 4 x 4 blocks of the
-// set's own pixel grid so a packet's rays start close together (coherent).
-void VplMethod::collect_set_pixels(const std::vector<GSample>& gbuffer, const Region& region, int s,
-                                   PixelBatch& batch) const {
+// The valid sub-samples of set s (all pixels for ir) that connect to `group`,
+// in 4 x 4 blocks of the set's own pixel grid so a packet's rays start close
+// together (coherent).
+void VplMethod::collect_set_samples(const GBuffer& gbuffer, int s, int group, PixelBatch& batch) const {
+  const Region& region = gbuffer.region;
   const int n = interleaved() ? vpls_.interleave : 1;
   const int sx = interleaved() ? s % n : 0, sy = interleaved() ? s / n : 0;
   // First column and row of the region that belong to the set (global coordinates).
@@ -45,60 +63,119 @@ void VplMethod::collect_set_pixels(const std::vector<GSample>& gbuffer, const Re
     for (int bx = 0; bx < nx; bx += 4)
       for (int j = by; j < std::min(by + 4, ny); ++j)
         for (int i = bx; i < std::min(bx + 4, nx); ++i) {
-          const size_t index = size_t(y_first + n * j - region.y0) * region.width + (x_first + n * i - region.x0);
-          if (gbuffer[index].valid()) batch.add(uint32_t(index), gbuffer[index]);
+          const int x = x_first + n * i, y = y_first + n * j;
+          const int k = subsample_of_group(x, y, group, gbuffer.samples);
+          const size_t id = size_t(k) * region.pixels() + region.index(x, y);
+          const GSample& g = gbuffer.layers[id];
+          if (g.valid() && receives_vpls(*g.surface.material, settings_.glossy_threshold)) batch.add(uint32_t(id), g);
         }
 }
 
-// Sums, for each valid pixel, the unoccluded contributions of its VPLs. Rays
-// of a packet share one VPL and come from nearby pixels of one set.
-void VplMethod::shade(const std::vector<GSample>& gbuffer, const Region& region,
-                      std::vector<glm::vec3>& irradiance, RayCounts& rays) const {
-  irradiance.assign(gbuffer.size(), glm::vec3(0.0f));
-  const VplShading shading{context_.scene, clamp_bound_};
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+// VPL sums at every shading point that takes VPL light: the sub-samples of
+// each (set, group), then the gather hits traced from them.
+void VplMethod::shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch, RayCounts& rays) const {
+  const Region& region = gbuffer.region;
+  const size_t camera_points = gbuffer.layers.size();
   const int sets = interleaved() ? vpls_.set_count() : 1;
-  thread_local PixelBatch batch;
-  thread_local ShadowPacket packet;
-  for (int s = 0; s < sets; ++s) {
-    batch.clear();
-    collect_set_pixels(gbuffer, region, s, batch);
-    batch.pad();
-    const uint32_t begin = interleaved() ? vpls_.set_begin[s] : 0;
-    const uint32_t end = interleaved() ? vpls_.set_begin[s + 1] : uint32_t(vpls_.vpls.size());
-    for (uint32_t v = begin; v < end; ++v)
-      for (size_t first = 0; first < batch.count; first += 16) {
-        fill_shadow_packet(batch, first, vpls_.vpls[v], shading, gbuffer, packet);
-        if (log_) {
-          log_->shadow.emplace_back();
-          std::copy_n(packet.valid, 16, log_->shadow.back().valid);
-          log_->shadow.back().rays = packet.rays;
-        }
-        rtcOccluded16(packet.valid, context_.accel.handle(), &context, &packet.rays);
-        rays.shadow += accumulate_shadow_packet(packet, first, batch);
-      }
-    for (size_t i = 0; i < batch.count; ++i)
-      irradiance[batch.index[i]] = glm::vec3(batch.sum_r[i], batch.sum_g[i], batch.sum_b[i]);
+  const int groups = vpls_.groups;
+  scratch.sums.assign(camera_points + hits.points.size(), glm::vec3(0.0f));
+  scratch.hits_by_group.resize(size_t(sets) * groups);
+  for (auto& list : scratch.hits_by_group) list.clear();
+  for (uint32_t h = 0; h < hits.points.size(); ++h) {
+    const GSample& y = hits.points[h];
+    if (!y.valid() || !receives_vpls(*y.surface.material, settings_.glossy_threshold)) continue;
+    const int k = int(hits.owner[h] / region.pixels());
+    const size_t pixel = hits.owner[h] % region.pixels();
+    const int x = region.x0 + int(pixel % region.width), yy = region.y0 + int(pixel / region.width);
+    const int set = interleaved() ? vpls_.set_of_pixel(x, yy) : 0;
+    scratch.hits_by_group[size_t(set) * groups + group_of_subsample(x, yy, k, groups)].push_back(h);
   }
-  // Each set alone estimates the full light; ir sums all S of them.
-  if (!interleaved())
-    for (glm::vec3& e : irradiance) e *= 1.0f / float(vpls_.set_count());
+  const VplShading shading{context_.scene, clamp_bound_};
+  PixelBatch& batch = scratch.batch;
+  for (int s = 0; s < sets; ++s)
+    for (int g = 0; g < groups; ++g) {
+      batch.clear();
+      collect_set_samples(gbuffer, s, g, batch);
+      for (uint32_t h : scratch.hits_by_group[size_t(s) * groups + g])
+        batch.add(uint32_t(camera_points + h), hits.points[h]);
+      if (batch.count == 0) continue;
+      batch.pad();
+      // igi: the set's own group; ir: that group of every set.
+      for (int v = interleaved() ? s : 0; v < (interleaved() ? s + 1 : vpls_.set_count()); ++v) {
+        const auto first = vpls_.vpls.begin() + vpls_.group_first(v, g);
+        const auto last = vpls_.vpls.begin() + vpls_.group_end(v, g);
+        shade_batch(batch, std::span<const Vpl>(first, last), shading, context_.accel.handle(), rays, log_);
+      }
+      for (size_t i = 0; i < batch.count; ++i)
+        scratch.sums[batch.index[i]] += glm::vec3(batch.sum_r[i], batch.sum_g[i], batch.sum_b[i]);
+    }
 }
 
-// Demodulated irradiance of the tile's own pixels: through the discontinuity
-// buffer (igi), or cropped from the region as it is (ir, or filter off).
-void VplMethod::filter_or_crop(const std::vector<GSample>& gbuffer, const Region& region, const TileJob& job,
-                               std::vector<glm::vec3>& irradiance, std::vector<glm::vec3>& filtered) const {
-  filtered.resize(size_t(job.w) * job.h);
+// Exact lights at the sub-samples of the tile's own pixels (never filtered,
+// so the border needs none) and at every gather hit.
+void VplMethod::shade_exact(const GBuffer& gbuffer, const TileJob& job, const GlossyHits& hits, Scratch& scratch,
+                            RayCounts& rays) const {
+  const Region& region = gbuffer.region;
+  const size_t camera_points = gbuffer.layers.size();
+  scratch.direct.assign(camera_points + hits.points.size(), glm::vec3(0.0f));
+  if (exact_.empty()) return;
+  PixelBatch& batch = scratch.batch;
+  batch.clear();
+  for (int k = 0; k < gbuffer.samples; ++k)
+    for (int by = 0; by < job.h; by += 4)
+      for (int bx = 0; bx < job.w; bx += 4)
+        for (int y = job.y + by; y < job.y + std::min(by + 4, job.h); ++y)
+          for (int x = job.x + bx; x < job.x + std::min(bx + 4, job.w); ++x) {
+            const size_t id = size_t(k) * region.pixels() + region.index(x, y);
+            if (gbuffer.layers[id].valid()) batch.add(uint32_t(id), gbuffer.layers[id]);
+          }
+  for (uint32_t h = 0; h < hits.points.size(); ++h)
+    if (hits.points[h].valid()) batch.add(uint32_t(camera_points + h), hits.points[h]);
+  if (batch.count == 0) return;
+  batch.pad();
+  shade_batch(batch, exact_, VplShading{context_.scene, clamp_bound_}, context_.accel.handle(), rays, log_);
+  for (size_t i = 0; i < batch.count; ++i)
+    scratch.direct[batch.index[i]] = glm::vec3(batch.sum_r[i], batch.sum_g[i], batch.sum_b[i]);
+}
+
+// Demodulated irradiance per sub-sample: its group's VPL sum scaled to a
+// whole set's estimate, plus what its gather rays brought back.
+void VplMethod::combine(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch) const {
+  const size_t camera_points = gbuffer.layers.size();
+  // Each set alone estimates the full light (ir averages all of them); each group 1 / G of it.
+  const float scale = float(vpls_.groups) / (interleaved() ? 1.0f : float(vpls_.set_count()));
+  scratch.value.resize(camera_points);
+  for (size_t i = 0; i < camera_points; ++i) scratch.value[i] = scale * scratch.sums[i];
+  for (size_t h = 0; h < hits.points.size(); ++h) {
+    const GSample& y = hits.points[h];
+    glm::vec3 radiance = y.emitted;
+    if (y.valid())
+      radiance += y.throughput * y.surface.albedo * (scale * scratch.sums[camera_points + h] + scratch.direct[camera_points + h]);
+    scratch.value[hits.owner[h]] += hits.weight[h] * radiance;
+  }
+}
+
+// Layer k's demodulated irradiance of the tile's own pixels: through the
+// discontinuity buffer (igi), or cropped from the region as it is (ir, or
+// filter off). Each layer is filtered on its own: a sub-sample is averaged
+// with the same sub-sample of its neighbours where they lie on its surface,
+// so edges stay sharp per sub-sample. The rotation of groups
+// (methods/subpixel.h) gives the neighbours other groups, and over the S
+// layers a pixel on an open surface averages every (set, group) once: all the
+// frame's VPLs, as with S = 1.
+void VplMethod::filter_layer(const GBuffer& gbuffer, int k, const TileJob& job, Scratch& scratch) const {
+  const Region& region = gbuffer.region;
+  const size_t inner = size_t(job.w) * job.h;
+  const auto layer_value = scratch.value.begin() + ptrdiff_t(size_t(k) * region.pixels());
+  glm::vec3* out = scratch.filtered.data() + size_t(k) * inner;
   if (interleaved() && settings_.filter) {
-    thread_local FilterInput in;
+    FilterInput& in = scratch.filter_input;
     in.x0 = region.x0; in.y0 = region.y0; in.width = region.width; in.height = region.height;
-    std::swap(in.value, irradiance);
+    in.value.assign(layer_value, layer_value + ptrdiff_t(region.pixels()));
     in.depth.clear();
     in.normal.clear();
-    for (const GSample& g : gbuffer) {
+    for (size_t p = 0; p < region.pixels(); ++p) {
+      const GSample& g = gbuffer.at(k, p);
       in.depth.push_back(g.depth);
       in.normal.push_back(g.valid() ? g.surface.shading_normal : glm::vec3(0.0f));
     }
@@ -107,38 +184,50 @@ void VplMethod::filter_or_crop(const std::vector<GSample>& gbuffer, const Region
     fs.normal_cos = settings_.filter_normal_cos;
     fs.depth_ratio = settings_.filter_depth_ratio;
     fs.fixed_scale = fixed_scale_;
-    filter_discontinuity(in, fs, Rect{job.x, job.y, job.w, job.h}, filtered);
-    std::swap(in.value, irradiance);
+    filter_discontinuity(in, fs, Rect{job.x, job.y, job.w, job.h}, std::span<glm::vec3>(out, inner));
     return;
   }
   for (int y = 0; y < job.h; ++y)
-    for (int x = 0; x < job.w; ++x)
-      filtered[size_t(y) * job.w + x] = irradiance[size_t(job.y + y - region.y0) * region.width + (job.x + x - region.x0)];
+    for (int x = 0; x < job.w; ++x) out[size_t(y) * job.w + x] = layer_value[ptrdiff_t(region.index(job.x + x, job.y + y))];
 }
 
 void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const {
-  const Region region = tile_region(job, frame_.width, frame_.height);
-  // Per-thread scratch: tiles come by the thousand, allocations would dominate.
-  thread_local std::vector<GSample> gbuffer;
-  thread_local std::vector<glm::vec3> irradiance, filtered;
-  build_gbuffer(context_.accel, frame_, region, settings_.max_depth, gbuffer, rays, log_);
-  shade(gbuffer, region, irradiance, rays);
-  // The compensation joins the demodulated irradiance BEFORE the filter: it
-  // is as noisy as the VPL sums (a few hemisphere samples, one VPL set), the
-  // filter's cost does not depend on the values, and filtering it lowers
-  // relMSE. Measured with igi-accuracy (corner, 64x48, clamp 0.1, 4 samples,
-  // median of 3 seeds), relMSE filtered / added after the filter:
-  // M=1 0.0709 / 0.0718, M=16 0.0091 / 0.0094, M=64 0.0065 / 0.0068.
-  const BiasCompensation compensation(context_.accel, vpls_, interleaved(), clamp_bound_,
+  thread_local Scratch scratch;
+  GBuffer& gbuffer = scratch.gbuffer;
+  build_gbuffer(context_.accel, frame_, tile_region(job, frame_.width, frame_.height), settings_.aa_samples,
+                depth_limit(settings_.specular_depth), gbuffer, rays, log_);
+  trace_glossy_gather(context_.accel, gbuffer, settings_, frame_.seed, scratch.hits, rays);
+  shade_vpls(gbuffer, scratch.hits, scratch, rays);
+  shade_exact(gbuffer, job, scratch.hits, scratch, rays);
+  // The glossy gather joins the demodulated irradiance before the filter, so
+  // a glossy surface averages its neighbours' gathers like its VPL light.
+  combine(gbuffer, scratch.hits, scratch);
+  // So does the compensation: it is as noisy as the VPL sums (a few
+  // hemisphere samples, one VPL set), the filter's cost does not depend on
+  // the values, and filtering it lowers relMSE. Measured with igi-accuracy
+  // (corner, 64x48, clamp 0.1, 4 samples, median of 3 seeds), relMSE
+  // filtered / added after the filter: M=1 0.0709 / 0.0718, M=16 0.0091 /
+  // 0.0094, M=64 0.0065 / 0.0068.
+  const BiasCompensation compensation(context_.accel, vpls_, exact_, interleaved(), clamp_bound_,
                                       settings_.compensation_samples);
-  compensation.add(gbuffer, region, frame_.seed, irradiance, rays);
-  filter_or_crop(gbuffer, region, job, irradiance, filtered);
+  compensation.add(gbuffer, frame_.seed, scratch.value, rays);
+  const size_t inner = size_t(job.w) * job.h;
+  scratch.filtered.resize(inner * gbuffer.samples);
+  for (int k = 0; k < gbuffer.samples; ++k) filter_layer(gbuffer, k, job, scratch);
+  // A pixel is the mean of its sub-samples' radiance.
+  const float inv_samples = 1.0f / float(gbuffer.samples);
   for (int y = 0; y < job.h; ++y)
     for (int x = 0; x < job.w; ++x) {
-      const GSample& g = gbuffer[size_t(job.y + y - region.y0) * region.width + (job.x + x - region.x0)];
-      glm::vec3 c = g.emitted;
-      if (g.valid()) c += g.throughput * g.surface.albedo * filtered[size_t(y) * job.w + x];
-      out[size_t(y) * job.w + x] = c;
+      const size_t pixel = gbuffer.region.index(job.x + x, job.y + y);
+      glm::vec3 c(0.0f);
+      for (int k = 0; k < gbuffer.samples; ++k) {
+        const GSample& g = gbuffer.at(k, pixel);
+        c += g.emitted;
+        if (g.valid())
+          c += g.throughput * g.surface.albedo *
+               (scratch.filtered[size_t(k) * inner + size_t(y) * job.w + x] + scratch.direct[size_t(k) * gbuffer.region.pixels() + pixel]);
+      }
+      out[size_t(y) * job.w + x] = c * inv_samples;
     }
 }
 

@@ -4,19 +4,28 @@
 //  igi: pixel (x, y) sums only set (x mod N) + N (y mod N) of M VPLs; the
 //       discontinuity buffer then averages demodulated irradiance over the
 //       N x N window, so each pixel sees all sets at 1/S of the cost.
-// With a clamp, optional bias compensation (methods/bias_compensation.h)
-// adds back the clamped light before the filter.
+// Around that core, per tile:
+//  - anti-aliasing by VPL groups: S sub-samples per pixel, each shaded by its
+//    own group of the pixel's light paths (methods/subpixel.h);
+//  - GGX surfaces sharper than the glossy threshold gather their lobe with
+//    rays instead of taking VPL light (methods/glossy_gather.h);
+//  - exact point, spot and directional lights, once per sub-sample, added
+//    after the filter (methods/direct_lights.h);
+//  - with a clamp, optional bias compensation (methods/bias_compensation.h)
+//    adds back the clamped light before the filter.
 // Shadow rays go out in 16-wide packets that share one VPL (coherent).
 #include "methods/method.h"
 #include "methods/ray_log.h"
 #include "methods/shadow_batch.h"
 #include "methods/gbuffer.h"
+#include "methods/glossy_gather.h"
 #include "vpl/vpl.h"
 
 namespace igi {
 
 class VplMethod final : public Method {
  public:
+  // Throws std::invalid_argument when the settings are out of range (settings_error()).
   VplMethod(const SceneContext& context, const RenderSettings& settings);
   void begin_frame(const FrameSetup& frame) override;
   void render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const override;
@@ -26,18 +35,20 @@ class VplMethod final : public Method {
   void record_rays(RayLog* log) { log_ = log; }
 
  private:
+  struct Scratch;
   bool interleaved() const { return settings_.method == MethodKind::Igi; }
-  void collect_set_pixels(const std::vector<GSample>& gbuffer, const Region& region, int set,
-                          PixelBatch& batch) const;
-  void shade(const std::vector<GSample>& gbuffer, const Region& region,
-             std::vector<glm::vec3>& irradiance, RayCounts& rays) const;
-  void filter_or_crop(const std::vector<GSample>& gbuffer, const Region& region, const TileJob& job,
-                      std::vector<glm::vec3>& irradiance, std::vector<glm::vec3>& filtered) const;
+  void collect_set_samples(const GBuffer& gbuffer, int set, int group, PixelBatch& batch) const;
+  void shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch, RayCounts& rays) const;
+  void shade_exact(const GBuffer& gbuffer, const TileJob& job, const GlossyHits& hits, Scratch& scratch,
+                   RayCounts& rays) const;
+  void combine(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch) const;
+  void filter_layer(const GBuffer& gbuffer, int k, const TileJob& job, Scratch& scratch) const;
 
   SceneContext context_;
   RenderSettings settings_;
   FrameSetup frame_;
   VplSets vpls_;
+  std::vector<Vpl> exact_;  // point, spot and directional lights (methods/direct_lights.h)
   float clamp_bound_ = INFINITY;
   double fixed_scale_ = 0x1p32;
   RayLog* log_ = nullptr;

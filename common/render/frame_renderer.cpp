@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cmath>
 #include <mutex>
 #include <thread>
@@ -32,34 +33,42 @@ Image render_frame(const Method& method, const FrameSetup& frame, int border,
                    const FrameOptions& options, RayCounts& rays) {
   Image image(frame.width, frame.height);
   const std::vector<TileJob> tiles = make_tiles(frame.width, frame.height, options.tile_size, options.tile_size, border);
-  std::atomic<size_t> next{0}, done{0};
-  std::mutex rays_mutex;
+  std::atomic<size_t> next{0};
+  size_t done = 0;  // guarded by mutex
+  std::mutex mutex;
+  std::condition_variable all_done;
   auto work = [&] {
     enable_flush_to_zero();
     RayCounts local;
     std::vector<glm::vec3> pixels;
-    for (size_t i; (i = next.fetch_add(1)) < tiles.size();) {
+    size_t finished = 0;
+    for (size_t i; (i = next.fetch_add(1)) < tiles.size(); ++finished) {
       const TileJob& t = tiles[i];
       pixels.assign(size_t(t.w) * t.h, glm::vec3(0.0f));
       method.render_tile(t, pixels, local);
-      for (int y = 0; y < t.h; ++y)
-        std::copy_n(pixels.begin() + size_t(y) * t.w, t.w, image.pixels.begin() + size_t(t.y + y) * frame.width + t.x);
-      done.fetch_add(1);
+      image.paste(pixels, t.x, t.y, t.w, t.h);
     }
-    std::lock_guard lock(rays_mutex);
+    std::lock_guard lock(mutex);
     rays += local;
+    done += finished;
+    if (done == tiles.size()) all_done.notify_all();
   };
   const int threads = options.threads > 0 ? options.threads : default_thread_count();
   std::vector<std::thread> pool;
   for (int i = 1; i < threads; ++i) pool.emplace_back(work);
   if (options.progress) {
-    // The caller's thread reports progress and then joins in with the work.
-    std::thread reporter(work);
-    while (done.load() < tiles.size()) {
-      options.progress(float(done.load()) / float(tiles.size()));
-      std::this_thread::sleep_for(std::chrono::milliseconds(250));
+    // The caller's thread reports progress while `threads` others work. It
+    // wakes when the last tile is done, not at its next report: a frame
+    // shorter than the report interval costs nothing extra.
+    pool.emplace_back(work);
+    std::unique_lock lock(mutex);
+    while (!all_done.wait_for(lock, std::chrono::milliseconds(250), [&] { return done == tiles.size(); })) {
+      const size_t claimed = std::min(next.load(), tiles.size());
+      lock.unlock();
+      options.progress(float(claimed) / float(tiles.size()));
+      lock.lock();
     }
-    reporter.join();
+    lock.unlock();
     options.progress(1.0f);
   } else {
     work();

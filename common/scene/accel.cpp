@@ -28,7 +28,8 @@ static void filter_hits(const RTCFilterFunctionNArguments* args) {
     glm::vec2 bary(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
     glm::vec3 dir(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
                   RTCRayN_dir_z(args->ray, args->N, i));
-    if (accel->rejects(accel->triangle_index(geom, prim), bary, dir)) args->valid[i] = 0;
+    const bool camera_ray = RTCRayN_mask(args->ray, args->N, i) == kCameraRayMask;
+    if (accel->rejects(accel->triangle_index(geom, prim), bary, dir, camera_ray)) args->valid[i] = 0;
   }
 }
 
@@ -81,10 +82,10 @@ Accel::~Accel() {
   rtcReleaseDevice(device_);
 }
 
-bool Accel::rejects(uint32_t triangle, glm::vec2 b, glm::vec3 direction) const {
+bool Accel::rejects(uint32_t triangle, glm::vec2 b, glm::vec3 direction, bool camera_ray) const {
   const Material& m = scene_.materials[scene_.triangle_material[triangle]];
   const glm::uvec3& t = scene_.triangles[triangle];
-  if (!m.double_sided) {
+  if (!m.double_sided && camera_ray) {
     glm::vec3 ng = glm::cross(scene_.positions[t[1]] - scene_.positions[t[0]],
                               scene_.positions[t[2]] - scene_.positions[t[0]]);
     if (glm::dot(ng, direction) > 0.0f) return true;  // the back of a single-sided face
@@ -108,7 +109,7 @@ bool Accel::intersect(const Ray& ray, Hit& hit) const {
   rh.ray.dir_x = ray.direction.x; rh.ray.dir_y = ray.direction.y; rh.ray.dir_z = ray.direction.z;
   rh.ray.tnear = ray.tnear;
   rh.ray.tfar = ray.tfar;
-  rh.ray.mask = ~0u;
+  rh.ray.mask = ray.mask;
   rh.ray.flags = 0;
   rh.ray.time = 0.0f;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -129,7 +130,7 @@ bool Accel::occluded(const Ray& ray) const {
   r.dir_x = ray.direction.x; r.dir_y = ray.direction.y; r.dir_z = ray.direction.z;
   r.tnear = ray.tnear;
   r.tfar = ray.tfar;
-  r.mask = ~0u;
+  r.mask = ray.mask;
   r.flags = 0;
   r.time = 0.0f;
   rtcOccluded1(scene_handle_, &context, &r);

@@ -6,6 +6,14 @@
 //
 // Threads that trace must call enable_flush_to_zero() first (Embree asks for
 // FTZ/DAZ; the renderer's thread pool does it).
+//
+// Single-sided faces: glTF's doubleSided is about display, so only camera
+// rays (and the mirror and glass chains they pass through) skip the back of a
+// single-sided face. Shadow rays, light paths and diffuse bounces find it
+// opaque like any other face, or light would leak through the walls of
+// interiors, which exporters write single-sided. A ray says which it is by
+// its mask (Embree passes it to the filter): kCameraRayMask culls,
+// kOpaqueRayMask (all bits, the default) does not.
 #include <cstdint>
 #include <vector>
 
@@ -16,11 +24,15 @@
 
 namespace igi {
 
+inline constexpr unsigned kOpaqueRayMask = ~0u;
+inline constexpr unsigned kCameraRayMask = ~0u >> 1;  // bit 31 clear: cull single-sided back faces
+
 struct Ray {
   glm::vec3 origin;
   glm::vec3 direction;
   float tnear = 0.0f;
   float tfar = 1e30f;
+  unsigned mask = kOpaqueRayMask;
 };
 
 struct Hit {
@@ -47,9 +59,9 @@ class Accel {
   uint32_t triangle_index(unsigned geom_id, unsigned prim_id) const {
     return geometry_triangles_[geom_id][prim_id];
   }
-  // Whether the filtered triangle is transparent at this hit (alpha mask or
-  // the back of a single-sided face seen from `direction`).
-  bool rejects(uint32_t triangle, glm::vec2 barycentric, glm::vec3 direction) const;
+  // Whether the filtered triangle is transparent at this hit: its alpha mask,
+  // or, for a camera ray, the back of a single-sided face seen from `direction`.
+  bool rejects(uint32_t triangle, glm::vec2 barycentric, glm::vec3 direction, bool camera_ray) const;
 
  private:
   void add_geometry(const std::vector<uint32_t>& triangles, bool filtered);

@@ -139,9 +139,9 @@ Scene make_rooms_scene(int n) {
   return s;
 }
 
-Scene make_glossy_cornell(float alpha) {
+Scene make_glossy_cornell(float alpha, const std::string& name) {
   Scene s = make_cornell_box();
-  s.name = "glossy";
+  s.name = name;
   Material metal;
   metal.name = "metal";
   metal.type = MaterialType::Conductor;

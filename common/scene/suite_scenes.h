@@ -12,7 +12,8 @@
 //           darkens it).
 //   rooms-N N x N rooms of 4 x 4 x 2.5 m joined by doorways, one ceiling
 //           light each; the camera sees a few rooms, most light is occluded.
-//   glossy  the Cornell box with a GGX metal floor: VPLs show as spikes.
+//   glossy  the Cornell box with a GGX metal floor (alpha 0.04): VPLs show as
+//           spikes; glossy-rough: alpha 0.3, where they blur.
 //   large   the Cornell box without its blocks and a 3 x 3 grid of bumpy
 //           spheres, about 1.05 M triangles.
 #include <string>
@@ -27,7 +28,7 @@ Scene make_corner_scene();
 // 1 <= n <= kMaxRooms; throws SceneError otherwise.
 Scene make_rooms_scene(int n);
 // alpha: GGX roughness parameter of the floor (roughness^2).
-Scene make_glossy_cornell(float alpha = 0.04f);
+Scene make_glossy_cornell(float alpha = 0.04f, const std::string& name = "glossy");
 // At least `triangles` triangles in the spheres (the box adds 20).
 Scene make_large_scene(int triangles = 1'050'000);
 

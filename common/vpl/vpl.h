@@ -6,9 +6,14 @@
 // where emitted depends on its kind:
 //   Surface:     f_y(incident, -wi) cos_y / r^2 * flux   (a light-path hit)
 //   Area:        cos_y / r^2 * flux                     (a point on an emitter; flux = Le A / pdf)
-//   Point/Spot:  1 / r^2 * flux * cone(-wi)             (flux = intensity / pdf)
+//   Point/Spot:  1 / r^2 * flux * cone(-wi)             (flux = intensity)
 //   Directional: flux, from direction -normal, at infinity
 // The geometry term cos_x cos_y / r^2 is what clamping bounds.
+//
+// VPL sets hold Surface and Area VPLs only. Point, spot and directional
+// lights start light paths like any light, but their own light is exact:
+// the methods evaluate each once per shading point (methods/direct_lights.h)
+// rather than through M identical copies per set.
 #include <cstdint>
 #include <vector>
 
@@ -32,14 +37,20 @@ struct Vpl {
   VplKind kind = VplKind::Surface;
 };
 
-// S = N x N sets; set k holds the VPLs of light paths [k M, (k+1) M).
+// S = N x N sets; set k holds the VPLs of light paths [k M, (k+1) M). Each
+// set is cut into G groups of consecutive paths for anti-aliasing
+// (methods/subpixel.h): path i of a set is in group floor(i G / M).
 struct VplSets {
-  int interleave = 3;               // N
-  std::vector<Vpl> vpls;            // all sets, one after the other
-  std::vector<uint32_t> set_begin;  // S + 1 offsets into vpls
-  uint64_t hash = 0;                // content hash, equal on every worker for equal inputs
+  int interleave = 3;                 // N
+  int groups = 1;                     // G
+  std::vector<Vpl> vpls;              // all sets, one after the other, each in group order
+  std::vector<uint32_t> set_begin;    // S + 1 offsets into vpls
+  std::vector<uint32_t> group_begin;  // S G + 1 offsets: group g of set k starts at [k G + g]
+  uint64_t hash = 0;                  // content hash, equal on every worker for equal inputs
 
   int set_count() const { return int(set_begin.size()) - 1; }
+  uint32_t group_first(int set, int group) const { return group_begin[size_t(set) * groups + group]; }
+  uint32_t group_end(int set, int group) const { return group_begin[size_t(set) * groups + group + 1]; }
   // The set a pixel uses, from its GLOBAL image coordinates.
   int set_of_pixel(int x, int y) const { return (x % interleave) + interleave * (y % interleave); }
 };

@@ -21,21 +21,24 @@ struct PathStart {
   glm::vec3 flux;  // carried along the ray, per path
 };
 
-// The VPL on the light itself and the first ray leaving it.
+// The first ray leaving a light, and for an area light the VPL on the light
+// itself. Point, spot and directional lights leave no VPL: the methods
+// evaluate their light exactly (vpl/vpl.h); their paths still carry it on.
 PathStart start_path(const LightSet& lights, const Scene& scene, SampleStream& u,
                      float inv_paths, std::vector<Vpl>& out) {
   const float u_select = u.next_1d();
   const glm::vec2 u_point = u.next_2d();
   const glm::vec2 u_dir = u.next_2d();
   EmissionSample e = lights.sample_emission(u_select, u_point);
-  Vpl v;
-  v.position = e.position;
-  v.normal = e.normal;
-  v.flux = e.power * inv_paths;
   PathStart start;
   switch (e.kind) {
     case LightKind::Area: {
+      Vpl v;
       v.kind = VplKind::Area;
+      v.position = e.position;
+      v.normal = e.normal;
+      v.flux = e.power * inv_paths;
+      out.push_back(v);
       Frame frame(e.normal);
       glm::vec3 d = frame.to_world(cosine_hemisphere(u_dir));
       start.ray = Ray{e.position + 1e-5f * lights.scene_radius() * e.normal, d};
@@ -43,22 +46,16 @@ PathStart start_path(const LightSet& lights, const Scene& scene, SampleStream& u
       break;
     }
     case LightKind::Directional:
-      v.kind = VplKind::Directional;
-      v.flux = e.power * (inv_paths / (kPi * lights.scene_radius() * lights.scene_radius()));  // irradiance
       start.ray = Ray{e.position, e.normal};
       start.flux = e.power;
       break;
     default: {
       const PunctualLight& pl = scene.lights[lights.lights()[e.light].index];
-      v.kind = e.kind == LightKind::Spot ? VplKind::Spot : VplKind::Point;
-      v.normal = pl.direction;
-      v.light = lights.lights()[e.light].index;
       glm::vec3 d;
-      float pdf;
       if (e.kind == LightKind::Spot) {
         float cos_max = std::cos(pl.outer_cone);
         d = Frame(glm::normalize(pl.direction)).to_world(uniform_cone(u_dir, cos_max));
-        pdf = 1.0f / (2.0f * kPi * (1.0f - cos_max));
+        float pdf = 1.0f / (2.0f * kPi * (1.0f - cos_max));
         start.flux = e.power * (spot_attenuation(pl, d) / pdf);
       } else {
         float z = 1.0f - 2.0f * u_dir.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z));
@@ -68,7 +65,6 @@ PathStart start_path(const LightSet& lights, const Scene& scene, SampleStream& u
       start.ray = Ray{e.position, d};
     }
   }
-  out.push_back(v);
   return start;
 }
 
@@ -78,12 +74,16 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
   PathStart start = start_path(ctx.lights, ctx.scene, start_stream, inv_paths, out);
   Ray ray = start.ray;
   glm::vec3 flux = start.flux;
-  for (int depth = 0; depth < settings.max_depth; ++depth) {
+  const int max_depth = depth_limit(settings.light_depth);
+  for (int depth = 0; depth < max_depth; ++depth) {
     Hit hit;
     if (!ctx.accel.intersect(ray, hit)) return;
     SurfacePoint sp = surface_at(ctx.scene, hit, ray.direction);
     const glm::vec3 wo = -ray.direction;
-    if (!sp.material->is_specular())
+    // Mirrors, glass and GGX lobes sharper than the glossy threshold get no
+    // VPL (it would light its neighbours through a spike of its BSDF); the
+    // path carries their reflection on to the next rougher surface.
+    if (receives_vpls(*sp.material, settings.glossy_threshold))
       // The VPL reflects towards the side the light arrived from.
       out.push_back(Vpl{sp.position, glm::dot(wo, sp.geometric_normal) >= 0.0f ? sp.shading_normal : -sp.shading_normal,
                         flux * inv_paths, wo, sp.albedo,
@@ -119,16 +119,23 @@ uint64_t hash_vpls(const std::vector<Vpl>& vpls) {
 VplSets generate_vpls(const SceneContext& context, const RenderSettings& settings, uint32_t seed) {
   VplSets sets;
   sets.interleave = settings.interleave;
+  sets.groups = settings.aa_samples;
   const int set_count = settings.interleave * settings.interleave;
   const uint32_t paths = uint32_t(settings.paths_per_set);
+  const uint32_t groups = uint32_t(settings.aa_samples);
   const float inv_paths = 1.0f / float(paths);
   const uint32_t path_seed = hash(seed, 0x76706c73u);  // "vpls": independent of pixel seeds
   sets.set_begin.push_back(0);
   for (int k = 0; k < set_count; ++k) {
-    for (uint32_t i = 0; i < paths; ++i)
-      trace_light_path(context, settings, uint32_t(k) * paths + i, path_seed, inv_paths, sets.vpls);
+    for (uint32_t g = 0; g < groups; ++g) {
+      sets.group_begin.push_back(uint32_t(sets.vpls.size()));
+      // Paths i with floor(i G / M) = g.
+      for (uint32_t i = (g * paths + groups - 1) / groups; i < ((g + 1) * paths + groups - 1) / groups; ++i)
+        trace_light_path(context, settings, uint32_t(k) * paths + i, path_seed, inv_paths, sets.vpls);
+    }
     sets.set_begin.push_back(uint32_t(sets.vpls.size()));
   }
+  sets.group_begin.push_back(uint32_t(sets.vpls.size()));
   sets.hash = hash_vpls(sets.vpls);
   return sets;
 }

@@ -99,7 +99,7 @@ const Image& cached_reference(const Prepared& p, const std::string& name, const 
   RenderSettings pt;
   pt.method = MethodKind::PathTracer;
   const uint32_t seed = 7;
-  const uint32_t settings_hash = hash(hash(uint32_t(pt.max_depth), seed), 1u /* pt reference version */);
+  const uint32_t settings_hash = hash(hash(uint32_t(pt.path_depth), seed), 2u /* pt reference version: 2 = unbounded paths */);
   char file[256];
   std::snprintf(file, sizeof file, "%s-%dx%d-%d-%08x.exr", name.c_str(), o.width, o.height, o.ref_spp, settings_hash);
   const fs::path path = fs::path(o.refs) / file;

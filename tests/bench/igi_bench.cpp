@@ -3,6 +3,9 @@
 //
 //   igi-bench [--size WxH] [--frames F] [--vpls-per-set V] [--scenes a,b]
 //
+// Also: the same frame with 4x anti-aliasing by VPL groups (same VPLs), and
+// the cost of progress reporting on a multi-pass render (render_offline).
+//
 // Every figure is the median over F frames. "cpu" columns divide by the CPU
 // time the process actually received (the machine is shared), "wall" by
 // elapsed time.
@@ -14,6 +17,7 @@
 #include <vector>
 
 #include "methods/vpl_method.h"
+#include "render/offline_render.h"
 #include "render/frame_renderer.h"
 #include "scene/load_scene.h"
 #include "vpl/vpl_generator.h"
@@ -171,6 +175,43 @@ void bench_scene(const std::string& name, int width, int height, int frames, int
   Timing nb = time_frames(method, frame, 0, 1, 40, frames);
   std::printf("border overhead (40x40 tiles): %+.1f %% primary rays, %+.1f %% frame time (1 thread)\n",
               100.0 * (double(t1.rays.primary) / nb.rays.primary - 1.0), 100.0 * (t1.cpu / nb.cpu - 1.0));
+
+  // Anti-aliasing by VPL groups: the same light paths split into 4 groups.
+  RenderSettings aa = settings;
+  aa.aa_samples = 4;
+  aa.paths_per_set = std::max(settings.paths_per_set, aa.aa_samples);
+  VplMethod aa_method(ctx, aa);
+  aa_method.begin_frame(frame);
+  Timing a1 = time_frames(aa_method, frame, border, 1, 40, frames);
+  Timing a2 = time_frames(aa_method, frame, border, 2, 40, frames);
+  row("igi 4x AA, 1 thread", a1);
+  row("igi 4x AA, 2 threads", a2);
+  std::printf("4x AA costs %.2fx the frame time of 1x (2 threads), %.2fx the rays\n", a2.wall / t2.wall,
+              double(a2.rays.total()) / double(t2.rays.total()));
+}
+
+// A multi-pass render with and without a progress callback (igi-render's
+// --quiet): the callback's thread must not hold the passes back.
+void bench_progress(const std::string& name, int width, int height, int frames) {
+  Scene scene = load_scene(name);
+  Accel accel(scene);
+  LightSet lights(scene);
+  RenderSettings settings;
+  settings.paths_per_set = 6;
+  FrameSetup frame;
+  frame.camera = scene.camera_or_auto();
+  frame.width = width;
+  frame.height = height;
+  frame.seed = 1;
+  std::vector<double> quiet, reporting;
+  for (int f = 0; f < frames; ++f) {
+    FrameOptions options;
+    quiet.push_back(render_offline({scene, accel, lights}, settings, frame, 20, options).seconds);
+    options.progress = [](float) {};
+    reporting.push_back(render_offline({scene, accel, lights}, settings, frame, 20, options).seconds);
+  }
+  std::printf("\n== progress: %s %dx%d, igi, 20 passes: %.3f s quiet, %.3f s with progress (%.2fx)\n", name.c_str(),
+              width, height, median(quiet), median(reporting), median(reporting) / median(quiet));
 }
 
 }  // namespace
@@ -195,5 +236,6 @@ int main(int argc, char** argv) {
   }
   igi::enable_flush_to_zero();
   for (const std::string& s : scenes) igi::bench_scene(s, width, height, frames, vpls);
+  igi::bench_progress("cornell", width, height, frames);
   return 0;
 }

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "image/image.h"
+#include "methods/gbuffer.h"
 #include "render/offline_render.h"
 #include "scene/scene.h"
 
@@ -39,6 +40,14 @@ struct Prepared {
     f.height = height;
     f.seed = seed;
     return f;
+  }
+
+  // The surface seen through each pixel centre, row-major.
+  std::vector<GSample> visible_points(int width, int height) const {
+    GBuffer gbuffer;
+    RayCounts rays;
+    build_gbuffer(*accel, frame(width, height), Region{0, 0, width, height}, 1, 16, gbuffer, rays);
+    return std::move(gbuffer.layers);
   }
 
   Image render(const RenderSettings& settings, int width, int height, int samples, uint32_t seed = 1,
