@@ -91,6 +91,11 @@ float fresnel_dielectric(float cos_i, float eta) {
   return 0.5f * (r_parl * r_parl + r_perp * r_perp);
 }
 
+glm::vec3 ggx_reflection(glm::vec3 n, glm::vec3 wo, glm::vec3 wi, glm::vec3 f0, float alpha) {
+  const Frame frame(glm::dot(wo, n) >= 0.0f ? n : -n);
+  return conductor_eval_local(frame.to_local(wo), frame.to_local(wi), f0, alpha);
+}
+
 glm::vec3 bsdf_eval(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi) {
   if (sp.material->is_specular() || !same_hemisphere(sp, wo, wi)) return glm::vec3(0.0f);
   Frame frame(facing_normal(sp, wo));

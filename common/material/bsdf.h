@@ -27,6 +27,11 @@ float bsdf_pdf(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi);
 // u: 2D sample for the direction; u_lobe: 1D sample for choosing a lobe (glass).
 std::optional<BsdfSample> bsdf_sample(const SurfacePoint& sp, glm::vec3 wo, glm::vec2 u, float u_lobe);
 
+// The GGX conductor lobe for a surface of unit normal n (either side: it is
+// turned towards wo), Fresnel f0, roughness alpha; zero unless wo and wi are
+// both on n's side. bsdf_eval's Conductor case.
+glm::vec3 ggx_reflection(glm::vec3 n, glm::vec3 wo, glm::vec3 wi, glm::vec3 f0, float alpha);
+
 // Fresnel reflectance of a smooth dielectric; cos_i may be negative (inside).
 float fresnel_dielectric(float cos_i, float eta);
 

@@ -70,10 +70,9 @@ glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int k, uin
 // sum, plus the exact lights, times the albedo at y (contributions are
 // demodulated). Emission is the caller's: see the header.
 glm::vec3 BiasCompensation::radiance_towards(const GSample& y, int set, int group, RayCounts& rays) const {
-  const VplShading shading{accel_.scene(), bound_};
   auto unoccluded = [&](const Vpl& v) {
     ShadowQuery q;
-    const glm::vec3 c = shading.contribution(y, v, q);
+    const glm::vec3 c = shading_.contribution(y, v, q);
     if (c == glm::vec3(0.0f)) return c;
     ++rays.shadow;
     return accel_.occluded(Ray{q.origin, q.direction, 0.0f, q.tfar}) ? glm::vec3(0.0f) : c;

@@ -38,6 +38,7 @@
 #include <glm/glm.hpp>
 
 #include "methods/gbuffer.h"
+#include "methods/vpl_contribution.h"
 #include "render/frame.h"
 #include "scene/accel.h"
 #include "vpl/vpl.h"
@@ -48,10 +49,10 @@ class BiasCompensation {
  public:
   // igi (interleaved): a pixel uses its own set; ir: all sets, scaled 1 / S.
   // The references must outlive the object (one tile's work).
-  BiasCompensation(const Accel& accel, const VplSets& vpls, std::span<const Vpl> exact_lights, bool interleaved,
-                   float clamp_bound, int samples)
-      : accel_(accel), vpls_(vpls), exact_(exact_lights), interleaved_(interleaved), bound_(clamp_bound),
-        samples_(samples) {}
+  BiasCompensation(const Accel& accel, const VplShading& shading, const VplSets& vpls,
+                   std::span<const Vpl> exact_lights, bool interleaved, int samples)
+      : accel_(accel), shading_(shading), vpls_(vpls), exact_(exact_lights), interleaved_(interleaved),
+        bound_(shading.clamp_bound), samples_(samples) {}
 
   // Off without samples or without a finite clamp (then nothing is missing).
   bool enabled() const { return samples_ > 0 && bound_ < INFINITY && !vpls_.vpls.empty(); }
@@ -66,6 +67,7 @@ class BiasCompensation {
   glm::vec3 radiance_towards(const GSample& y, int set, int group, RayCounts& rays) const;
 
   const Accel& accel_;
+  const VplShading& shading_;
   const VplSets& vpls_;
   std::span<const Vpl> exact_;
   bool interleaved_;

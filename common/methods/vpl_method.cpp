@@ -90,7 +90,7 @@ void VplMethod::shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scrat
     const int set = interleaved() ? vpls_.set_of_pixel(x, yy) : 0;
     scratch.hits_by_group[size_t(set) * groups + group_of_subsample(x, yy, k, groups)].push_back(h);
   }
-  const VplShading shading{context_.scene, clamp_bound_};
+  const VplShading shading{context_.scene, clamp_bound_, settings_.glossy_threshold};
   PixelBatch& batch = scratch.batch;
   for (int s = 0; s < sets; ++s)
     for (int g = 0; g < groups; ++g) {
@@ -133,7 +133,7 @@ void VplMethod::shade_exact(const GBuffer& gbuffer, const TileJob& job, const Gl
     if (hits.points[h].valid()) batch.add(uint32_t(camera_points + h), hits.points[h]);
   if (batch.count == 0) return;
   batch.pad();
-  shade_batch(batch, exact_, VplShading{context_.scene, clamp_bound_}, context_.accel.handle(), rays, log_);
+  shade_batch(batch, exact_, VplShading{context_.scene, clamp_bound_, settings_.glossy_threshold}, context_.accel.handle(), rays, log_);
   for (size_t i = 0; i < batch.count; ++i)
     scratch.direct[batch.index[i]] = glm::vec3(batch.sum_r[i], batch.sum_g[i], batch.sum_b[i]);
 }
@@ -208,7 +208,8 @@ void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCou
   // (corner, 64x48, clamp 0.1, 4 samples, median of 3 seeds), relMSE
   // filtered / added after the filter: M=1 0.0709 / 0.0718, M=16 0.0091 /
   // 0.0094, M=64 0.0065 / 0.0068.
-  const BiasCompensation compensation(context_.accel, vpls_, exact_, interleaved(), clamp_bound_,
+  const VplShading shading{context_.scene, clamp_bound_, settings_.glossy_threshold};
+  const BiasCompensation compensation(context_.accel, shading, vpls_, exact_, interleaved(),
                                       settings_.compensation_samples);
   compensation.add(gbuffer, frame_.seed, scratch.value, rays);
   const size_t inner = size_t(job.w) * job.h;

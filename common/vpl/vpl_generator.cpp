@@ -80,10 +80,9 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
     if (!ctx.accel.intersect(ray, hit)) return;
     SurfacePoint sp = surface_at(ctx.scene, hit, ray.direction);
     const glm::vec3 wo = -ray.direction;
-    // Mirrors, glass and GGX lobes sharper than the glossy threshold get no
-    // VPL (it would light its neighbours through a spike of its BSDF); the
-    // path carries their reflection on to the next rougher surface.
-    if (receives_vpls(*sp.material, settings.glossy_threshold))
+    // Mirrors and glass get no VPL; the path carries their light on. VPLs on
+    // sharp GGX surfaces radiate through a widened lobe (VplShading::vpl_bsdf).
+    if (!sp.material->is_specular())
       // The VPL reflects towards the side the light arrived from.
       out.push_back(Vpl{sp.position, glm::dot(wo, sp.geometric_normal) >= 0.0f ? sp.shading_normal : -sp.shading_normal,
                         flux * inv_paths, wo, sp.albedo,

@@ -1,19 +1,24 @@
 // igi-compare: error figures of rendered images against a reference, as the
 // accuracy benchmark computes them (image/metrics.h, image/flip.h).
 //
-//   igi-compare REFERENCE IMAGE [IMAGE ...]
+//   igi-compare [--flip-maps] REFERENCE IMAGE [IMAGE ...]
 //
 // Prints, per image: relMSE (epsilon 0.01), RMSE, mean LDR-FLIP at 67 pixels
-// per degree, and the ratio of its mean luminance to the reference's.
+// per degree, and the ratio of its mean luminance to the reference's. With
+// --flip-maps, writes each image's per-pixel FLIP beside it as IMAGE.flip.png
+// (white = 1).
 #include <cstdio>
+#include <string>
 
 #include "image/flip.h"
 #include "image/metrics.h"
 #include "sampling/warp.h"
 
 int main(int argc, char** argv) {
+  const bool maps = argc > 1 && std::string(argv[1]) == "--flip-maps";
+  if (maps) ++argv, --argc;
   if (argc < 3) {
-    std::fprintf(stderr, "usage: %s REFERENCE IMAGE [IMAGE ...]\n", argv[0]);
+    std::fprintf(stderr, "usage: igi-compare [--flip-maps] REFERENCE IMAGE [IMAGE ...]\n");
     return 2;
   }
   try {
@@ -22,9 +27,13 @@ int main(int argc, char** argv) {
     std::printf("%-40s %10s %10s %8s %8s\n", "image", "relMSE", "RMSE", "FLIP", "mean");
     for (int i = 2; i < argc; ++i) {
       const igi::Image image = igi::read_image(argv[i]);
+      const igi::FlipMap flip = igi::flip_ldr(igi::tonemap_for_flip(image), igi::tonemap_for_flip(reference));
       std::printf("%-40s %10.5f %10.5f %8.4f %8.4f\n", argv[i], igi::rel_mse(image, reference),
-                  igi::rmse(image, reference), igi::mean_flip(image, reference),
-                  igi::luminance(image.mean()) / reference_mean);
+                  igi::rmse(image, reference), flip.mean(), igi::luminance(image.mean()) / reference_mean);
+      if (!maps) continue;
+      igi::Image map(flip.width, flip.height);
+      for (size_t p = 0; p < map.pixels.size(); ++p) map.pixels[p] = glm::vec3(igi::srgb_to_linear(flip.error[p]));
+      igi::write_image(map, std::string(argv[i]) + ".flip.png");
     }
     return 0;
   } catch (const std::exception& e) {
