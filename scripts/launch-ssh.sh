@@ -126,6 +126,13 @@ for i in "${!hosts[@]}"; do
 done
 rm -rf "$launch_dir/run"
 
+launch_channel_explain() {
+  case $1 in
+    255) echo "ssh failed: host unreachable, login refused, or an unknown host key" ;;
+    143) echo "stopped: its ssh connection or the launcher went away" ;;
+    *) echo "exit $1" ;;
+  esac
+}
 launch_stop_workers() {
   local fd
   for fd in "${lifelines[@]}"; do exec {fd}>&-; done

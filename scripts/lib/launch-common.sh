@@ -28,6 +28,7 @@ launch_grace=10                    # seconds workers get to leave after the mast
 launch_gather=30                   # seconds the master waits for every worker before the first frame
 master_args=()                     # after --: igi-master's own options
 worker_pids=() worker_names=() worker_logs=()
+stopped=()                         # worker pids still running when the launcher stopped them
 master_pid="" master_status="" interrupted=0
 
 launch_fail() { echo "$LAUNCH_NAME: $*" >&2; echo "($LAUNCH_NAME --help lists the options)" >&2; exit 2; }
@@ -163,48 +164,53 @@ launch_wait() {
     fi
     sleep 0.2
   done
-  wait "$master_pid"
+  wait "$master_pid" 2>/dev/null  # (no "Killed" line from bash: the summary says it)
   master_status=$?
   local waited
   for ((waited = 0; waited < launch_grace * 5; ++waited)); do
     [ "$(launch_alive_workers)" = 0 ] && break
     sleep 0.2
   done
+  local pid
+  for pid in "${worker_pids[@]}"; do kill -0 "$pid" 2>/dev/null && stopped+=("$pid"); done
   launch_stop_workers
   for ((waited = 0; waited < 25; ++waited)); do
     [ "$(launch_alive_workers)" = 0 ] && break
     sleep 0.2
   done
-  local pid
   for pid in "${worker_pids[@]}"; do kill -KILL "$pid" 2>/dev/null; done
   launch_summary $orphaned
 }
 
 # What a worker's exit status says. igi-worker: 0 goodbye, 2 options or keys,
-# 3 refused, 4 gave up; the launcher's channel adds its own.
+# 3 refused, 4 gave up; launch_channel_explain (each launcher's own) says what
+# the rest mean for ssh or srun.
 launch_explain() {
   case $1 in
     0) echo "left cleanly" ;;
     2) echo "bad worker options or key files" ;;
     3) echo "refused by the master (another build or protocol version, or a key it does not know)" ;;
     4) echo "gave up: no master at tcp://$launch_master_host:$launch_port (wrong --master-host, port closed by a firewall?)" ;;
-    126 | 127) echo "igi-worker not found or not executable there (same path on every host? see --remote-worker)" ;;
-    143) echo "still running after the master had ended, so stopped (did it ever reach the master?)" ;;
-    137) echo "killed" ;;
-    255) echo "ssh failed: host unreachable, login refused, or an unknown host key" ;;
-    *) echo "exit $1" ;;
+    126 | 127) echo "igi-worker not found or not executable there (the same path on every host?)" ;;
+    *) launch_channel_explain "$1" ;;
   esac
 }
 
 launch_summary() {
   local orphaned=$1 i status bad=0
   for i in "${!worker_pids[@]}"; do
-    wait "${worker_pids[$i]}"
+    wait "${worker_pids[$i]}" 2>/dev/null
     status=$?
     [ "$status" = 0 ] && continue
     bad=$((bad + 1))
     [ $interrupted = 1 ] && continue
-    launch_say "worker ${worker_names[$i]}: $(launch_explain "$status"); log ${worker_logs[$i]}:"
+    local why
+    why=$(launch_explain "$status")
+    if [[ " ${stopped[*]} " == *" ${worker_pids[$i]} "* ]]; then
+      [ "$master_status" = 0 ] || continue  # the master failed: stopping its workers is expected
+      why="still running $launch_grace s after the master had ended, so stopped (did it ever reach the master?)"
+    fi
+    launch_say "worker ${worker_names[$i]}: $why; log ${worker_logs[$i]}:"
     tail -n 3 "${worker_logs[$i]}" 2>/dev/null | sed 's/^/  /' >&2
   done
   if [ "$orphaned" = 1 ]; then
@@ -217,9 +223,9 @@ launch_summary() {
     exit 1
   fi
   if [ $bad -gt 0 ]; then
-    launch_say "the master finished, but $bad of ${#worker_pids[@]} workers did not end cleanly"
+    launch_say "the master finished, but not every worker ended cleanly (above)"
     exit 4
   fi
-  launch_say "done: ${#worker_pids[@]} workers left cleanly; logs in $launch_dir"
+  launch_say "done: the workers left cleanly; logs in $launch_dir"
   exit 0
 }
