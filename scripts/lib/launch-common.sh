@@ -132,7 +132,7 @@ launch_start_master() {
   master_pid=$!
   local tries
   for ((tries = 0; tries < 200; ++tries)); do  # 20 s: loading a large scene comes first
-    grep -q "listening on" "$launch_dir/master.log" && return 0
+    grep -qs "listening on" "$launch_dir/master.log" && return 0
     if ! kill -0 "$master_pid" 2>/dev/null; then
       wait "$master_pid"
       launch_say "the master did not start (exit $?):"
