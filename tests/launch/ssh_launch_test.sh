@@ -6,8 +6,8 @@
 #   - two workers started from a hosts file render frames equal, bit for bit,
 #     to the single-process render, and both take part;
 #   - the master and the remote workers end when the launcher is killed (-9);
-#   - an unreachable host gives exit status 4 and names the host, and no
-#     reachable host at all gives 3.
+#   - an unreachable host gives exit status 4 and names the host, no
+#     reachable host at all gives 3, and a bad hosts file 2 with its line.
 #   tests/launch/ssh_launch_test.sh BUILD-DIR
 # Skips (exit 77, with the reason) where there is no sshd.
 set -uo pipefail
@@ -147,4 +147,14 @@ timeout -s KILL 60 "${scripts_launch[@]}" >"$tmp/bad.log" 2>&1
 status=$?
 cat "$tmp/bad.log"
 [ $status = 3 ] || fail "no reachable host: expected exit status 3, got $status"
+
+# --- a bad hosts file: exit 2, the file and line named, nothing started
+printf 'worker-a 1\nworker-b one\n' >"$tmp/hosts-typo"
+launch "$(free_port)" "$tmp/hosts-typo" --dir "$tmp/run-typo" -- "${RENDER[@]}" --frames 1 -o "$tmp/typo.exr"
+"${scripts_launch[@]}" >"$tmp/typo.log" 2>&1
+status=$?
+cat "$tmp/typo.log"
+[ $status = 2 ] || fail "a bad hosts file: expected exit status 2, got $status"
+grep -q "hosts-typo:2: expected 'HOST \[THREADS\]'" "$tmp/typo.log" || fail "the bad line is not named"
+[ ! -e "$tmp/run-typo" ] || fail "a run folder was made for a launch that did not start"
 echo "PASS"
