@@ -130,13 +130,23 @@ done
 port=$(free_port)
 mkdir -p "$tmp/het-frames"
 start=$SECONDS
-(cd "$tmp" && IGI_HOME="$REPO" IGI_LAUNCH_ARGS="--build $BUILD --master-host 127.0.0.1 --port $port \
+# (sbatch --wait polls at 2 s doubling to 10 s; scontrol is asked every 0.1 s)
+job=$(cd "$tmp" && IGI_HOME="$REPO" IGI_LAUNCH_ARGS="--build $BUILD --master-host 127.0.0.1 --port $port \
   --listen tcp://127.0.0.1:$port --dir $tmp/run-het" \
-  timeout -s KILL 90 sbatch --wait --quiet --output="$tmp/het.out" -N1 -n1 -c1 -t 1 : -N1 -n2 --ntasks-per-node=2 -c1 -t 1 \
+  sbatch --parsable --output="$tmp/het.out" -N1 -n1 -c1 -t 1 : -N1 -n2 --ntasks-per-node=2 -c1 -t 1 \
   "$REPO/scripts/slurm/igi-hetjob.sbatch" "${RENDER[@]}" --frames $FRAMES -o "$tmp/het-frames/f.exr")
-status=$?
+job=${job%%;*}
+[ -n "$job" ] || fail "sbatch refused the heterogeneous job"
+ended() {
+  local state
+  state=$(scontrol show job "$job" -o 2>/dev/null) && [ -n "$state" ] &&
+    ! grep -Eq "JobState=(PENDING|CONFIGURING|RUNNING|COMPLETING)" <<<"$state"
+}
+wait_until 90 ended || fail "the heterogeneous job $job did not end in 90 s: $(scontrol show job "$job" -o)"
+# The leader's (component 0's) exit code is the batch script's.
+status=$(scontrol show job "$job" -o | head -n 1 | sed -n 's/.* ExitCode=\([0-9]*\):.*/\1/p')
 cat "$tmp/het.out"
-if [ $status != 0 ]; then
+if [ "$status" != 0 ]; then
   show_logs "$tmp/run-het/master.log" "$tmp/run-het/srun.log" "$tmp"/run-het/workers/*.log "$tmp/log/slurmctld.log"
   fail "the heterogeneous job ended with $status"
 fi
