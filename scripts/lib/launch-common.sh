@@ -27,8 +27,10 @@ launch_worker_args=()              # extra igi-worker options, for every worker
 launch_grace=10                    # seconds workers get to leave after the master ends
 launch_gather=30                   # seconds the master waits for every worker before the first frame
 master_args=()                     # after --: igi-master's own options
-worker_pids=() worker_names=() worker_logs=()
-stopped=()                         # worker pids still running when the launcher stopped them
+worker_pids=() worker_names=() worker_logs=()  # the launcher's channel to each worker (ssh, srun)
+worker_status=()                   # their exit statuses, as they end
+stopped=()                         # indices of those still running when the launcher stopped them
+alive=0
 master_pid="" master_status="" interrupted=0
 
 launch_fail() { echo "$LAUNCH_NAME: $*" >&2; echo "($LAUNCH_NAME --help lists the options)" >&2; exit 2; }
@@ -143,20 +145,35 @@ launch_start_master() {
   done
 }
 
-launch_alive_workers() {
-  local pid n=0
-  for pid in "${worker_pids[@]}"; do kill -0 "$pid" 2>/dev/null && n=$((n + 1)); done
-  echo $n
+# Records the exit status of every worker that has ended (once: bash hands
+# it out once) and counts in `alive` those still running.
+launch_collect() {
+  local i
+  alive=0
+  for i in "${!worker_pids[@]}"; do
+    [ -n "${worker_status[$i]:-}" ] && continue
+    if kill -0 "${worker_pids[$i]}" 2>/dev/null; then
+      alive=$((alive + 1))
+    else
+      wait "${worker_pids[$i]}" 2>/dev/null
+      worker_status[$i]=$?
+    fi
+  done
 }
 
-# Waits for the master; stops it when every worker is gone first. Then gives
-# the workers --grace seconds to leave (the master said goodbye), and stops
-# the rest with launch_stop_workers.
+# Whether a worker ended cleanly: only the master's goodbye ends one so.
+launch_any_clean() { [[ " ${worker_status[*]} " == *" 0 "* ]]; }
+
+# Waits for the master. When every worker is gone first, either one left
+# cleanly (the master said goodbye: it is writing its last frames) and the
+# master is waited for, or none did and the master is stopped. Then the
+# workers get --grace seconds to leave, and launch_stop_workers stops the rest.
 launch_wait() {
   trap 'interrupted=1; kill -TERM "$master_pid" 2>/dev/null' INT TERM
-  local orphaned=0
+  local orphaned=0 waited i
   while kill -0 "$master_pid" 2>/dev/null; do
-    if [ "$(launch_alive_workers)" = 0 ] && [ $interrupted = 0 ]; then
+    launch_collect
+    if [ $alive = 0 ] && [ $interrupted = 0 ] && ! launch_any_clean; then
       orphaned=1
       launch_say "every worker ended before the master finished: stopping the master"
       kill -TERM "$master_pid" 2>/dev/null
@@ -166,19 +183,20 @@ launch_wait() {
   done
   wait "$master_pid" 2>/dev/null  # (no "Killed" line from bash: the summary says it)
   master_status=$?
-  local waited
   for ((waited = 0; waited < launch_grace * 5; ++waited)); do
-    [ "$(launch_alive_workers)" = 0 ] && break
+    launch_collect
+    [ $alive = 0 ] && break
     sleep 0.2
   done
-  local pid
-  for pid in "${worker_pids[@]}"; do kill -0 "$pid" 2>/dev/null && stopped+=("$pid"); done
+  for i in "${!worker_pids[@]}"; do [ -z "${worker_status[$i]:-}" ] && stopped+=("$i"); done
   launch_stop_workers
   for ((waited = 0; waited < 25; ++waited)); do
-    [ "$(launch_alive_workers)" = 0 ] && break
+    launch_collect
+    [ $alive = 0 ] && break
     sleep 0.2
   done
-  for pid in "${worker_pids[@]}"; do kill -KILL "$pid" 2>/dev/null; done
+  for i in "${stopped[@]}"; do kill -KILL "${worker_pids[$i]}" 2>/dev/null; done
+  launch_collect
   launch_summary $orphaned
 }
 
@@ -199,14 +217,13 @@ launch_explain() {
 launch_summary() {
   local orphaned=$1 i status bad=0
   for i in "${!worker_pids[@]}"; do
-    wait "${worker_pids[$i]}" 2>/dev/null
-    status=$?
+    status=${worker_status[$i]:-137}
     [ "$status" = 0 ] && continue
     bad=$((bad + 1))
     [ $interrupted = 1 ] && continue
     local why
     why=$(launch_explain "$status")
-    if [[ " ${stopped[*]} " == *" ${worker_pids[$i]} "* ]]; then
+    if [[ " ${stopped[*]} " == *" $i "* ]]; then
       [ "$master_status" = 0 ] || continue  # the master failed: stopping its workers is expected
       why="still running $launch_grace s after the master had ended, so stopped (did it ever reach the master?)"
     fi

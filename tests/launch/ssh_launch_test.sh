@@ -119,6 +119,13 @@ ready() { [ "$(cat "$tmp"/run-killed/workers/*.log 2>/dev/null | grep -c ready)"
 wait_until 20 ready || { cat "$tmp/launch-killed.log" "$tmp"/run-killed/workers/*.log; fail "the workers did not start"; }
 ours() { pgrep -f -- "tcp://127.0.0.1:$port"; }  # the master's --listen and the workers' --connect name the port
 [ "$(ours | wc -l)" -ge 3 ] || fail "expected a master and two workers running, found: $(ours | xargs)"
+# Sanitizer options (scripts/test-sanitizers.sh) reach the workers through ssh (SendEnv, AcceptEnv).
+for var in ASAN_OPTIONS UBSAN_OPTIONS TSAN_OPTIONS; do
+  [ -n "${!var:-}" ] || continue
+  for pid in $(pgrep -f -- "--connect tcp://127.0.0.1:$port"); do
+    tr '\0' '\n' <"/proc/$pid/environ" | grep -qxF "$var=${!var}" || fail "$var did not reach worker $pid through ssh"
+  done
+done
 kill -KILL "$launcher_pid"
 wait "$launcher_pid" 2>/dev/null
 launcher_pid=""
