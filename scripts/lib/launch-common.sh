@@ -13,8 +13,10 @@
 #   4  the master finished, but some workers did not end cleanly (each named)
 #
 # The caller sets LAUNCH_NAME, fills the variables below through
-# launch_parse_common, and defines launch_stop_workers (how its workers are
-# told to go) before calling launch_wait.
+# launch_parse_common, starts its workers (worker_pids: one process per
+# channel, an ssh or an srun), and defines launch_stop_workers (how they are
+# told to go) and launch_channel_explain (what that channel's exit statuses
+# mean) before calling launch_wait.
 
 LAUNCH_REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 
