@@ -18,6 +18,9 @@ for program in /usr/sbin/sshd ssh ssh-keygen idiff python3; do
   command -v "$program" >/dev/null || skip "$program is missing (scripts/setup.sh installs openssh-server, openssh-client, openimageio-tools)"
 done
 
+login_shell=$(getent passwd "$(id -un)" | cut -d: -f7)
+case "$login_shell" in */nologin | */false) skip "user $(id -un) cannot log in over ssh (login shell $login_shell)" ;; esac
+
 tmp=$(mktemp -d /tmp/igi-ssh-test-XXXXXX)
 sshd_pid="" launcher_pid=""
 cleanup() {
