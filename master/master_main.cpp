@@ -49,6 +49,19 @@ std::string frame_path(const std::string& output, int frame, int frames, int fir
   return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
 }
 
+// --min-workers: a cluster's render starts when all of it is there, not with
+// whichever worker dialled back first; a host that never comes costs at most
+// --min-workers-wait seconds.
+bool workers_gathered(const igi::MasterOptions& o, const igi::MasterSession& session,
+                      std::chrono::steady_clock::time_point since) {
+  const size_t joined = session.worker_count();
+  if (joined >= size_t(o.min_workers)) return true;
+  if (std::chrono::steady_clock::now() - since < std::chrono::seconds(o.min_workers_wait)) return false;
+  std::fprintf(stderr, "igi-master: only %zu of %d workers joined in %d s: starting with them\n", joined,
+               o.min_workers, o.min_workers_wait);
+  return true;
+}
+
 int run_headless(const igi::MasterOptions& o, const igi::Scene& scene, igi::MasterSession& session,
                  igi::LocalWorkers& workers) {
   igi::Accumulator accumulator(o.render.width, o.render.height);
@@ -73,9 +86,11 @@ int run_headless(const igi::MasterOptions& o, const igi::Scene& scene, igi::Mast
   // second, and a second more per 1000 frames, so the rewrite stays ~300 bytes
   // a frame per second however long the run.
   auto last_flush = wall_start;
+  bool gathered = o.min_workers == 0;
   while (written < o.frames && !g_interrupted) {
     const double cpu_before = igi::process_cpu_seconds();
-    while (next < o.frames && session.can_add_frame())
+    gathered = gathered || workers_gathered(o, session, wall_start);
+    while (gathered && next < o.frames && session.can_add_frame())
       session.add_frame(igi::plan_frame(o.render, o.camera_path, scene, o.first_frame + next++, o.progressive));
     std::vector<igi::CompletedFrame> completed = session.pump(50);
     session_cpu += igi::process_cpu_seconds() - cpu_before;

@@ -21,6 +21,8 @@ std::string master_usage(const std::string& program) {
          "  --curve               CURVE on a loopback endpoint too (needs --key)\n"
          "  --frames F            headless: render F frames and write them (-o); default: a window\n"
          "  --first-frame I       headless: start at frame I (camera path, seed and file names) [0]\n"
+         "  --min-workers N       headless: hold the first frame until N workers have joined, at most\n"
+         "                        --min-workers-wait S seconds [30], then start with those present [0]\n"
          "  --progressive         headless: accumulate frames, advancing the seed\n"
          "  --camera-path orbit   headless: turn the camera about the scene, one step a frame\n"
          "  --stats FILE.json     per-frame statistics\n"
@@ -75,6 +77,8 @@ MasterOptions parse_master_options(const std::vector<std::string>& args) {
     else if (a == "--curve") o.curve = true;
     else if (a == "--frames") o.frames = to_int(a, value());
     else if (a == "--first-frame") o.first_frame = to_int(a, value());
+    else if (a == "--min-workers") o.min_workers = to_int(a, value());
+    else if (a == "--min-workers-wait") o.min_workers_wait = to_int(a, value());
     else if (a == "--progressive") o.progressive = true;
     else if (a == "--camera-path") o.camera_path = value();
     else if (a == "--stats") o.stats = value();

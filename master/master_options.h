@@ -18,6 +18,8 @@ struct MasterOptions {
   std::string key_file;           // the master's NAME.key
   std::string authorized_keys;    // a folder of workers' .pub files, or a list of keys
   int frames = 0;                 // headless: render this many frames; 0: window
+  int min_workers = 0;            // headless: the first frame waits until this many workers joined...
+  int min_workers_wait = 30;      // ... or this many seconds passed
   int first_frame = 0;            // headless: the index of the first (camera path, seed, file name)
   bool progressive = false;       // headless: accumulate frames (seed advances)
   std::string camera_path;        // headless: "orbit" turns the camera about the scene

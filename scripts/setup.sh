@@ -14,6 +14,8 @@ packages=(
   xvfb xauth libgl1-mesa-dri
   python3-venv
   clang-14 libclang-rt-14-dev
+  openssh-client openssh-server        # scripts/launch-ssh.sh, and its test's own sshd on loopback
+  slurm-wlm munge                      # scripts/launch-srun.sh, and its test's single-node Slurm
 )
 
 missing=()
