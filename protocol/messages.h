@@ -28,7 +28,7 @@
 namespace igi::protocol {
 
 inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
-inline constexpr uint16_t kVersion = 2;  // 2: RenderSettings carries compensation_samples
+inline constexpr uint16_t kVersion = 3;  // 2: RenderSettings carries compensation_samples; 3: lightcuts
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;
