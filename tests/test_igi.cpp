@@ -60,7 +60,8 @@ TEST_P(TileInvariance, TilesOfAnySizeAndOffsetMatchTheWholeFrameBitForBit) {
   EXPECT_TRUE(test::images_identical(name + "-1thread", p.render(settings, 83, 61, 1, 3, 1, 13), whole));
 }
 
-INSTANTIATE_TEST_SUITE_P(Igi, TileInvariance, ::testing::Values(MethodKind::InstantRadiosity, MethodKind::Igi),
+INSTANTIATE_TEST_SUITE_P(Igi, TileInvariance,
+                         ::testing::Values(MethodKind::InstantRadiosity, MethodKind::Igi, MethodKind::Lightcuts),
                          [](const auto& info) { return std::string(method_name(info.param)); });
 
 // Path-traced reference of the Cornell box, computed once per test run.
