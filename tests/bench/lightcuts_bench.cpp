@@ -1,13 +1,15 @@
 // igi-lightcuts-bench: Lightcuts against ir over exactly the same VPLs, and
 // both against a converged path-traced reference. Prints and writes CSV rows
 //   scene,vpls,paths_per_set,method,seconds,cpu_seconds,frame_setup_seconds,
-//   shadow_rays_per_pixel,cut_nodes_per_pixel,rel_mse_ir,rel_mse_pt,
-//   mean_rel_diff_ir,within_2pct_ir,flip_ir,flip_plain
+//   shadow_rays_per_pixel,cut_nodes_per_pixel,reconstructed,rel_mse_ir,rel_mse_pt,
+//   mean_rel_diff_ir,within_2pct_ir,flip_ir,flip_pt,flip_plain
+// (reconstructed: the share of pixels shaded from the sample grid; flip_plain:
+// FLIP of a variant against plain lightcuts over the same VPLs).
 // Asserts nothing; scripts/bench-lightcuts.sh runs it and draws the chart.
 //
 //   igi-lightcuts-bench [--scenes a,b] [--vpls 1000,10000,100000] [--size WxH]
 //                       [--ref-spp N] [--refs DIR] [--out F.csv] [--spacing S]
-//                       [--samples K] [--frames F] [--no-ir]
+//                       [--samples K] [--frames F] [--clamp C] [--no-ir]
 //
 // VPL counts: for each target the bench traces a pilot frame to learn the
 // scene's VPLs per light path, then picks M (3 x 3 sets) to land near it; the
@@ -16,6 +18,7 @@
 // points per pixel, --samples; 0 leaves it out). Seconds are medians over F
 // frames of the whole frame: VPL generation and light tree (frame_setup) plus
 // the tiles, on all threads; cpu_seconds is the CPU time the process got.
+// ir over 50,000 VPLs or more renders one frame only (it is slow).
 // Per-pixel relative difference to ir: |Y - Y_ir| / Y_ir of luminance Y,
 // over pixels with Y_ir above 1 % of the image's mean.
 #include <algorithm>
@@ -52,6 +55,7 @@ struct Options {
   int spacing = 4;
   int samples = 4;
   int frames = 1;
+  float clamp = 0.0f;
   bool ir = true;
 };
 
@@ -85,6 +89,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--spacing") o.spacing = std::stoi(value());
     else if (a == "--samples") o.samples = std::stoi(value());
     else if (a == "--frames") o.frames = std::max(1, std::stoi(value()));
+    else if (a == "--clamp") o.clamp = std::stof(value());
     else if (a == "--no-ir") o.ir = false;
     else throw std::invalid_argument("unknown option '" + a + "' (see the header of tests/bench/lightcuts_bench.cpp)");
   }
@@ -123,13 +128,14 @@ struct Run {
   double seconds = 0, cpu = 0, setup = 0;
   RayCounts rays;
   double cut_nodes = 0;
+  double reconstructed = 0;  // pixels shaded with the samples' visibility
 };
 
-Run run(const Prepared& p, const RenderSettings& s, const Options& o) {
+Run run(const Prepared& p, const RenderSettings& s, const Options& o, int frames) {
   auto method = make_method(p.context(), s);
   const FrameSetup frame = p.frame(o);
   std::vector<Run> runs;
-  for (int f = 0; f < o.frames; ++f) {
+  for (int f = 0; f < frames; ++f) {
     Run r;
     const Clock start = Clock::now();
     method->begin_frame(frame);
@@ -140,10 +146,7 @@ Run run(const Prepared& p, const RenderSettings& s, const Options& o) {
     r.cpu = d.cpu;
     if (auto* lc = dynamic_cast<const lightcuts::LightcutsMethod*>(method.get())) {
       r.cut_nodes = double(lc->stats().cut_nodes);
-      const auto st = lc->stats();
-      std::fprintf(stderr, "  cuts %llu reconstructed %llu interpolated %llu reused %llu nodes %llu\n",
-                   (unsigned long long)st.cuts, (unsigned long long)st.reconstructed,
-                   (unsigned long long)st.interpolated, (unsigned long long)st.reused, (unsigned long long)st.cut_nodes);
+      r.reconstructed = double(lc->stats().reconstructed);
     }
     runs.push_back(std::move(r));
   }
@@ -201,6 +204,7 @@ void write_row(std::ofstream& csv, const std::string& scene, size_t vpls, int m,
                const Image* ir, const Image& pt, const Image* plain) {
   const double pixels = double(r.image.width) * r.image.height;
   double rel_ir = -1, mean_diff = -1, within = -1, flip_ir = -1, flip_plain = -1;
+  const double flip_pt = mean_flip(r.image, pt);
   if (ir) {
     rel_ir = rel_mse(r.image, *ir);
     std::tie(mean_diff, within) = relative_difference(r.image, *ir);
@@ -208,9 +212,10 @@ void write_row(std::ofstream& csv, const std::string& scene, size_t vpls, int m,
   }
   if (plain) flip_plain = mean_flip(r.image, *plain);
   char line[512];
-  std::snprintf(line, sizeof line, "%s,%zu,%d,%s,%.4f,%.4f,%.4f,%.1f,%.1f,%.6g,%.6g,%.5f,%.4f,%.5f,%.5f\n",
+  std::snprintf(line, sizeof line, "%s,%zu,%d,%s,%.4f,%.4f,%.4f,%.1f,%.1f,%.3f,%.6g,%.6g,%.5f,%.4f,%.5f,%.5f,%.5f\n",
                 scene.c_str(), vpls, m, method, r.seconds, r.cpu, r.setup, double(r.rays.shadow) / pixels,
-                r.cut_nodes / pixels, rel_ir, rel_mse(r.image, pt), mean_diff, within, flip_ir, flip_plain);
+                r.cut_nodes / pixels, r.reconstructed / pixels, rel_ir, rel_mse(r.image, pt), mean_diff, within,
+                flip_ir, flip_pt, flip_plain);
   csv << line;
   csv.flush();
   std::fputs(line, stdout);
@@ -222,7 +227,8 @@ int run_all(const Options& o) {
   std::ofstream csv(o.out);
   if (!csv) throw std::runtime_error(o.out + ": cannot write");
   csv << "scene,vpls,paths_per_set,method,seconds,cpu_seconds,frame_setup_seconds,shadow_rays_per_pixel,"
-         "cut_nodes_per_pixel,rel_mse_ir,rel_mse_pt,mean_rel_diff_ir,within_2pct_ir,flip_ir,flip_plain\n";
+         "cut_nodes_per_pixel,reconstructed,rel_mse_ir,rel_mse_pt,mean_rel_diff_ir,within_2pct_ir,flip_ir,flip_pt,"
+         "flip_plain\n";
   for (const std::string& name : o.scenes) {
     const Prepared p(load_scene(name));
     Image storage;
@@ -231,13 +237,14 @@ int run_all(const Options& o) {
       RenderSettings s;
       s.paths_per_set = paths_for(p, target);
       s.method = MethodKind::Lightcuts;
-      const Run plain = run(p, s, o);
+      s.clamp = o.clamp;
+      const Run plain = run(p, s, o, o.frames);
       const size_t vpls = generate_vpls(p.context(), s, 1).vpls.size();
       Run ir_run;
       if (o.ir) {
         RenderSettings ir = s;
         ir.method = MethodKind::InstantRadiosity;
-        ir_run = run(p, ir, o);
+        ir_run = run(p, ir, o, target >= 50000 ? 1 : o.frames);
         write_row(csv, name, vpls, s.paths_per_set, "ir", ir_run, nullptr, pt, nullptr);
       }
       const Image* ir_image = o.ir ? &ir_run.image : nullptr;
@@ -245,12 +252,13 @@ int run_all(const Options& o) {
       if (o.spacing > 1) {
         RenderSettings rc = s;
         rc.lightcuts_spacing = o.spacing;
-        write_row(csv, name, vpls, s.paths_per_set, "lightcuts-rc", run(p, rc, o), ir_image, pt, &plain.image);
+        write_row(csv, name, vpls, s.paths_per_set, "lightcuts-rc", run(p, rc, o, o.frames), ir_image, pt, &plain.image);
       }
       if (o.samples > 1) {
         RenderSettings md = s;
         md.lightcuts_samples = o.samples;
-        write_row(csv, name, vpls, s.paths_per_set, "lightcuts-md", run(p, md, o), ir_image, pt, &plain.image);
+        // Antialiased (K sub-pixel positions): compared with pt only, which antialiases too.
+        write_row(csv, name, vpls, s.paths_per_set, "lightcuts-md", run(p, md, o, o.frames), nullptr, pt, nullptr);
       }
     }
   }
