@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <thread>
 
 #include "sampling/hash.h"
 
@@ -24,34 +25,42 @@ class Builder {
   Builder(const std::vector<LightLeaf>& leaves, std::vector<LightNode>& nodes, std::vector<Range>& ranges,
           std::vector<uint32_t>& order, float normal_scale)
       : leaves_(leaves), nodes_(nodes), ranges_(ranges), order_(order), normal_scale_(normal_scale) {}
+  // Another builder over the same arrays, with scratch of its own (for another thread).
+  Builder(const Builder& o) : Builder(o.leaves_, o.nodes_, o.ranges_, o.order_, o.normal_scale_) {}
 
-  uint32_t build(uint32_t begin, uint32_t end, int depth = 0) {
-    const uint32_t index = uint32_t(nodes_.size());
-    nodes_.emplace_back();
-    ranges_.push_back({begin, end});
+  // Builds the subtree over order[begin, end) with its root at `index`: a
+  // subtree of n leaves has 2n - 1 nodes, so where each subtree goes is known
+  // before it is built, and the two halves of a large node are built at once.
+  void build(uint32_t begin, uint32_t end, uint32_t index, int depth = 0) {
+    ranges_[index] = {begin, end};
+    LightNode& node = nodes_[index];
     if (end - begin == 1) {
       const LightLeaf& leaf = leaves_[order_[begin]];
-      LightNode& node = nodes_[index];
       node.box.extend(leaf.position);
       node.weight = leaf.weight;
       node.leaf = node.representative = begin;  // the leaf's position once leaves are reordered
       node.end = index + 1;
       node.light_class = leaf.light_class;
-      return index;
+      return;
     }
     // Deep down (a lopsided distribution), median splits bound the depth.
     const uint32_t mid = depth < kMaxBinnedDepth ? split(begin, end) : median_split(begin, end);
-    build(begin, mid, depth + 1);
-    const uint32_t right = build(mid, end, depth + 1);
-    LightNode& node = nodes_[index];
+    const uint32_t right = index + 2 * (mid - begin);
+    if (depth < kParallelDepth && end - begin >= kParallelLeaves) {
+      std::thread left([&] { Builder(*this).build(begin, mid, index + 1, depth + 1); });
+      build(mid, end, right, depth + 1);
+      left.join();
+    } else {
+      build(begin, mid, index + 1, depth + 1);
+      build(mid, end, right, depth + 1);
+    }
     const LightNode &l = nodes_[index + 1], &r = nodes_[right];
     node.right = right;
-    node.end = uint32_t(nodes_.size());
+    node.end = index + 2 * (end - begin) - 1;
     node.box = l.box;
     node.box.extend(r.box);
     node.weight = l.weight + r.weight;
     node.light_class = l.light_class;
-    return index;
   }
 
  private:
@@ -117,6 +126,9 @@ class Builder {
   static constexpr int kBins = 16;
   static constexpr uint32_t kBinned = 1024;
   static constexpr uint32_t kMedianBelow = 8;  // small nodes: binning costs more than it gains
+  // The top two levels of large trees build their halves on threads of their own.
+  static constexpr int kParallelDepth = 2;
+  static constexpr uint32_t kParallelLeaves = 1 << 15;
   static constexpr int kMaxBinnedDepth = 48;
 
   struct Bin {
@@ -184,8 +196,8 @@ class Builder {
 
 // The cone of each node's normals (axis: their normalised sum, in leaf order)
 // and the reach of its emission (Glossy, Punctual: cone plus the widest spread).
-void fill_cones(LightTree& tree, const std::vector<Range>& ranges) {
-  for (size_t n = 0; n < tree.nodes.size(); ++n) {
+void fill_cones(LightTree& tree, const std::vector<Range>& ranges, size_t first, size_t last) {
+  for (size_t n = first; n < last; ++n) {
     LightNode& node = tree.nodes[n];
     if (node.light_class == LightClass::Directional) continue;
     glm::vec3 sum(0.0f);
@@ -231,20 +243,34 @@ LightTree build_light_tree(std::vector<LightLeaf> leaves, float scene_diagonal, 
   // One subtree per class, in class order.
   std::stable_sort(order.begin(), order.end(),
                    [&](uint32_t a, uint32_t b) { return leaves[a].light_class < leaves[b].light_class; });
-  tree.nodes.reserve(2 * leaves.size());
-  std::vector<Range> ranges;
-  ranges.reserve(2 * leaves.size());
-  Builder builder(leaves, tree.nodes, ranges, order, 0.5f * scene_diagonal);
+  std::vector<std::pair<uint32_t, uint32_t>> classes;  // leaf ranges of one class each
   for (uint32_t begin = 0; begin < order.size();) {
     uint32_t end = begin;
     while (end < order.size() && leaves[order[end]].light_class == leaves[order[begin]].light_class) ++end;
-    tree.roots.push_back(builder.build(begin, end));
+    classes.push_back({begin, end});
     begin = end;
+  }
+  tree.nodes.resize(2 * leaves.size() - classes.size());
+  std::vector<Range> ranges(tree.nodes.size());
+  Builder builder(leaves, tree.nodes, ranges, order, 0.5f * scene_diagonal);
+  uint32_t root = 0;
+  for (auto [begin, end] : classes) {
+    tree.roots.push_back(root);
+    builder.build(begin, end, root);
+    root += 2 * (end - begin) - 1;
   }
   // Leaves in pre-order: node.leaf (a build position) now indexes them.
   tree.leaves.reserve(leaves.size());
   for (uint32_t i : order) tree.leaves.push_back(leaves[i]);
-  fill_cones(tree, ranges);
+  // Each node's cone reads its own leaves only: two halves at once.
+  if (tree.nodes.size() < (1u << 16)) {
+    fill_cones(tree, ranges, 0, tree.nodes.size());
+  } else {
+    const size_t half = tree.nodes.size() / 2;
+    std::thread first_half([&] { fill_cones(tree, ranges, 0, half); });
+    fill_cones(tree, ranges, half, tree.nodes.size());
+    first_half.join();
+  }
   choose_representatives(tree, hash(seed, 0x6c747265u /* "ltre" */));
   tree.hash = hash_light_tree(tree);
   return tree;
