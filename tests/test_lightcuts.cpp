@@ -174,6 +174,28 @@ TEST(LightcutsAccuracy, AgainstIrOverTheSameVplsTheDifferenceRespectsTheBound) {
   if (d.mean >= 0.02 || d.within_10 < 0.99) test::write_failure_images("lightcuts-vs-ir", lc.image, reference.image);
 }
 
+// Inside the white furnace (a closed sphere, every surface emitting 1 and of
+// albedo 0.5) every point sees every other: visibility is never the cause of
+// an error. There every pixel's VPL light is within the 2 % threshold of ir's.
+TEST(LightcutsAccuracy, WithoutOcclusionEveryPixelIsWithinTheBound) {
+  const test::Prepared furnace(make_furnace(0.5f, 1.0f));
+  RenderSettings ir = lightcuts_settings(100);
+  ir.method = MethodKind::InstantRadiosity;
+  const Rendered lc = render(furnace, lightcuts_settings(100), 32, 24), reference = render(furnace, ir, 32, 24);
+  double largest = 0, mean = 0;
+  for (size_t i = 0; i < lc.image.pixels.size(); ++i) {
+    // Less the emission the camera sees (radiance 1): the light the VPLs bring.
+    const double vpl_light = lum(reference.image.pixels[i]) - 1.0;
+    ASSERT_GT(vpl_light, 0.1);
+    const double e = std::abs(lum(lc.image.pixels[i]) - lum(reference.image.pixels[i])) / vpl_light;
+    largest = std::max(largest, e);
+    mean += e / double(lc.image.pixels.size());
+  }
+  std::printf("furnace, %zu VPLs: VPL light against ir, mean relative difference %.5f, largest %.5f\n", lc.vpls, mean,
+              largest);
+  EXPECT_LT(largest, 0.02);
+}
+
 // 30 times the VPLs: the cut (about the shadow rays per pixel) grows by a small factor.
 TEST(LightcutsAccuracy, CutsGrowFarSlowerThanTheVplCount) {
   const Rendered few = render(cornell(), lightcuts_settings(40), 32, 24);
