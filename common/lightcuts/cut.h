@@ -19,6 +19,7 @@
 #include <span>
 #include <vector>
 
+#include "lightcuts/cut_node.h"
 #include "lightcuts/gather_tree.h"
 #include "lightcuts/light_contribution.h"
 #include "lightcuts/light_tree.h"
@@ -30,14 +31,6 @@ namespace igi::lightcuts {
 struct CutSettings {
   float error = 0.02f;
   int max_cut = 1000;
-};
-
-enum class Visibility : uint8_t { Occluded, Visible, Unknown /* no ray: nothing to see */ };
-
-// One node of a finished one-point cut, as reconstruction cuts read it.
-struct CutNode {
-  uint32_t light;
-  Visibility visibility;
 };
 
 struct CutStats {

@@ -1,6 +1,5 @@
 #include "lightcuts/reconstruction.h"
 
-#include "lightcuts/cut.h"
 
 namespace igi::lightcuts {
 namespace {

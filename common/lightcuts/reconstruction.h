@@ -23,12 +23,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "lightcuts/cut_node.h"
 #include "lightcuts/gather_points.h"
 #include "lightcuts/light_tree.h"
 
 namespace igi::lightcuts {
-
-struct CutNode;
 
 // One axis of the sample grid.
 struct SampleAxis {
