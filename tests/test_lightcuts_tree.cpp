@@ -9,6 +9,7 @@
 #include "lightcuts/cluster_bound.h"
 #include "lightcuts/light_contribution.h"
 #include "lightcuts/light_tree.h"
+#include "sampling/hash.h"
 #include "scene/builtin_scenes.h"
 #include "scene/suite_scenes.h"
 #include "support/render_fixture.h"
@@ -76,6 +77,28 @@ TEST(LightTree, SameInputSameTreeAndTheSeedOnlyMovesRepresentatives) {
     moved += a.nodes[n].representative != c.nodes[n].representative;
   }
   EXPECT_GT(moved, 0);
+}
+
+// Over 2^15 leaves the top levels build on threads; the tree must not
+// depend on which finishes first.
+TEST(LightTree, LargeTreesBuildOnThreadsToTheSameTree) {
+  std::vector<LightLeaf> leaves(70000);
+  for (uint32_t i = 0; i < leaves.size(); ++i) {
+    auto u = [i](uint32_t d) { return float(hash(i, d) >> 8) * 0x1p-24f; };
+    LightLeaf& l = leaves[i];
+    l.position = {u(0), u(1), u(2)};
+    l.normal = glm::normalize(glm::vec3(u(3) - 0.5f, u(4) - 0.5f, 1.0f));
+    l.intensity = glm::vec3(0.1f + u(5));
+    l.weight = max_component(l.intensity);
+  }
+  const LightTree a = build_light_tree(leaves, 1.7f, 3), b = build_light_tree(leaves, 1.7f, 3);
+  EXPECT_EQ(a.hash, b.hash);
+  ASSERT_EQ(a.nodes.size(), 2 * leaves.size() - 1);
+  for (uint32_t n = 0; n < a.nodes.size(); ++n)
+    if (!a.nodes[n].is_leaf()) {
+      ASSERT_EQ(a.nodes[n + 1].end, a.nodes[n].right);
+      ASSERT_EQ(a.nodes[a.nodes[n].right].end, a.nodes[n].end);
+    }
 }
 
 // Two leaves of weights 1 and 3: the heavier is the root's representative
