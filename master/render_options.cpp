@@ -1,7 +1,9 @@
 #include "render_options.h"
 
+#include <cmath>
 #include <stdexcept>
 
+#include "lightcuts/lightcuts_settings.h"
 #include "scene/builtin_scenes.h"
 
 namespace igi {
@@ -13,6 +15,16 @@ int to_int(const std::string& option, const std::string& value, int min_value) {
   try { v = std::stoi(value, &end); } catch (const std::exception&) { end = 0; }
   if (end != value.size() || value.empty() || v < min_value)
     throw std::invalid_argument(option + ": expected an integer >= " + std::to_string(min_value) + ", got '" + value + "'");
+  return v;
+}
+
+// Any number, range-checked by the caller (lightcuts_settings.h).
+float to_number(const std::string& option, const std::string& value) {
+  size_t end = 0;
+  float v = 0;
+  try { v = std::stof(value, &end); } catch (const std::exception&) { end = 0; }
+  if (end != value.size() || value.empty() || !std::isfinite(v))
+    throw std::invalid_argument(option + ": expected a number, got '" + value + "'");
   return v;
 }
 
@@ -32,6 +44,14 @@ void parse_size(const std::string& value, RenderOptions& o) {
   o.height = to_int("--size", value.substr(x + 1), 1);
 }
 
+// Before any work: options lightcuts cannot use, and VPL counts that would not fit in memory.
+void check_lightcuts(const RenderSettings& s) {
+  if (s.method != MethodKind::Lightcuts) return;
+  std::string error = lightcuts::settings_error(s);
+  if (error.empty()) error = lightcuts::memory_error(s, lightcuts::physical_memory_bytes());
+  if (!error.empty()) throw std::invalid_argument(error);
+}
+
 }  // namespace
 
 std::string render_usage(const std::string& program) {
@@ -39,7 +59,7 @@ std::string render_usage(const std::string& program) {
   for (const std::string& n : builtin_scene_names()) scenes += " " + n;
   return "usage: " + program + " [options]\n"
          "  --scene NAME|FILE     built-in scene (" + scenes + " ) or .gltf/.glb file [cornell]\n"
-         "  --method pt|ir|igi    rendering method [igi]\n"
+         "  --method pt|ir|igi|lightcuts  rendering method [igi]\n"
          "  --spp N               pt: samples per pixel; ir/igi: passes with fresh VPLs [1]\n"
          "  --size WxH            image size [640x480]\n"
          "  -o FILE               output image: .exr/.hdr linear, .png sRGB [render.png]\n"
@@ -62,6 +82,11 @@ std::string render_usage(const std::string& program) {
          "  --no-filter           igi: skip the discontinuity buffer\n"
          "  --filter-normal C     igi: neighbours need normal dot above C [0.9]\n"
          "  --filter-depth R      igi: neighbours need relative depth difference below R [0.05]\n"
+         "  --lightcuts-error E   lightcuts (over all --vpl-sets x --vpl-paths VPLs): refine until every cluster's\n"
+         "                        error bound is below E x the pixel's total, 0 < E < 1 [0.02]\n"
+         "  --lightcuts-max-cut N lightcuts: at most N nodes (shadow rays) in a cut [1000]\n"
+         "  --lightcuts-spacing S lightcuts: reconstruction cuts, full cuts every S pixels only, 0 = off [0]\n"
+         "  --lightcuts-samples K lightcuts: K = 1, 4, 9 ... 64 gather points per pixel (multidimensional) [1]\n"
          "  --export-gltf FILE    write the scene as glTF and exit\n"
          "  --quiet               no progress output\n"
          "  --show                show the result in a window (Esc closes it)\n"
@@ -81,7 +106,7 @@ RenderOptions parse_render_options(const std::vector<std::string>& args) {
     else if (a == "--scene") o.scene = value();
     else if (a == "--method") {
       auto m = parse_method(value());
-      if (!m) throw std::invalid_argument("--method: expected pt, ir or igi, got '" + args[i] + "'");
+      if (!m) throw std::invalid_argument("--method: expected pt, ir, igi or lightcuts, got '" + args[i] + "'");
       s.method = *m;
     }
     else if (a == "--spp") o.samples = to_int(a, value(), 1);
@@ -107,6 +132,10 @@ RenderOptions parse_render_options(const std::vector<std::string>& args) {
     else if (a == "--no-filter") s.filter = false;
     else if (a == "--filter-normal") s.filter_normal_cos = to_float(a, value());
     else if (a == "--filter-depth") s.filter_depth_ratio = to_float(a, value());
+    else if (a == "--lightcuts-error") s.lightcuts_error = to_number(a, value());
+    else if (a == "--lightcuts-max-cut") s.lightcuts_max_cut = to_int(a, value(), 1);
+    else if (a == "--lightcuts-spacing") s.lightcuts_spacing = to_int(a, value(), 0);
+    else if (a == "--lightcuts-samples") s.lightcuts_samples = to_int(a, value(), 1);
     else if (a == "--export-gltf") o.export_gltf = value();
     else if (a == "--quiet") o.quiet = true;
     else if (a == "--show") o.show = true;
@@ -114,6 +143,7 @@ RenderOptions parse_render_options(const std::vector<std::string>& args) {
     else throw std::invalid_argument("unknown option '" + a + "' (see --help)");
   }
   if (auto error = settings_error(o.settings)) throw std::invalid_argument(*error);
+  check_lightcuts(o.settings);
   return o;
 }
 

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "lightcuts/lightcuts_settings.h"
 #include "methods/subpixel.h"
 #include "protocol/wire.h"
 
@@ -102,11 +103,15 @@ void write(Writer& w, const RenderSettings& s) {
   w.boolean(s.filter);
   w.f32(s.filter_normal_cos);
   w.f32(s.filter_depth_ratio);
+  w.f32(s.lightcuts_error);
+  w.i32(s.lightcuts_max_cut);
+  w.i32(s.lightcuts_spacing);
+  w.i32(s.lightcuts_samples);
 }
 
 void read(Reader& r, RenderSettings& s) {
   uint8_t method = r.u8("settings.method");
-  check_range(r, "settings.method", method, 0, static_cast<uint8_t>(MethodKind::Igi));
+  check_range(r, "settings.method", method, 0, static_cast<uint8_t>(MethodKind::Lightcuts));
   if (r.ok()) s.method = static_cast<MethodKind>(method);
   s.path_depth = r.i32("settings.path_depth");
   check_range(r, "settings.path_depth", s.path_depth, 0, kMaxDepth);
@@ -134,6 +139,18 @@ void read(Reader& r, RenderSettings& s) {
   check_closed(r, "settings.filter_normal_cos", s.filter_normal_cos, -1.0f, 1.0f);
   s.filter_depth_ratio = r.f32("settings.filter_depth_ratio");
   check_finite_non_negative(r, "settings.filter_depth_ratio", s.filter_depth_ratio);
+  s.lightcuts_error = r.f32("settings.lightcuts_error");
+  if (!(s.lightcuts_error > 0.0f && s.lightcuts_error < 1.0f))
+    r.fail("settings.lightcuts_error", show(s.lightcuts_error) + ", expected (0, 1)");
+  s.lightcuts_max_cut = r.i32("settings.lightcuts_max_cut");
+  check_range(r, "settings.lightcuts_max_cut", s.lightcuts_max_cut, 1, lightcuts::kMaxCut);
+  s.lightcuts_spacing = r.i32("settings.lightcuts_spacing");
+  check_range(r, "settings.lightcuts_spacing", s.lightcuts_spacing, 0, lightcuts::kMaxSpacing);
+  s.lightcuts_samples = r.i32("settings.lightcuts_samples");
+  check_range(r, "settings.lightcuts_samples", s.lightcuts_samples, 1, lightcuts::kMaxSamples);
+  // What else lightcuts refuses (a non-square sample count, spacing with samples).
+  if (r.ok() && s.method == MethodKind::Lightcuts && !lightcuts::settings_error(s).empty())
+    r.fail("settings.lightcuts", lightcuts::settings_error(s));
 }
 
 void write(Writer& w, const TileJob& t) {

@@ -84,6 +84,20 @@ TEST(Distributed, AntialiasingGlossyGatherAndExactLightsMatchOneProcess) {
   }
 }
 
+// Lightcuts' light tree and reconstruction grid through master and workers:
+// settings over the wire, tiles of 16 with the sample grid's cells across them.
+TEST(Distributed, LightcutsWithReconstructionCutsMatchTheSingleProcessRenderBitForBit) {
+  const std::string out = test::output_path("dist-lightcuts.exr");
+  auto r = test::run(master("--workers 2 --frames 1 --method lightcuts --vpl-paths 20 --lightcuts-spacing 6 -o " + out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  test::Prepared p(load_scene("cornell"));
+  RenderSettings s;
+  s.method = MethodKind::Lightcuts;
+  s.paths_per_set = 20;
+  s.lightcuts_spacing = 6;
+  EXPECT_TRUE(test::images_identical("dist-lightcuts", read_image(out), p.render(s, kWidth, kHeight, 1, 1)));
+}
+
 TEST(Distributed, DuplicatedTilesGiveTheSameImage) {
   const std::string out = test::output_path("dist-dup.exr"), stats = test::output_path("dist-dup.json");
   auto r = test::run(master("--workers 2 --frames 1 --credits 1 --test-force-duplicates 40 -o " + out + " --stats " + stats));

@@ -60,7 +60,8 @@ std::vector<TileCase> tile_cases() {
           {"igi", "cornell", vpl_settings(MethodKind::Igi, 4, 0.05f)},
           {"igi_aa_glossy_compensation", "glossy", all},
           {"ir_aa_glossy_compensation", "glossy", ir_all},
-          {"igi_aa_spot", "corner", all}};
+          {"igi_aa_spot", "corner", all},
+          {"lightcuts", "cornell", vpl_settings(MethodKind::Lightcuts, 4, 0.05f)}};
 }
 
 class TileInvariance : public ::testing::TestWithParam<TileCase> {};

@@ -34,7 +34,9 @@ bool same(const RenderSettings& a, const RenderSettings& b) {
          a.paths_per_set == b.paths_per_set && a.aa_samples == b.aa_samples &&
          same(a.glossy_threshold, b.glossy_threshold) && a.glossy_rays == b.glossy_rays && same(a.clamp, b.clamp) &&
          a.compensation_samples == b.compensation_samples && a.filter == b.filter &&
-         same(a.filter_normal_cos, b.filter_normal_cos) && same(a.filter_depth_ratio, b.filter_depth_ratio);
+         same(a.filter_normal_cos, b.filter_normal_cos) && same(a.filter_depth_ratio, b.filter_depth_ratio) &&
+         same(a.lightcuts_error, b.lightcuts_error) && a.lightcuts_max_cut == b.lightcuts_max_cut &&
+         a.lightcuts_spacing == b.lightcuts_spacing && a.lightcuts_samples == b.lightcuts_samples;
 }
 bool same(const Hello& a, const Hello& b) {
   return a.build_id == b.build_id && a.simd == b.simd && a.threads == b.threads;
@@ -83,7 +85,7 @@ TileResult sample_tile_result() {
 }
 
 std::vector<Message> samples() {
-  RenderSettings settings{MethodKind::InstantRadiosity, 7, 5, 3, 4, 64, 9, 0.3f, 2, 0.05f, 3, false, 0.8f, 0.1f};
+  RenderSettings settings{MethodKind::InstantRadiosity, 7, 5, 3, 4, 64, 9, 0.3f, 2, 0.05f, 3, false, 0.8f, 0.1f, 0.03f, 500, 6, 4};
   Camera camera{{1, 2, 3}, {0, -0.2f, -1}, {0.1f, 1, 0}, 0.9f};
   std::vector<uint8_t> scene(300);
   for (size_t i = 0; i < scene.size(); ++i) scene[i] = uint8_t(i * 7);
@@ -286,7 +288,18 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {settings_edited([](auto& s) { s.filter_normal_cos = 1.01f; }), "Welcome.settings.filter_normal_cos"},
       {settings_edited([](auto& s) { s.filter_normal_cos = NAN; }), "Welcome.settings.filter_normal_cos"},
       {settings_edited([](auto& s) { s.filter_depth_ratio = -1e-6f; }), "Welcome.settings.filter_depth_ratio"},
-      {settings_edited([](auto& s) { s.method = MethodKind(3); }), "Welcome.settings.method: 3, expected [0, 2]"},
+      {settings_edited([](auto& s) { s.method = MethodKind(4); }), "Welcome.settings.method: 4, expected [0, 3]"},
+      {settings_edited([](auto& s) { s.lightcuts_error = 0; }), "Welcome.settings.lightcuts_error: 0, expected (0, 1)"},
+      {settings_edited([](auto& s) { s.lightcuts_error = 1; }), "Welcome.settings.lightcuts_error"},
+      {settings_edited([](auto& s) { s.lightcuts_error = NAN; }), "Welcome.settings.lightcuts_error"},
+      {settings_edited([](auto& s) { s.lightcuts_max_cut = 0; }), "Welcome.settings.lightcuts_max_cut: 0, expected [1, "},
+      {settings_edited([](auto& s) { s.lightcuts_max_cut = (1 << 20) + 1; }), "Welcome.settings.lightcuts_max_cut"},
+      {settings_edited([](auto& s) { s.lightcuts_spacing = -1; }), "Welcome.settings.lightcuts_spacing"},
+      {settings_edited([](auto& s) { s.lightcuts_spacing = 65; }), "Welcome.settings.lightcuts_spacing"},
+      {settings_edited([](auto& s) { s.lightcuts_samples = 0; }), "Welcome.settings.lightcuts_samples"},
+      {settings_edited([](auto& s) { s.lightcuts_samples = 65; }), "Welcome.settings.lightcuts_samples"},
+      {settings_edited([](auto& s) { s.method = MethodKind::Lightcuts; s.lightcuts_samples = 5; }),
+       "Welcome.settings.lightcuts: --lightcuts-samples: 5, expected a square number"},
       {edited<SceneData>([](SceneData& m) { m.file_name = "dir/scene.glb"; }), "SceneData.file_name"},
       {edited<SceneData>([](SceneData& m) { m.file_name = ""; }), "SceneData.file_name"},
       {frame_edited([](auto& f) { f.width = 0; }), "FrameSetup.frame.width: 0"},
@@ -330,6 +343,13 @@ TEST(Protocol, LimitsThemselvesAreAccepted) {
       edited<Welcome>([](Welcome& m) { m.scene_size = kMaxSceneBytes; m.settings.path_depth = 1024; m.settings.specular_depth = 0; }),
       settings_edited([](auto& s) { s.filter_normal_cos = -1; s.clamp = 0; }),
       settings_edited([](auto& s) { s.aa_samples = 64; s.paths_per_set = 64; s.glossy_threshold = 1; s.glossy_rays = 64; }),
+      settings_edited([](auto& s) {
+        s.method = MethodKind::Lightcuts;
+        s.lightcuts_max_cut = 1 << 20;
+        s.lightcuts_spacing = 64;
+        s.lightcuts_samples = 1;
+      }),
+      settings_edited([](auto& s) { s.lightcuts_samples = 64; s.lightcuts_spacing = 0; s.lightcuts_error = 0.999f; }),
       frame_edited([](auto& f) { f.jitter_x = 0; f.jitter_y = 1; }),
       frame_edited([](auto& f) { f.width = kMaxImageSide; f.height = 1; }),
       edited<TileJobMsg>([](TileJobMsg& m) { m.tile = {kMaxImageSide - 1, 0, kMaxTileSide, 1, 64}; }),
@@ -362,7 +382,7 @@ TEST(Protocol, HugeLengthsAndBadBytesAreRejectedBeforeUse) {
             "TileResult.pixels: count 4294967295 over the limit of 1048576");
   Welcome welcome = sample<Welcome>();
   size_t method_at = 8 + 8 + 4 + welcome.scene_name.size() + 16;
-  EXPECT_EQ(patched(welcome, method_at, {7}), "Welcome.settings.method: 7, expected [0, 2]");
+  EXPECT_EQ(patched(welcome, method_at, {7}), "Welcome.settings.method: 7, expected [0, 3]");
   // method u8; path, light and specular depth, interleave, paths_per_set, aa_samples i32; glossy_threshold
   // f32; glossy_rays i32; clamp f32; compensation_samples i32; then filter.
   EXPECT_EQ(patched(welcome, method_at + 1 + 24 + 4 + 4 + 4 + 4, {2}), "Welcome.settings.filter: boolean byte 2, expected 0 or 1");

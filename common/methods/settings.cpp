@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "lightcuts/lightcuts_settings.h"
 #include "methods/subpixel.h"
 
 namespace igi {
@@ -11,12 +12,13 @@ const char* method_name(MethodKind kind) {
     case MethodKind::PathTracer: return "pt";
     case MethodKind::InstantRadiosity: return "ir";
     case MethodKind::Igi: return "igi";
+    case MethodKind::Lightcuts: return "lightcuts";
   }
   return "unknown";
 }
 
 std::optional<MethodKind> parse_method(const std::string& name) {
-  for (MethodKind k : {MethodKind::PathTracer, MethodKind::InstantRadiosity, MethodKind::Igi})
+  for (MethodKind k : {MethodKind::PathTracer, MethodKind::InstantRadiosity, MethodKind::Igi, MethodKind::Lightcuts})
     if (name == method_name(k)) return k;
   return std::nullopt;
 }
@@ -55,6 +57,7 @@ std::optional<std::string> settings_error(const RenderSettings& s) {
     return "--filter-normal: expected a cosine in [-1, 1], got " + std::to_string(s.filter_normal_cos);
   if (!(s.filter_depth_ratio >= 0.0f) || !std::isfinite(s.filter_depth_ratio))
     return "--filter-depth: expected a finite number >= 0, got " + std::to_string(s.filter_depth_ratio);
+  if (std::string e = lightcuts::settings_error(s); !e.empty()) return e;
   return std::nullopt;
 }
 

@@ -6,7 +6,7 @@
 
 namespace igi {
 
-enum class MethodKind : uint8_t { PathTracer, InstantRadiosity, Igi };
+enum class MethodKind : uint8_t { PathTracer, InstantRadiosity, Igi, Lightcuts };
 
 const char* method_name(MethodKind kind);
 std::optional<MethodKind> parse_method(const std::string& name);
@@ -54,6 +54,11 @@ struct RenderSettings {
   bool filter = true;
   float filter_normal_cos = 0.9f;   // neighbours need dot(n, n') above this
   float filter_depth_ratio = 0.05f; // and |d - d'| below this fraction of d
+  // Lightcuts over the VPLs of all sets (common/lightcuts/lightcuts_settings.h).
+  float lightcuts_error = 0.02f;  // refine until every cluster's bound < error x the cut's total
+  int lightcuts_max_cut = 1000;   // and stop at this many nodes in a cut
+  int lightcuts_spacing = 0;      // reconstruction cuts: full cuts every S pixels only; 0 = off
+  int lightcuts_samples = 1;      // multidimensional lightcuts: K = s x s gather points per pixel
 };
 
 // What is wrong with the settings, named as igi-render's option (e.g.

@@ -21,7 +21,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-METHOD_COLOURS = {"pt": "black", "ir": "tab:blue", "igi": "tab:red"}
+METHOD_COLOURS = {"pt": "black", "ir": "tab:blue", "igi": "tab:red", "lightcuts": "tab:green"}
+METHODS = ("pt", "ir", "igi", "lightcuts")
 
 
 def read_rows(path):
@@ -76,7 +77,7 @@ def plot_scene(scene, rows, out_dir):
             ax.plot([r["seconds"] for r in pts], [r[key] for r in pts], linestyle="none", marker=marker, ms=4,
                     color=METHOD_COLOURS.get(method, "gray"), alpha=0.6, label=name,
                     fillstyle="none" if name.endswith(" bc") else "full")
-        for method in ("pt", "ir", "igi"):
+        for method in METHODS:
             front = pareto([r for r in rows if r["method"] == method], key)
             if front:
                 ax.step([r["seconds"] for r in front], [r[key] for r in front], where="post", lw=2.5,
@@ -113,7 +114,9 @@ def headline(rows, scenes, targets, flip_target, meta):
     ]
     for scene in scenes:
         srows = [r for r in rows if r["scene"] == scene]
-        for method in ("pt", "ir", "igi"):
+        for method in METHODS:
+            if not any(r["method"] == method for r in srows):
+                continue
             cells = [time_to_reach(srows, method, "relmse", t) for t in targets]
             cells.append(time_to_reach(srows, method, "flip", flip_target))
             lines.append(f"| {scene} | {method} | " + " | ".join(cells) + " |")
@@ -144,7 +147,7 @@ def main():
         w = csv.writer(f)
         w.writerow(["scene", "method", "metric", "params", "seconds", "value"])
         for scene in scenes:
-            for method in ("pt", "ir", "igi"):
+            for method in METHODS:
                 for key in ("relmse", "flip"):
                     for r in pareto([r for r in rows if r["scene"] == scene and r["method"] == method], key):
                         w.writerow([scene, method, key, r["params"], r["seconds"], r[key]])

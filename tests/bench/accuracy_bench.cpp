@@ -12,7 +12,8 @@
 // DIR/<scene>-<w>x<h>-<spp>-<hash of settings>.exr so reruns reuse them.
 // Sweeps: pt over samples per pixel; ir and igi over VPL paths per set M and
 // progressive passes, the clamp, (igi) the discontinuity filter, and, for
-// clamped points, bias compensation with kCompensationSamples ("bc=on").
+// clamped points, bias compensation with kCompensationSamples ("bc=on");
+// lightcuts (default 2 % error) over M, unclamped and at clamp 0.02.
 // Unclamped VPL errors have infinite variance: a single seed is one draw of
 // a heavy-tailed figure, so each VPL point is the median over three seeds,
 // with the median seed's time.
@@ -193,6 +194,22 @@ void sweep_vpl(const Prepared& p, const std::string& name, const Options& o, con
     }
 }
 
+// Lightcuts' cost grows slowly with the VPL count, so its budgets go further than ir's.
+void sweep_lightcuts(const Prepared& p, const std::string& name, const Options& o, const Image& ref,
+                     std::ofstream& csv) {
+  const std::vector<int> budgets = o.quick ? std::vector<int>{8, 64} : std::vector<int>{4, 16, 64, 256, 1024};
+  for (float clamp : {0.0f, 0.02f})
+    for (int m : budgets) {
+      RenderSettings s;
+      s.method = MethodKind::Lightcuts;
+      s.paths_per_set = m;
+      s.clamp = clamp;
+      char params[128];
+      std::snprintf(params, sizeof params, "M=%d;passes=1;clamp=%g;filter=off;bc=off", m, clamp);
+      write_row(csv, name, "lightcuts", params, median_point(p, s, o, 1, ref));
+    }
+}
+
 int run(const Options& o) {
   fs::create_directories(fs::path(o.out).parent_path().empty() ? fs::path(".") : fs::path(o.out).parent_path());
   std::ofstream csv(o.out);
@@ -204,6 +221,7 @@ int run(const Options& o) {
     const Image& ref = cached_reference(p, name, o, storage);
     sweep_pt(p, name, o, ref, csv);
     sweep_vpl(p, name, o, ref, csv);
+    sweep_lightcuts(p, name, o, ref, csv);
   }
   std::fprintf(stderr, "wrote %s\n", o.out.c_str());
   return 0;

@@ -19,6 +19,8 @@ RenderSettings settings() {
   RenderSettings s;
   s.clamp = 0.05f;
   s.compensation_samples = 4;
+  s.lightcuts_error = 0.05f;
+  s.lightcuts_spacing = 8;
   return s;
 }
 

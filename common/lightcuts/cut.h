@@ -1,0 +1,106 @@
+#pragma once
+// Cut selection (Walter et al. 2005, sec. 4) over the product of a pixel's
+// gather tree and the light tree (multidimensional lightcuts, Walter et al.
+// 2006; with one gather point, plain lightcuts).
+//
+// A cut starts at (gather root, light root) for each light class. Each pair
+// is estimated by its representative pair alone, which costs one shadow ray:
+//   estimate = c(j, i) V(j, i) thr_j / K  (S_gather / s_j) (W_light / w_i)
+// and bounded by lightcuts/cluster_bound.h. The pair with the largest bound
+// is refined (its light node split, or its gather node: whichever has the
+// larger box, a leaf never) until every bound is below `error` times the
+// luminance of the cut's total, or the cut has `max_cut` pairs. A child pair
+// with the parent's representative pair reuses its result: no new ray.
+// Exact pairs (two leaves) have no error. Pairs whose bound is 0 add nothing
+// and cast no ray.
+//
+// Not thread-safe: one engine per thread (it keeps its scratch vectors).
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "lightcuts/cut_node.h"
+#include "lightcuts/gather_tree.h"
+#include "lightcuts/light_contribution.h"
+#include "lightcuts/light_tree.h"
+#include "lightcuts/reconstruction.h"
+#include "render/frame.h"
+
+namespace igi::lightcuts {
+
+struct CutSettings {
+  float error = 0.02f;
+  int max_cut = 1000;
+};
+
+struct CutStats {
+  uint64_t cuts = 0;          // cuts computed (pixels, or samples)
+  uint64_t cut_nodes = 0;     // pairs in the finished cuts
+  uint64_t reused = 0;        // child pairs that took the parent's result
+  uint64_t interpolated = 0;  // reconstruction: visibilities taken from the samples, no ray
+  uint64_t reconstructed = 0; // reconstruction: pixels that used samples
+  CutStats& operator+=(const CutStats& o) {
+    cuts += o.cuts; cut_nodes += o.cut_nodes; reused += o.reused;
+    interpolated += o.interpolated; reconstructed += o.reconstructed;
+    return *this;
+  }
+};
+
+class CutEngine {
+ public:
+  CutEngine(const LightTree& tree, const LightingContext& lighting, const Accel& accel, CutSettings settings)
+      : tree_(tree), lighting_(lighting), accel_(accel), settings_(settings) {}
+
+  static constexpr size_t kMaxSamples = 4;
+
+  // The light the pixel's gather points receive, throughput and 1/K included
+  // (emission excluded). `cut`, when given, receives the finished cut sorted
+  // by light node (one-point trees only). With `samples` (a reconstruction
+  // cut, lightcuts/reconstruction.h; one-point trees, at most kMaxSamples),
+  // a cluster's visibility comes from the samples where they agree on it.
+  glm::vec3 shade(const GatherTree& gather, std::vector<CutNode>* cut, CutStats& stats, RayCounts& rays,
+                  std::span<const SampleVisibility* const> samples = {});
+
+ private:
+  struct Entry {
+    glm::vec3 unit{0.0f};  // c V thr / K of the representative pair
+    float scale = 0.0f;    // (S / s_j) (W / w_i)
+    float error = 0.0f;
+    uint32_t gather = 0, light = 0;  // the pair
+    uint32_t point = 0, leaf = 0;    // its representatives
+    Visibility visibility = Visibility::Unknown;
+    bool alive = true;
+    // Per reconstruction sample: what it says about the light node, and
+    // whether the node lies at or below its cut (then children inherit that).
+    SampleSays says[kMaxSamples] = {};
+    bool covered[kMaxSamples] = {};
+    glm::vec3 estimate() const { return unit * scale; }
+  };
+
+  Entry make_entry(const GatherTree& gather, uint32_t g, uint32_t l, const Entry* parent, CutStats& stats,
+                   RayCounts& rays) const;
+  void read_samples(Entry& e, const Entry* parent) const;
+  bool visible(const Entry& e, const Ray& shadow, CutStats& stats, RayCounts& rays) const;
+  void add(const Entry& e);
+  void refine(const GatherTree& gather, CutStats& stats, RayCounts& rays);
+  bool split_light(const GatherTree& gather, const Entry& e) const;
+
+  const LightTree& tree_;
+  LightingContext lighting_;
+  const Accel& accel_;
+  CutSettings settings_;
+  // Scratch of the current cut.
+  std::vector<Entry> entries_;
+  struct HeapItem {
+    float error;
+    uint32_t entry;
+    // Max-heap by error; equal errors: the older entry first (a total order, so the cut is deterministic).
+    bool operator<(const HeapItem& o) const { return error < o.error || (error == o.error && entry > o.entry); }
+  };
+  std::vector<HeapItem> heap_;  // live entries with error > 0
+  glm::dvec3 total_{0.0};
+  size_t cut_size_ = 0;
+  std::span<const SampleVisibility* const> samples_;
+};
+
+}  // namespace igi::lightcuts

@@ -1,0 +1,46 @@
+#include "lightcuts/gather_points.h"
+
+#include <cmath>
+
+#include "methods/gbuffer.h"
+#include "methods/subpixel.h"
+#include "sampling/hash.h"
+
+namespace igi::lightcuts {
+
+GatherPointTracer::GatherPointTracer(const Accel& accel, const FrameSetup& frame, int samples_per_pixel,
+                                     int specular_depth)
+    : accel_(accel), camera_(frame.camera, frame.width, frame.height), frame_(frame),
+      side_(std::max(1, int(std::lround(std::sqrt(double(samples_per_pixel)))))), specular_depth_(specular_depth) {}
+
+GatherPoint GatherPointTracer::trace(int x, int y, int k, RayCounts& rays) const {
+  GatherPoint g;
+  const glm::vec2 offset = subpixel_offset(k, side_, frame_.jitter_x, frame_.jitter_y);
+  const Ray ray{camera_.origin, glm::normalize(camera_.direction(float(x) + offset.x, float(y) + offset.y)), 0.0f,
+                1e30f, kCameraRayMask};
+  ++rays.primary;
+  Hit hit;
+  if (!accel_.intersect(ray, hit)) return g;
+  GSample chain;
+  follow_specular_chain(accel_, ray, hit, hash(hash(uint32_t(x), uint32_t(y), frame_.seed), uint32_t(k)),
+                        specular_depth_, chain, rays);
+  g.emitted = chain.emitted;
+  g.throughput = chain.throughput;
+  if (!chain.valid()) return g;
+  const SurfacePoint& sp = chain.surface;
+  g.surface = sp;
+  g.wo = chain.wo;
+  g.depth = chain.depth;
+  const bool front = glm::dot(g.wo, sp.geometric_normal) >= 0.0f;
+  g.shading_normal = front ? sp.shading_normal : -sp.shading_normal;
+  g.geometric_normal = front ? sp.geometric_normal : -sp.geometric_normal;
+  g.cos_o = glm::dot(g.wo, g.shading_normal);
+  g.shading_frame = Frame(g.shading_normal);
+  g.geometric_frame = Frame(g.geometric_normal);
+  g.back_frame = Frame(-g.wo);
+  const float cos_tilt = std::min(1.0f, glm::dot(g.shading_normal, g.geometric_normal));
+  g.tilt_sin = g.shading_normal == g.geometric_normal ? 0.0f : std::sqrt(std::max(0.0f, 1.0f - cos_tilt * cos_tilt)) * 1.0001f;
+  return g;
+}
+
+}  // namespace igi::lightcuts

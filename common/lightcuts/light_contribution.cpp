@@ -1,0 +1,73 @@
+#include "lightcuts/light_contribution.h"
+
+#include <cmath>
+
+#include "lighting/lights.h"
+#include "material/bsdf.h"
+#include "sampling/warp.h"
+
+namespace igi::lightcuts {
+namespace {
+
+// The BSDF at the gather point, albedo included.
+glm::vec3 receiver_bsdf(const GatherPoint& g, glm::vec3 wi) {
+  const SurfacePoint& sp = g.surface;
+  if (sp.material->type == MaterialType::Diffuse) {
+    const bool same_side = glm::dot(g.wo, sp.geometric_normal) * glm::dot(wi, sp.geometric_normal) > 0.0f;
+    return same_side ? sp.albedo * kInvPi : glm::vec3(0.0f);
+  }
+  return bsdf_eval(sp, g.wo, wi);
+}
+
+// A surface VPL's BSDF, light arriving from its incident direction and leaving along `out`.
+glm::vec3 vpl_bsdf(const Scene& scene, const Vpl& v, glm::vec3 out) {
+  SurfacePoint sp;
+  sp.position = v.position;
+  sp.geometric_normal = sp.shading_normal = v.normal;
+  sp.material = &scene.materials[v.material];
+  sp.albedo = v.albedo;
+  return bsdf_eval(sp, v.incident, out);
+}
+
+}  // namespace
+
+glm::vec3 light_contribution(const LightingContext& context, const GatherPoint& g, const LightLeaf& leaf,
+                             Ray& shadow) {
+  const SurfacePoint& sp = g.surface;
+  glm::vec3 wi, emitted;
+  float g_term, distance;
+  if (leaf.light_class == LightClass::Directional) {
+    wi = leaf.position;
+    distance = INFINITY;
+    g_term = std::abs(glm::dot(wi, sp.shading_normal));
+    emitted = leaf.intensity;
+  } else {
+    const glm::vec3 d = leaf.position - sp.position;
+    const float dist2 = glm::dot(d, d);
+    distance = std::sqrt(dist2);
+    wi = d / distance;
+    const float cos_x = std::abs(glm::dot(wi, sp.shading_normal));
+    if (leaf.light_class == LightClass::Punctual) {
+      g_term = cos_x / dist2;  // exact point and spot lights: never clamped
+      const PunctualLight& light = context.scene.lights[leaf.source];
+      emitted = light.type == LightType::Spot ? leaf.intensity * spot_attenuation(light, -wi) : leaf.intensity;
+    } else {
+      const float cos_y = -glm::dot(wi, leaf.normal);
+      if (cos_y <= 0.0f) return glm::vec3(0.0f);
+      g_term = std::min(cos_x * cos_y / dist2, context.clamp_bound);
+      emitted = leaf.light_class == LightClass::Glossy
+                    ? vpl_bsdf(context.scene, context.vpls[leaf.source], -wi) * leaf.intensity
+                    : leaf.intensity;
+    }
+  }
+  const glm::vec3 c = receiver_bsdf(g, wi) * emitted * g_term;
+  // Nothing, or a light on the point itself (unclamped: infinite or NaN).
+  if (!(c.x + c.y + c.z > 0.0f) || !std::isfinite(c.x + c.y + c.z)) return glm::vec3(0.0f);
+  shadow.origin = offset_origin(sp, wi);
+  shadow.direction = wi;
+  shadow.tnear = 0.0f;
+  shadow.tfar = std::isinf(distance) ? INFINITY : distance * (1.0f - kShadowEpsilon);
+  return c;
+}
+
+}  // namespace igi::lightcuts
