@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
-args=(--workers 2 --scene cornell --method igi --size 640x480 --vpl-paths 16 --clamp 0.05)
+args=(--workers 2 --scene cornell --method igi --size 640x480)  # the defaults: README, "Defaults"
 if [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
   build/master/igi-master "${args[@]}" "$@"
 else

@@ -143,7 +143,7 @@ TEST(BiasCompensation, DistributedEqualsSingleProcessBitForBit) {
   auto r = test::run(command);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const test::Prepared p(make_cornell_box());
-  RenderSettings s = vpl_settings(MethodKind::Igi, 8, 0.1f, true, 2);
+  RenderSettings s = vpl_settings(MethodKind::Igi, 8, 0.1f, true, 2, 4);  // the master's default --aa 4
   EXPECT_TRUE(test::images_identical("bc-dist", read_image(out), p.render(s, w, h, 1, 1)));
 }
 

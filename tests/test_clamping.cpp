@@ -43,9 +43,7 @@ double energy_loss(const Image& image, const Image& ref, const std::vector<bool>
 TEST(Clamping, EnergyLossIsConfinedToCreases) {
   test::Prepared p(make_cornell_box());
   const int w = 64, h = 48;
-  RenderSettings ir;
-  ir.method = MethodKind::InstantRadiosity;
-  ir.paths_per_set = 16;
+  RenderSettings ir = test::vpl_settings(MethodKind::InstantRadiosity, 16);
   const Image unclamped = p.render(ir, w, h, 16);
   for (float clamp : {0.02f, 0.05f, 0.1f}) {
     ir.clamp = clamp;

@@ -94,7 +94,9 @@ int wait_for(pid_t pid, int seconds) {
 const Image& single_process() {
   static const Image reference = [] {
     test::Prepared p(load_scene("cornell"));
-    return p.render(test::vpl_settings(MethodKind::Igi, 8), kWidth, kHeight, 1, 1);
+    RenderSettings defaults;  // what the master renders with --vpl-paths 8 alone
+    defaults.paths_per_set = 8;
+    return p.render(defaults, kWidth, kHeight, 1, 1);
   }();
   return reference;
 }

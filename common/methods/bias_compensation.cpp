@@ -1,5 +1,6 @@
 #include "methods/bias_compensation.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "methods/subpixel.h"
@@ -36,12 +37,15 @@ glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int k, uin
   const glm::vec3 n = front ? sp.shading_normal : -sp.shading_normal;
   const glm::vec3 ng = front ? sp.geometric_normal : -sp.geometric_normal;
   const Frame frame(n);
-  const uint32_t seed = hash(hash(uint32_t(x), uint32_t(y), frame_seed), uint32_t(k));
+  // The pixel's n rays are one stratified sequence shared out over its S
+  // sub-samples (at least one each): sub-sample k takes indices [k r, (k+1) r).
+  const int per_sample = std::max(1, samples_ / vpls_.groups);
+  const uint32_t seed = hash(uint32_t(x), uint32_t(y), frame_seed);
   const int set = interleaved_ ? vpls_.set_of_pixel(x, y) : -1;
   const int group = group_of_subsample(x, y, k, vpls_.groups);
   glm::vec3 sum(0.0f);
-  for (int k = 0; k < samples_; ++k) {
-    const glm::vec3 wi = frame.to_world(cosine_hemisphere(sample_2d(uint32_t(k), 0, seed)));
+  for (int i = 0; i < per_sample; ++i) {
+    const glm::vec3 wi = frame.to_world(cosine_hemisphere(sample_2d(uint32_t(k * per_sample + i), 0, seed)));
     const float cos_x = glm::dot(wi, n);
     if (cos_x <= 0.0f || glm::dot(wi, ng) <= 0.0f) continue;  // below the surface: no light
     // Past this distance G <= cos_x / d^2 <= b: the clamp cut nothing there.
@@ -62,7 +66,7 @@ glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int k, uin
     const glm::vec3 radiance = hit_sample.surface.emitted() + radiance_towards(hit_sample, set, group, rays);
     sum += radiance * ((geometry_term - bound_) / geometry_term);
   }
-  return sum / float(samples_);
+  return sum / float(per_sample);
 }
 
 // L(y -> x), x along y.wo: the clamped VPL estimate of the sample's own

@@ -22,13 +22,14 @@
 // (tests/test_bias_compensation.cpp): with Le(y) one level gives 1.775
 // against its analytic 1.778; without it 1.440.
 //
-// With anti-aliasing (methods/subpixel.h) each sub-sample compensates on its
-// own, and L(y -> x) is its own group's estimate scaled by the group count,
-// like the sub-sample's VPL sum. Exact point, spot and directional lights
+// With anti-aliasing (methods/subpixel.h) the pixel's n samples are shared
+// out over its S sub-samples (n / S each, at least one), so a pixel costs
+// about the same at any S, and L(y -> x) is the sub-sample's own group's
+// estimate scaled by the group count, like its VPL sum. Exact point, spot and directional lights
 // (never clamped, methods/direct_lights.h) light y too: their light reflected
 // over the short hop is what the clamp cut from the VPLs their paths left on y.
 //
-// Random numbers: sample_2d(i, 0, hash(hash(x, y, frame seed), k)) in GLOBAL
+// Random numbers: sample_2d(k n / S + i, 0, hash(x, y, frame seed)) in GLOBAL
 // pixel coordinates (x, y), sub-sample k, so a pixel's compensation is the
 // same in whatever tile, thread or process renders it. All methods are const
 // and thread-safe.

@@ -24,6 +24,8 @@ inline constexpr int kMaxCompensationSamples = 256;
 inline constexpr int kMaxAntialiasSamples = 64;  // 8 x 8 sub-samples
 inline constexpr int kMaxGlossyRays = 64;
 
+// The defaults of anti-aliasing, clamp and compensation are the best trade-off
+// measured at interactive frame times (README, "Defaults").
 struct RenderSettings {
   MethodKind method = MethodKind::Igi;
   // Path lengths, in surface interactions after the camera or the light; 0 = unbounded.
@@ -35,7 +37,7 @@ struct RenderSettings {
   int paths_per_set = 16;      // M: light paths started per VPL set
   // Anti-aliasing by VPL groups: S = s x s stratified sub-samples per pixel,
   // each shaded by 1/S of the pixel's light paths (methods/subpixel.h). 1 = off.
-  int aa_samples = 1;
+  int aa_samples = 4;
   // GGX surfaces with alpha below this are too sharp for VPLs (each would show
   // as a highlight of its own): their lobe is gathered with BSDF-sampled rays
   // shaded by the VPLs where they land (methods/glossy_gather.h), and light
@@ -45,11 +47,11 @@ struct RenderSettings {
   // Geometry-term bound, scale-free: G <= 1 / (clamp * scene diagonal)^2, so
   // clamp is the distance (a fraction of the diagonal) below which 1/r^2 stops
   // growing. 0 turns clamping off.
-  float clamp = 0.0f;
+  float clamp = 0.1f;
   // Bias compensation (Kollig and Keller): eye-path samples per pixel that
   // add back the light the clamp cut (methods/bias_compensation.h). 0 = off;
   // no effect without a clamp.
-  int compensation_samples = 0;
+  int compensation_samples = 4;
   // Discontinuity buffer (igi).
   bool filter = true;
   float filter_normal_cos = 0.9f;   // neighbours need dot(n, n') above this

@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """Charts and the headline table from igi-accuracy's CSV.
 
-    plot_accuracy.py results/accuracy/accuracy.csv results/accuracy [--targets 0.05,0.01] [--flip-target 0.1]
+    plot_accuracy.py results/accuracy/accuracy.csv results/accuracy [--targets 0.05,0.01] [--flip-targets 0.1,0.06,0.05]
 
 Writes into the output folder:
   <scene>.png   relMSE and mean FLIP against render time, log-log, one series
                 per method variant (pt; ir per clamp; igi per filter and clamp),
                 with the Pareto front of each method (pt, ir, igi) drawn over them
   pareto.csv    the points on each method's front
-  headline.md   time to reach each target error, per method and scene
+  headline.md   time to reach each target error, per method and scene, and how
+                many times faster than pt each method gets there
 """
 import argparse
 import csv
@@ -45,6 +46,8 @@ def variant(row):
     label = f"{row['method']} clamp {p.get('clamp', '0')}"
     if row["method"] == "igi":
         label += f" filter {p.get('filter', 'on')}"
+    if p.get("aa", "1") != "1":
+        label += f" aa {p['aa']}"
     if p.get("bc", "off") != "off":
         label += " bc"
     return label
@@ -98,28 +101,48 @@ def plot_scene(scene, rows, out_dir):
     return path
 
 
-def time_to_reach(rows, method, key, target):
+def fastest(rows, method, key, target):
     hits = [r for r in rows if r["method"] == method and r[key] <= target]
-    if not hits:
+    return min(hits, key=lambda r: r["seconds"]) if hits else None
+
+
+def time_to_reach(rows, method, key, target):
+    r = fastest(rows, method, key, target)
+    if r is None:
         best = min((r[key] for r in rows if r["method"] == method), default=math.nan)
         return f"not reached (best {best:.3g})"
-    r = min(hits, key=lambda r: r["seconds"])
-    return f"{r['seconds']:.3g} s ({r['params'].replace(';bc=off', '').replace(';', ', ')})"
+    params = r["params"].replace(";bc=off", "").replace(";aa=1", "").replace(";", ", ")
+    return f"{r['seconds']:.3g} s ({params})"
 
 
-def headline(rows, scenes, targets, flip_target, meta):
+def speedup(rows, method, key, target):
+    """How many times faster than pt the method reaches the target."""
+    ours, pt = fastest(rows, method, key, target), fastest(rows, "pt", key, target)
+    if ours is None:
+        return "not reached"
+    if pt is None:
+        return f"pt not reached (> {max(r['seconds'] for r in rows if r['method'] == 'pt') / ours['seconds']:.0f}x)"
+    return f"{pt['seconds'] / ours['seconds']:.1f}x"
+
+
+def headline(rows, scenes, targets, flip_targets, meta):
+    goals = [("relmse", t, f"relMSE <= {t:g}") for t in targets] + [("flip", t, f"FLIP <= {t:g}") for t in flip_targets]
     lines = [
-        "| scene | method | " + " | ".join(f"relMSE <= {t:g}" for t in targets) + f" | FLIP <= {flip_target:g} |",
-        "|---|---|" + "---|" * (len(targets) + 1),
+        "| scene | method | " + " | ".join(g[2] for g in goals) + " |",
+        "|---|---|" + "---|" * len(goals),
+    ]
+    ratios = [
+        "| scene | method | " + " | ".join(g[2] for g in goals) + " |",
+        "|---|---|" + "---|" * len(goals),
     ]
     for scene in scenes:
         srows = [r for r in rows if r["scene"] == scene]
         for method in METHODS:
             if not any(r["method"] == method for r in srows):
                 continue
-            cells = [time_to_reach(srows, method, "relmse", t) for t in targets]
-            cells.append(time_to_reach(srows, method, "flip", flip_target))
-            lines.append(f"| {scene} | {method} | " + " | ".join(cells) + " |")
+            lines.append(f"| {scene} | {method} | " + " | ".join(time_to_reach(srows, method, k, t) for k, t, _ in goals) + " |")
+            if method != "pt":
+                ratios.append(f"| {scene} | {method} | " + " | ".join(speedup(srows, method, k, t) for k, t, _ in goals) + " |")
     intro = (
         "Time to reach a given error against the converged path-traced reference "
         f"({meta}); the fastest measured point of each method, with its settings. "
@@ -127,7 +150,8 @@ def headline(rows, scenes, targets, flip_target, meta):
         "of the images clamped to [0, 1] and sRGB-encoded. VPL points are medians over three seeds. "
         "All points from one run on one machine (scripts/bench-accuracy.sh).\n"
     )
-    return intro + "\n" + "\n".join(lines) + "\n"
+    return (intro + "\n" + "\n".join(lines) + "\n\nHow many times faster than pt each method reaches the target "
+            "(pt's fastest point over the method's):\n\n" + "\n".join(ratios) + "\n")
 
 
 def main():
@@ -135,7 +159,7 @@ def main():
     ap.add_argument("csv")
     ap.add_argument("out_dir")
     ap.add_argument("--targets", default="0.05,0.01", help="relMSE targets for the headline table")
-    ap.add_argument("--flip-target", type=float, default=0.1)
+    ap.add_argument("--flip-targets", default="0.1,0.06,0.05", help="FLIP targets for the headline table")
     ap.add_argument("--meta", default="", help="run conditions for the table's introduction")
     args = ap.parse_args()
     rows = read_rows(args.csv)
@@ -154,7 +178,8 @@ def main():
     targets = [float(t) for t in args.targets.split(",") if t]
     path = os.path.join(args.out_dir, "headline.md")
     with open(path, "w") as f:
-        f.write(headline(rows, scenes, targets, args.flip_target, args.meta or "see the CSV"))
+        flip_targets = [float(t) for t in args.flip_targets.split(",") if t]
+        f.write(headline(rows, scenes, targets, flip_targets, args.meta or "see the CSV"))
     print(path)
 
 

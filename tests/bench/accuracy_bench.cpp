@@ -39,7 +39,7 @@ namespace fs = std::filesystem;
 constexpr int kCompensationSamples = 4;  // eye samples per pixel when bc=on
 
 struct Options {
-  std::vector<std::string> scenes = {"cornell", "corner", "rooms", "glossy", "large"};
+  std::vector<std::string> scenes = {"cornell", "corner", "rooms", "glossy", "glossy-rough", "large"};
   int width = 128, height = 96;
   int ref_spp = 4096;
   std::string refs = "results/refs";
@@ -157,41 +157,48 @@ Point median_point(const Prepared& p, const RenderSettings& s, const Options& o,
   return points[1];
 }
 
-// One VPL series: every budget at one (method, filter, clamp, compensation).
+// One VPL series: every budget at one (method, filter, clamp, compensation, anti-aliasing).
 void sweep_budgets(const Prepared& p, const std::string& name, const Options& o, const Image& ref,
                    RenderSettings s, std::ofstream& csv) {
   // (paths per set M, progressive passes): VPL budget up, then passes up.
   std::vector<std::pair<int, int>> budgets = {{1, 1}, {4, 1}, {16, 1}, {64, 1}, {16, 4}, {16, 16}};
-  if (o.quick) budgets = {{2, 1}, {8, 1}, {8, 4}};
+  if (o.quick) budgets = {{4, 1}, {8, 1}, {8, 4}};
   const bool ir = s.method == MethodKind::InstantRadiosity;
   for (auto [m, passes] : budgets) {
     // ir shades every VPL per pixel: its big budgets cost N^2 times igi's.
     if (ir && m * passes > 64) continue;
+    if (m < s.aa_samples) continue;  // each sub-sample needs a group of paths
     s.paths_per_set = m;
-    char params[128];
-    std::snprintf(params, sizeof params, "M=%d;passes=%d;clamp=%g;filter=%s;bc=%s", m, passes, s.clamp,
-                  !ir && s.filter ? "on" : "off", s.compensation_samples > 0 ? "on" : "off");
+    char params[160];
+    std::snprintf(params, sizeof params, "M=%d;passes=%d;clamp=%g;filter=%s;bc=%s;aa=%d", m, passes, s.clamp,
+                  !ir && s.filter ? "on" : "off", s.compensation_samples > 0 ? "on" : "off", s.aa_samples);
     write_row(csv, name, method_name(s.method), params, median_point(p, s, o, passes, ref));
   }
 }
 
+// The series: igi over clamps, compensation and anti-aliasing with the
+// filter, a few without it, and ir (slow: one clamp pair).
 void sweep_vpl(const Prepared& p, const std::string& name, const Options& o, const Image& ref, std::ofstream& csv) {
-  const std::vector<float> clamps = o.quick ? std::vector<float>{0.0f, 0.05f} : std::vector<float>{0.0f, 0.02f, 0.1f};
-  for (MethodKind kind : {MethodKind::InstantRadiosity, MethodKind::Igi})
-    for (bool filter : {true, false}) {
-      if (kind == MethodKind::InstantRadiosity && !filter) continue;  // ir has no filter
-      for (float clamp : clamps)
-        // Bias compensation (Kollig and Keller) only where a clamp cut something.
-        for (int compensation : {0, kCompensationSamples}) {
-          if (compensation > 0 && clamp == 0.0f) continue;
-          RenderSettings s;
-          s.method = kind;
-          s.clamp = clamp;
-          s.filter = filter;
-          s.compensation_samples = compensation;
-          sweep_budgets(p, name, o, ref, s, csv);
-        }
+  const std::vector<float> clamps = o.quick ? std::vector<float>{0.0f, 0.05f} : std::vector<float>{0.0f, 0.02f, 0.05f, 0.1f};
+  auto series = [&](MethodKind kind, bool filter, float clamp, int compensation, int aa) {
+    RenderSettings s;
+    s.method = kind;
+    s.clamp = clamp;
+    s.filter = filter;
+    s.compensation_samples = compensation;
+    s.aa_samples = aa;
+    sweep_budgets(p, name, o, ref, s, csv);
+  };
+  for (float clamp : clamps)
+    for (int aa : {1, 4}) {
+      series(MethodKind::Igi, true, clamp, 0, aa);
+      // Bias compensation (Kollig and Keller) only where a clamp cut something.
+      if (clamp > 0.0f) series(MethodKind::Igi, true, clamp, kCompensationSamples, aa);
     }
+  series(MethodKind::Igi, false, 0.0f, 0, 1);
+  series(MethodKind::Igi, false, 0.05f, 0, 1);
+  series(MethodKind::InstantRadiosity, true, 0.0f, 0, 1);
+  series(MethodKind::InstantRadiosity, true, 0.05f, 0, 1);
 }
 
 // Lightcuts' cost grows slowly with the VPL count, so its budgets go further than ir's.

@@ -131,6 +131,8 @@ void bench_scene(const std::string& name, int width, int height, int frames, int
   RenderSettings settings;
   settings.method = MethodKind::Igi;
   settings.clamp = 0.05f;
+  settings.compensation_samples = 0;
+  settings.aa_samples = 1;
   settings.paths_per_set = paths_for_vpls(ctx, settings, vpls_per_set);
   VplMethod method(ctx, settings);
   FrameSetup frame;
@@ -196,7 +198,7 @@ void bench_progress(const std::string& name, int width, int height, int frames) 
   Scene scene = load_scene(name);
   Accel accel(scene);
   LightSet lights(scene);
-  RenderSettings settings;
+  RenderSettings settings;  // the defaults, as igi-render --spp 20 --vpl-paths 6 renders
   settings.paths_per_set = 6;
   FrameSetup frame;
   frame.camera = scene.camera_or_auto();

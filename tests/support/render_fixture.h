@@ -10,14 +10,17 @@
 namespace igi::test {
 
 // Settings for the VPL methods (ir, igi) as the tests vary them.
+// Every option the VPL methods' defaults set is explicit here: a test keeps
+// testing what it tested when the defaults change.
 inline RenderSettings vpl_settings(MethodKind kind, int paths, float clamp = 0.0f, bool filter = true,
-                                   int compensation = 0) {
+                                   int compensation = 0, int aa = 1) {
   RenderSettings s;
   s.method = kind;
   s.paths_per_set = paths;
   s.clamp = clamp;
   s.filter = filter;
   s.compensation_samples = compensation;
+  s.aa_samples = aa;
   return s;
 }
 
