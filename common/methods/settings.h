@@ -51,7 +51,7 @@ struct RenderSettings {
   // Bias compensation (Kollig and Keller): eye-path samples per pixel that
   // add back the light the clamp cut (methods/bias_compensation.h). 0 = off;
   // no effect without a clamp.
-  int compensation_samples = 4;
+  int compensation_samples = 0;
   // Discontinuity buffer (igi).
   bool filter = true;
   float filter_normal_cos = 0.9f;   // neighbours need dot(n, n') above this
