@@ -492,8 +492,9 @@ TEST(Security, SceneBytesFromAMasterAreStoredOnlyInTheCacheUnderTheirHash) {
   // Bytes that do not match their hash are refused and never written.
   EXPECT_EQ(serve_scene(dir, content_hash(bytes) + 1, bytes), 3);
   EXPECT_TRUE(files_under(dir).empty());
-  // Bytes that do are written in the cache folder as HASH-NAME, and nowhere else.
-  EXPECT_EQ(serve_scene(dir, content_hash(bytes), bytes), 0);
+  // Bytes that do are written in the cache folder as HASH-NAME, and nowhere else; they are
+  // no scene, so the worker tells the master it cannot load them and exits with status 6.
+  EXPECT_EQ(serve_scene(dir, content_hash(bytes), bytes), 6);
   EXPECT_EQ(files_under(dir), std::vector<std::string>{"cache/" + hash_hex(content_hash(bytes)) + "-box.glb"});
 }
 
