@@ -1,110 +1,105 @@
 #include "scheduler.h"
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 
 namespace igi {
+namespace {
+
+constexpr size_t kRoundTrips = 64;     // the median is taken over this many recent jobs
+constexpr size_t kMinRoundTrips = 8;   // fewer: no median yet
+constexpr double kUnknownStragglerSeconds = 1.0;
+
+bool same_tile(const TileJob& a, const TileJob& b) {
+  return a.x == b.x && a.y == b.y && a.w == b.w && a.h == b.h && a.border == b.border;
+}
+
+double seconds_between(TimePoint from, TimePoint to) { return std::chrono::duration<double>(to - from).count(); }
+
+}  // namespace
+
+// ---- Workers.
 
 void Scheduler::add_worker(const WorkerId& id, int credits) {
-  workers_.try_emplace(id).first->second.credits = credits > 0 ? credits : credits_;
+  Worker& w = workers_[id];
+  w.credits = credits > 0 ? credits : config_.credits;
+  if (int(w.jobs.size()) < w.credits) hungry_.insert(id);
 }
 
 void Scheduler::remove_worker(const WorkerId& id) {
   auto it = workers_.find(id);
   if (it == workers_.end()) return;
-  const std::set<uint64_t> held = it->second.jobs;
+  const std::set<uint64_t> held = std::move(it->second.jobs);
   workers_.erase(it);
+  hungry_.erase(id);
   // Newest first: each goes to the front, so the oldest ends up leading.
-  for (auto it = held.rbegin(); it != held.rend(); ++it) release(id, *it);
+  for (auto j = held.rbegin(); j != held.rend(); ++j) {
+    auto job = jobs_.find(*j);
+    if (job == jobs_.end()) continue;
+    release_holder(job->second, id, TimePoint{}, false);
+    requeue(*j);
+  }
+  // Fewer possible voters may let a frame decide its hash.
+  for (auto& [frame_id, frame] : frames_)
+    if (!frame.reference) try_decide(frame);
 }
 
-// A job lost its worker: back to the front of the queue unless another copy
-// is still out or it is already done.
-void Scheduler::release(const WorkerId& id, uint64_t job_id) {
-  auto it = jobs_.find(job_id);
-  if (it == jobs_.end()) return;
-  Job& job = it->second;
-  job.holders.erase(id);
-  if (!job.done && job.holders.empty() &&
-      std::find(unassigned_.begin(), unassigned_.end(), job_id) == unassigned_.end()) {
-    unassigned_.push_front(job_id);
-    ++stats_.reissued;
-  }
+int Scheduler::outstanding(const WorkerId& id) const {
+  auto w = workers_.find(id);
+  return w == workers_.end() ? 0 : int(w->second.jobs.size());
 }
+
+bool Scheduler::trusted(const WorkerId& id) const {
+  auto w = workers_.find(id);
+  return w != workers_.end() && w->second.trusted;
+}
+
+std::vector<WorkerId> Scheduler::take_quarantined() { return std::exchange(newly_quarantined_, {}); }
+
+// ---- Frames and the pool.
 
 void Scheduler::add_frame(uint64_t frame_id, const std::vector<TileJob>& tiles) {
   Frame& frame = frames_[frame_id];
   for (const TileJob& tile : tiles) {
     const uint64_t id = next_job_id_++;
-    jobs_[id] = Job{frame_id, tile, {}, false};
+    Job& job = jobs_[id];
+    job.frame_id = frame_id;
+    job.tile = tile;
+    job.queued = true;
     frame.jobs.push_back(id);
     unassigned_.push_back(id);
   }
 }
 
-std::optional<uint64_t> Scheduler::take_unassigned(const WorkerId& id) {
-  for (auto it = unassigned_.begin(); it != unassigned_.end(); ++it)
-    if (!jobs_[*it].holders.count(id)) {
-      uint64_t job_id = *it;
-      unassigned_.erase(it);
-      return job_id;
-    }
-  return std::nullopt;
-}
-
-// The oldest outstanding job with a single holder that is not this worker.
-std::optional<uint64_t> Scheduler::pick_straggler(const WorkerId& id) const {
-  for (const auto& [frame_id, frame] : frames_)
-    for (uint64_t job_id : frame.jobs) {
-      const Job& job = jobs_.at(job_id);
-      if (!job.done && job.holders.size() == 1 && !job.holders.count(id)) return job_id;
-    }
-  return std::nullopt;
-}
-
-std::optional<JobAssignment> Scheduler::next_job(const WorkerId& id) {
-  auto w = workers_.find(id);
-  if (w == workers_.end() || int(w->second.jobs.size()) >= w->second.credits) return std::nullopt;
-  bool duplicate = false;
-  std::optional<uint64_t> job_id = take_unassigned(id);
-  if (!job_id) {
-    job_id = pick_straggler(id);
-    duplicate = job_id.has_value();
-  }
-  if (!job_id) return std::nullopt;
-  Job& job = jobs_[*job_id];
-  job.holders.insert(id);
-  w->second.jobs.insert(*job_id);
-  if (duplicate) ++stats_.duplicated;
-  if (!duplicate && forced_duplicates_ > 0) {  // test hook: the next worker gets it too
-    --forced_duplicates_;
-    unassigned_.push_front(*job_id);
-    ++stats_.duplicated;
-  }
-  return JobAssignment{*job_id, job.frame_id, job.tile, duplicate};
-}
-
-ResultVerdict Scheduler::on_result(const WorkerId& id, uint64_t job_id, uint64_t frame_state_hash) {
+void Scheduler::requeue(uint64_t job_id) {
   auto it = jobs_.find(job_id);
-  auto w = workers_.find(id);
-  if (w != workers_.end()) w->second.jobs.erase(job_id);
-  if (it == jobs_.end()) return ResultVerdict::Unknown;
+  if (it == jobs_.end()) return;
   Job& job = it->second;
-  job.holders.erase(id);
-  if (job.done) {
-    ++stats_.late_dropped;
-    return ResultVerdict::Duplicate;
+  if (job.done || job.held_by || !job.holders.empty() || job.queued) return;
+  job.queued = true;
+  unassigned_.push_front(job_id);
+  ++stats_.reissued;
+}
+
+bool Scheduler::release_holder(Job& job, const WorkerId& id, TimePoint now, bool sample) {
+  auto h = std::find_if(job.holders.begin(), job.holders.end(), [&](const Holder& x) { return x.worker == id; });
+  if (h == job.holders.end()) return false;
+  if (sample) {
+    const double seconds = seconds_between(h->issued, now);
+    if (round_trips_.size() < kRoundTrips) round_trips_.push_back(seconds);
+    else round_trips_[round_trip_next_] = seconds;
+    round_trip_next_ = (round_trip_next_ + 1) % kRoundTrips;
+    median_.reset();
   }
-  Frame& frame = frames_[job.frame_id];
-  if (frame.state_hash && *frame.state_hash != frame_state_hash) {
-    remove_worker(id);  // its other jobs go back too
-    release(id, job_id);
-    return ResultVerdict::HashMismatch;
-  }
-  frame.state_hash = frame_state_hash;
+  job.holders.erase(h);
+  return true;
+}
+
+void Scheduler::complete(Frame& frame, Job& job) {
   job.done = true;
+  job.queued = false;
   ++frame.done;
-  unassigned_.erase(std::remove(unassigned_.begin(), unassigned_.end(), job_id), unassigned_.end());
-  return ResultVerdict::Accepted;
 }
 
 std::vector<uint64_t> Scheduler::take_completed_frames() {
@@ -117,9 +112,312 @@ std::vector<uint64_t> Scheduler::take_completed_frames() {
   return done;
 }
 
-int Scheduler::outstanding(const WorkerId& id) const {
+// ---- Handing out jobs.
+
+JobAssignment Scheduler::give(const WorkerId& id, uint64_t job_id, TimePoint now) {
+  Job& job = jobs_.at(job_id);
+  const bool duplicate = !job.holders.empty() || job.held_by.has_value();
+  job.queued = false;
+  job.holders.push_back({id, now});
+  Worker& w = workers_.at(id);
+  w.jobs.insert(job_id);
+  if (int(w.jobs.size()) >= w.credits) hungry_.erase(id);
+  issued_.push_back({now, job_id, id});
+  return JobAssignment{id, job_id, job.frame_id, job.tile, duplicate};
+}
+
+std::optional<uint64_t> Scheduler::front_unassigned() {
+  while (!unassigned_.empty()) {
+    auto it = jobs_.find(unassigned_.front());
+    if (it != jobs_.end() && it->second.queued) return unassigned_.front();
+    forced_pending_.erase(unassigned_.front());
+    unassigned_.pop_front();  // done, held or its frame gone since it was queued
+  }
+  return std::nullopt;
+}
+
+// One job per hungry worker per round, so work spreads over the workers.
+void Scheduler::assign_unassigned(TimePoint now, std::vector<JobAssignment>& out) {
+  bool progress = true;
+  while (progress && !hungry_.empty()) {
+    progress = false;
+    for (auto it = hungry_.begin(); it != hungry_.end();) {
+      const WorkerId id = *it++;  // give() may erase id from hungry_
+      std::optional<uint64_t> job_id = front_unassigned();
+      if (!job_id) return;
+      const Job& job = jobs_.at(*job_id);
+      if (std::any_of(job.holders.begin(), job.holders.end(), [&](const Holder& h) { return h.worker == id; }))
+        continue;  // a forced copy: for another worker
+      unassigned_.pop_front();
+      out.push_back(give(id, *job_id, now));
+      if (out.back().duplicate) {
+        ++stats_.duplicated;
+        if (forced_pending_.erase(*job_id)) --forced_duplicates_;
+      } else if (forced_duplicates_ > int(forced_pending_.size())) {  // test hook: the next worker gets it too
+        forced_pending_.insert(*job_id);
+        jobs_.at(*job_id).queued = true;
+        unassigned_.push_front(*job_id);
+      }
+      progress = true;
+    }
+  }
+}
+
+double Scheduler::median_round_trip() const {
+  if (round_trips_.empty()) return 0.0;
+  if (!median_) {
+    std::vector<double> sorted = round_trips_;
+    std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
+    median_ = sorted[sorted.size() / 2];
+  }
+  return *median_;
+}
+
+double Scheduler::straggler_seconds() const {
+  const double typical =
+      round_trips_.size() < kMinRoundTrips ? kUnknownStragglerSeconds : config_.straggler_factor * median_round_trip();
+  return std::max(config_.min_straggler_seconds, typical);
+}
+
+size_t Scheduler::duplicate_budget(const Frame& frame) const {
+  return std::max<size_t>(1, size_t(std::ceil(config_.duplicate_budget * double(frame.jobs.size()))));
+}
+
+bool Scheduler::is_outstanding(const Issue& issue) const {
+  auto it = jobs_.find(issue.job_id);
+  if (it == jobs_.end() || it->second.done || it->second.held_by) return false;
+  const auto& holders = it->second.holders;
+  return std::any_of(holders.begin(), holders.end(),
+                     [&](const Holder& h) { return h.worker == issue.worker && h.issued == issue.at; });
+}
+
+// Outstanding with a single copy out, and its frame has copies to spare.
+bool Scheduler::straggler_eligible(const Issue& issue) const {
+  const Job& job = jobs_.at(issue.job_id);
+  return job.holders.size() == 1 && frames_.at(job.frame_id).copies < duplicate_budget(frames_.at(job.frame_id));
+}
+
+void Scheduler::assign_stragglers(TimePoint now, std::vector<JobAssignment>& out) {
+  while (!issued_.empty() && !is_outstanding(issued_.front())) issued_.pop_front();
+  const double late = straggler_seconds();
+  // Oldest first; stop at the first that is not late yet (all after it are younger).
+  const size_t n = issued_.size();
+  for (size_t i = 0; i < n && !hungry_.empty(); ++i) {
+    const Issue issue = issued_[i];
+    if (seconds_between(issue.at, now) < late) break;
+    if (!is_outstanding(issue) || !straggler_eligible(issue)) continue;
+    auto w = std::find_if(hungry_.begin(), hungry_.end(), [&](const WorkerId& id) { return id != issue.worker; });
+    if (w == hungry_.end()) break;
+    const WorkerId id = *w;
+    ++frames_.at(jobs_.at(issue.job_id).frame_id).copies;
+    ++stats_.duplicated;
+    out.push_back(give(id, issue.job_id, now));
+  }
+}
+
+// A frame whose every job is answered but whose hash is undecided needs
+// another worker's vote: an idle worker that has not voted renders a copy.
+void Scheduler::assign_verifications(TimePoint now, std::vector<JobAssignment>& out) {
+  for (auto& [frame_id, frame] : frames_) {
+    if (hungry_.empty()) return;
+    if (frame.reference || frame.held.empty() || frame.done + frame.held.size() != frame.jobs.size()) continue;
+    const bool copy_out = std::any_of(frame.held.begin(), frame.held.end(),
+                                      [&](uint64_t j) { return !jobs_.at(j).holders.empty(); });
+    if (copy_out) continue;
+    auto voted = [&](const WorkerId& id) {
+      for (const auto& [hash, voters] : frame.votes)
+        if (voters.count(id)) return true;
+      return false;
+    };
+    auto w = std::find_if(hungry_.begin(), hungry_.end(), [&](const WorkerId& id) { return !voted(id); });
+    if (w == hungry_.end()) continue;
+    const WorkerId id = *w;
+    ++stats_.verified;
+    out.push_back(give(id, frame.held.front(), now));
+  }
+}
+
+std::vector<JobAssignment> Scheduler::assign(TimePoint now) {
+  std::vector<JobAssignment> out;
+  if (hungry_.empty()) return out;
+  assign_unassigned(now, out);
+  if (hungry_.empty() || front_unassigned()) return out;
+  assign_stragglers(now, out);
+  assign_verifications(now, out);
+  return out;
+}
+
+std::optional<TimePoint> Scheduler::next_straggler_time() {
+  if (hungry_.empty()) return std::nullopt;
+  while (!issued_.empty() && !is_outstanding(issued_.front())) issued_.pop_front();
+  const auto late = std::chrono::duration_cast<SchedulerClock::duration>(std::chrono::duration<double>(straggler_seconds()));
+  for (const Issue& issue : issued_)
+    if (is_outstanding(issue) && straggler_eligible(issue)) return issue.at + late;
+  return std::nullopt;
+}
+
+// ---- Results.
+
+ResultCheck Scheduler::check_result(const WorkerId& id, uint64_t job_id, uint64_t frame_id, const TileJob& tile) const {
+  auto it = jobs_.find(job_id);
+  if (it == jobs_.end()) return ResultCheck::Unknown;
+  const Job& job = it->second;
+  const bool holder =
+      std::any_of(job.holders.begin(), job.holders.end(), [&](const Holder& h) { return h.worker == id; });
+  if (!holder) return ResultCheck::Unknown;  // not a job this worker was given (or still holds)
+  if (job.frame_id != frame_id || !same_tile(job.tile, tile)) return ResultCheck::WrongTile;
+  if (job.done || job.held_by) return ResultCheck::NotNeeded;
+  return ResultCheck::Wanted;
+}
+
+void Scheduler::drop_result(const WorkerId& id, uint64_t job_id) {
   auto w = workers_.find(id);
-  return w == workers_.end() ? 0 : int(w->second.jobs.size());
+  if (w != workers_.end() && w->second.jobs.erase(job_id) && int(w->second.jobs.size()) < w->second.credits)
+    hungry_.insert(id);
+  auto job = jobs_.find(job_id);
+  if (job != jobs_.end()) release_holder(job->second, id, TimePoint{}, false);
+}
+
+bool Scheduler::on_bad_result(const WorkerId& id, uint64_t job_id) {
+  ++stats_.failed_results;
+  drop_result(id, job_id);
+  auto it = jobs_.find(job_id);
+  if (it == jobs_.end()) return false;
+  Job& job = it->second;
+  ++job.failures;
+  job.failed_on.insert(id);
+  requeue(job_id);
+  return job.failures >= config_.max_failures || int(job.failed_on.size()) >= config_.max_failed_workers;
+}
+
+ResultVerdict Scheduler::on_result(const WorkerId& id, uint64_t job_id, uint64_t hash, TimePoint now) {
+  auto it = jobs_.find(job_id);
+  if (it == jobs_.end()) {
+    drop_result(id, job_id);
+    return ResultVerdict::Unknown;
+  }
+  Job& job = it->second;
+  Frame& frame = frames_.at(job.frame_id);
+  const bool first = !job.done && !job.held_by;
+  release_holder(job, id, now, first);
+  auto w = workers_.find(id);
+  if (w != workers_.end() && w->second.jobs.erase(job_id) && int(w->second.jobs.size()) < w->second.credits)
+    hungry_.insert(id);
+  if (frame.reference) {
+    if (hash != *frame.reference) {
+      quarantine(id);
+      requeue(job_id);
+      return ResultVerdict::Rejected;
+    }
+    if (w != workers_.end()) w->second.trusted = true;
+    if (!first) {
+      ++stats_.late_dropped;
+      return ResultVerdict::Late;
+    }
+    complete(frame, job);
+    return ResultVerdict::Accepted;
+  }
+  frame.votes[hash].insert(id);
+  if (first) {
+    job.held_by = id;
+    job.held_hash = hash;
+    frame.held.push_back(job_id);
+  } else {
+    ++stats_.late_dropped;
+  }
+  try_decide(frame);
+  if (!first) return quarantined_.count(id) ? ResultVerdict::Rejected : ResultVerdict::Late;
+  if (job.done) return ResultVerdict::Accepted;
+  if (quarantined_.count(id)) return ResultVerdict::Rejected;
+  ++stats_.held;
+  return ResultVerdict::Held;
+}
+
+// ---- The reference hash.
+
+size_t Scheduler::possible_voters(const Frame& frame) const {
+  size_t n = workers_.size();
+  std::set<WorkerId> gone;
+  for (const auto& [hash, voters] : frame.votes)
+    for (const WorkerId& v : voters)
+      if (!workers_.count(v)) gone.insert(v);
+  return n + gone.size();
+}
+
+void Scheduler::try_decide(Frame& frame) {
+  if (frame.votes.empty()) return;
+  const size_t quorum = possible_voters(frame) >= 2 ? 2 : 1;
+  for (const auto& [hash, voters] : frame.votes) {
+    const bool trusted_vote = std::any_of(voters.begin(), voters.end(), [&](const WorkerId& v) { return trusted(v); });
+    if (voters.size() >= quorum || trusted_vote) {
+      const uint64_t reference = hash;  // decide() clears the votes
+      decide(frame, reference);
+      return;
+    }
+  }
+}
+
+void Scheduler::decide(Frame& frame, uint64_t reference) {
+  frame.reference = reference;
+  std::vector<WorkerId> losers;
+  for (const auto& [hash, voters] : frame.votes)
+    for (const WorkerId& v : voters) {
+      if (hash != reference) losers.push_back(v);
+      else if (auto w = workers_.find(v); w != workers_.end()) w->second.trusted = true;
+    }
+  frame.votes.clear();
+  const std::vector<uint64_t> held = std::exchange(frame.held, {});
+  for (uint64_t job_id : held) {
+    auto it = jobs_.find(job_id);
+    if (it == jobs_.end()) continue;
+    Job& job = it->second;
+    const bool agrees = job.held_hash == reference;
+    job.held_by.reset();
+    if (agrees) complete(frame, job);
+    else requeue(job_id);
+  }
+  for (const WorkerId& v : losers) quarantine(v);
+}
+
+void Scheduler::quarantine(const WorkerId& id) {
+  if (!quarantined_.insert(id).second) return;
+  newly_quarantined_.push_back(id);
+  ++stats_.quarantined;
+  // Its unconfirmed results and votes elsewhere are not to be believed either.
+  for (auto& [frame_id, frame] : frames_) {
+    for (auto v = frame.votes.begin(); v != frame.votes.end();) {
+      v->second.erase(id);
+      v = v->second.empty() ? frame.votes.erase(v) : std::next(v);
+    }
+    std::vector<uint64_t> dropped;
+    std::erase_if(frame.held, [&](uint64_t job_id) {
+      Job& job = jobs_.at(job_id);
+      if (job.held_by != id) return false;
+      job.held_by.reset();
+      dropped.push_back(job_id);
+      return true;
+    });
+    for (uint64_t job_id : dropped) requeue(job_id);
+  }
+  remove_worker(id);  // its outstanding jobs go back; frames it blocked may decide now
+}
+
+std::optional<HashSplit> Scheduler::stalled_split() const {
+  for (const auto& [frame_id, frame] : frames_) {
+    if (frame.reference || frame.votes.size() < 2) continue;
+    bool everyone_voted = true;
+    for (const auto& [id, worker] : workers_) {
+      bool voted = false;
+      for (const auto& [hash, voters] : frame.votes) voted = voted || voters.count(id);
+      everyone_voted = everyone_voted && voted;
+    }
+    if (!everyone_voted) continue;
+    HashSplit split;
+    split.frame_id = frame_id;
+    for (const auto& [hash, voters] : frame.votes) split.voters[hash].assign(voters.begin(), voters.end());
+    return split;
+  }
+  return std::nullopt;
 }
 
 }  // namespace igi
