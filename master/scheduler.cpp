@@ -130,7 +130,6 @@ std::optional<uint64_t> Scheduler::front_unassigned() {
   while (!unassigned_.empty()) {
     auto it = jobs_.find(unassigned_.front());
     if (it != jobs_.end() && it->second.queued) return unassigned_.front();
-    forced_pending_.erase(unassigned_.front());
     unassigned_.pop_front();  // done, held or its frame gone since it was queued
   }
   return std::nullopt;
@@ -141,8 +140,13 @@ void Scheduler::assign_unassigned(TimePoint now, std::vector<JobAssignment>& out
   bool progress = true;
   while (progress && !hungry_.empty()) {
     progress = false;
-    for (auto it = hungry_.begin(); it != hungry_.end();) {
-      const WorkerId id = *it++;  // give() may erase id from hungry_
+    // give() changes hungry_: go round a snapshot (keys of workers_, which stay put meanwhile).
+    std::vector<const WorkerId*> round;
+    round.reserve(hungry_.size());
+    for (const WorkerId& id : hungry_) round.push_back(&workers_.find(id)->first);
+    for (const WorkerId* worker : round) {
+      const WorkerId& id = *worker;
+      if (!hungry_.count(id)) continue;
       std::optional<uint64_t> job_id = front_unassigned();
       if (!job_id) return;
       const Job& job = jobs_.at(*job_id);
@@ -150,16 +154,21 @@ void Scheduler::assign_unassigned(TimePoint now, std::vector<JobAssignment>& out
         continue;  // a forced copy: for another worker
       unassigned_.pop_front();
       out.push_back(give(id, *job_id, now));
-      if (out.back().duplicate) {
-        ++stats_.duplicated;
-        if (forced_pending_.erase(*job_id)) --forced_duplicates_;
-      } else if (forced_duplicates_ > int(forced_pending_.size())) {  // test hook: the next worker gets it too
-        forced_pending_.insert(*job_id);
-        jobs_.at(*job_id).queued = true;
-        unassigned_.push_front(*job_id);
-      }
+      if (out.back().duplicate) ++stats_.duplicated;
+      if (forced_duplicates_ > 0 && !out.back().duplicate) force_copy(id, *job_id, now, out);
       progress = true;
     }
+  }
+}
+
+// Test hook: a copy for another worker at once, beyond its credit if need be.
+void Scheduler::force_copy(const WorkerId& holder, uint64_t job_id, TimePoint now, std::vector<JobAssignment>& out) {
+  for (const auto& [id, worker] : workers_) {
+    if (id == holder) continue;
+    --forced_duplicates_;
+    ++stats_.duplicated;
+    out.push_back(give(id, job_id, now));
+    return;
   }
 }
 

@@ -151,7 +151,7 @@ class Scheduler {
   bool trusted(const WorkerId& id) const;
   const SchedulerStats& stats() const { return stats_; }
   double median_round_trip() const;  // seconds; 0 before any
-  // Test hook: hand the next `n` jobs out twice on purpose.
+  // Test hook: hand the next `n` jobs out twice on purpose (the copy at once, to another worker, whatever its credit).
   void force_duplicates(int n) { forced_duplicates_ = n; }
 
   const SchedulerConfig& config() const { return config_; }
@@ -200,6 +200,7 @@ class Scheduler {
   double straggler_seconds() const;
   size_t duplicate_budget(const Frame& frame) const;
   JobAssignment give(const WorkerId& id, uint64_t job_id, TimePoint now);
+  void force_copy(const WorkerId& holder, uint64_t job_id, TimePoint now, std::vector<JobAssignment>& out);
   void requeue(uint64_t job_id);  // back to the front of the pool, unless out, held, done or queued
   bool release_holder(Job& job, const WorkerId& id, TimePoint now, bool sample);
   void complete(Frame& frame, Job& job);
@@ -210,7 +211,6 @@ class Scheduler {
 
   SchedulerConfig config_;
   int forced_duplicates_ = 0;
-  std::set<uint64_t> forced_pending_;  // jobs queued again for a forced copy
   uint64_t next_job_id_ = 1;
   std::map<WorkerId, Worker> workers_;
   std::set<WorkerId> hungry_;  // workers with free credit
