@@ -92,6 +92,7 @@ int run_headless(const MasterOptions& o, const Scene& scene, MasterSession& sess
           std::printf("frame %d: %.1f ms, %.1f Mrays/s, %zu workers\n", index, 1e3 * f.record.seconds,
                       f.record.seconds > 0 ? f.record.rays.total() * 1e-6 / f.record.seconds : 0.0,
                       session.worker_count());
+        std::fflush(stdout);  // a line per frame as it completes, for whoever follows the log
         if (stats) stats->add(f.record);
         ++done;
       }

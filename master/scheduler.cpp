@@ -318,7 +318,7 @@ ResultVerdict Scheduler::on_result(const WorkerId& id, uint64_t job_id, uint64_t
       requeue(job_id);
       return ResultVerdict::Rejected;
     }
-    if (w != workers_.end()) w->second.trusted = true;
+    if (w != workers_.end()) w->second.trusted = true;  // agrees with a reference two workers (or a trusted one) set
     if (!first) {
       ++stats_.late_dropped;
       return ResultVerdict::Late;
@@ -353,26 +353,33 @@ size_t Scheduler::possible_voters(const Frame& frame) const {
   return n + gone.size();
 }
 
+// Two agreeing workers decide, or one trusted worker. A worker decides alone
+// only when it is the frame's only possible voter and has answered every job:
+// it earns no trust by that, so a newcomer is not judged by it.
 void Scheduler::try_decide(Frame& frame) {
   if (frame.votes.empty()) return;
-  const size_t quorum = possible_voters(frame) >= 2 ? 2 : 1;
   for (const auto& [hash, voters] : frame.votes) {
     const bool trusted_vote = std::any_of(voters.begin(), voters.end(), [&](const WorkerId& v) { return trusted(v); });
-    if (voters.size() >= quorum || trusted_vote) {
+    if (voters.size() >= 2 || trusted_vote) {
       const uint64_t reference = hash;  // decide() clears the votes
-      decide(frame, reference);
+      decide(frame, reference, true);
       return;
     }
   }
+  const bool all_answered = frame.done + frame.held.size() == frame.jobs.size();
+  if (frame.votes.size() == 1 && all_answered && possible_voters(frame) == 1) {
+    const uint64_t reference = frame.votes.begin()->first;
+    decide(frame, reference, false);
+  }
 }
 
-void Scheduler::decide(Frame& frame, uint64_t reference) {
+void Scheduler::decide(Frame& frame, uint64_t reference, bool earns_trust) {
   frame.reference = reference;
   std::vector<WorkerId> losers;
   for (const auto& [hash, voters] : frame.votes)
     for (const WorkerId& v : voters) {
       if (hash != reference) losers.push_back(v);
-      else if (auto w = workers_.find(v); w != workers_.end()) w->second.trusted = true;
+      else if (auto w = workers_.find(v); w != workers_.end() && earns_trust) w->second.trusted = true;
     }
   frame.votes.clear();
   const std::vector<uint64_t> held = std::exchange(frame.held, {});

@@ -23,9 +23,11 @@
 // The VPL-set hash (a frame's per-frame state, identical on every correct
 // worker) is decided by agreement, never by whoever answers first:
 //  - A frame's reference hash is the first one reported by two distinct
-//    workers (a quorum), or by one trusted worker: one that has agreed with a
-//    frame's reference before. When only one worker exists (alive, or among
-//    the frame's voters), its hash stands alone.
+//    workers (a quorum), or by one trusted worker: one that has agreed with
+//    another worker on a frame's reference before. A worker that is the only
+//    one there (alive, or among the frame's voters) decides alone once it has
+//    answered every job of the frame, and earns no trust by it: a worker that
+//    joins later is not judged by a hash nobody confirmed.
 //  - Until then results are held: their pixels are kept, but they do not
 //    count. A held job is not reissued; if no other worker has voted on the
 //    frame once all its jobs are held, an idle worker gets a copy to verify.
@@ -205,7 +207,7 @@ class Scheduler {
   bool release_holder(Job& job, const WorkerId& id, TimePoint now, bool sample);
   void complete(Frame& frame, Job& job);
   void try_decide(Frame& frame);
-  void decide(Frame& frame, uint64_t reference);
+  void decide(Frame& frame, uint64_t reference, bool earns_trust);
   void quarantine(const WorkerId& id);
   size_t possible_voters(const Frame& frame) const;
 

@@ -231,23 +231,44 @@ TEST(Scheduler, TwoWorkersThatDisagreeWaitForAThird) {
   EXPECT_FALSE(s.stalled_split());
 }
 
-TEST(Scheduler, ALoneWorkerDecidesAloneAndIsTrustedAfterwards) {
-  Scheduler s(1, 2);
+TEST(Scheduler, ALoneWorkerDecidesOnceItHasAnsweredEveryJobAndEarnsNoTrust) {
+  Scheduler s(4, 2);
   s.add_worker("a");
-  s.add_frame(0, tiles(1));
+  s.add_frame(0, tiles(3));
   const auto j = s.assign(at(0));
-  EXPECT_EQ(s.on_result("a", j[0].job_id, 5, at(1)), ResultVerdict::Accepted) << "no other worker to ask";
-  EXPECT_TRUE(s.trusted("a"));
+  ASSERT_EQ(j.size(), 3u);
+  EXPECT_EQ(s.on_result("a", j[0].job_id, 5, at(1)), ResultVerdict::Held) << "another worker may still come";
+  EXPECT_EQ(s.on_result("a", j[1].job_id, 5, at(1)), ResultVerdict::Held);
+  EXPECT_EQ(s.on_result("a", j[2].job_id, 5, at(1)), ResultVerdict::Accepted) << "all answered, nobody else: decided";
   EXPECT_EQ(s.take_completed_frames().size(), 1u);
-  // A newcomer that computes other VPL sets meets a decided frame and is quarantined.
+  EXPECT_FALSE(s.trusted("a")) << "nobody confirmed its hash";
+  // A newcomer that computes other VPL sets is not judged by a hash nobody confirmed: a tie.
   s.add_worker("b");
   s.add_frame(1, tiles(2));
   const auto jobs = s.assign(at(2));
   ASSERT_EQ(jobs.size(), 2u);
+  EXPECT_EQ(s.on_result("a", for_worker(jobs, "a")[0].job_id, 5, at(3)), ResultVerdict::Held);
+  EXPECT_EQ(s.on_result("b", for_worker(jobs, "b")[0].job_id, 6, at(3)), ResultVerdict::Held);
+  EXPECT_TRUE(s.take_quarantined().empty());
+  EXPECT_TRUE(s.stalled_split());
+}
+
+TEST(Scheduler, TwoAgreeingWorkersAreTrustedAndThenDecideAlone) {
+  Scheduler s(1, 2);
+  s.add_worker("a");
+  s.add_worker("b");
+  s.add_frame(0, tiles(2));
+  answer(s, s.assign(at(0)), 5, at(1));
+  EXPECT_TRUE(s.trusted("a") && s.trusted("b"));
+  EXPECT_EQ(s.take_completed_frames().size(), 1u);
+  s.add_worker("c");
+  s.add_frame(1, tiles(3));
+  const auto jobs = s.assign(at(2));
+  ASSERT_EQ(jobs.size(), 3u);
   EXPECT_EQ(s.on_result("a", for_worker(jobs, "a")[0].job_id, 5, at(3)), ResultVerdict::Accepted)
       << "a trusted worker decides a frame alone";
-  EXPECT_EQ(s.on_result("b", for_worker(jobs, "b")[0].job_id, 6, at(3)), ResultVerdict::Rejected);
-  EXPECT_EQ(s.take_quarantined(), std::vector<WorkerId>{"b"});
+  EXPECT_EQ(s.on_result("c", for_worker(jobs, "c")[0].job_id, 6, at(3)), ResultVerdict::Rejected);
+  EXPECT_EQ(s.take_quarantined(), std::vector<WorkerId>{"c"});
 }
 
 TEST(Scheduler, AFrameAnsweredByOneWorkerGetsAVerificationCopy) {
