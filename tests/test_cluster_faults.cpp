@@ -29,6 +29,13 @@ using Clock = std::chrono::steady_clock;
 
 std::string endpoint_here() { return "tcp://127.0.0.1:" + std::to_string(test::free_port()); }
 
+// A log path with no old file: waiting for a line must not find the previous run's.
+std::string fresh_log(const std::string& name) {
+  const std::string path = test::output_path(name);
+  fs::remove(path);
+  return path;
+}
+
 std::string master(const std::string& endpoint, const std::string& extra) {
   return std::string(IGI_MASTER_BINARY) + " --workers 0 --listen " + endpoint +
          " --scene cornell --method igi --vpl-paths 4 --size 64x48 --tile 16 --quiet " + extra;
@@ -68,7 +75,7 @@ int wait_exit(pid_t pid, double seconds) {
 }
 
 TEST(ClusterFaults, AMasterRestartCostsTheWorkerNoSceneReload) {
-  const std::string endpoint = endpoint_here(), log = test::output_path("restart-worker.log");
+  const std::string endpoint = endpoint_here(), log = fresh_log("restart-worker.log");
   pid_t first = test::start(master(endpoint, "--frames 100000 --no-write -o " + test::output_path("restart.exr")));
   pid_t worker = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 >" + log + " 2>&1");
   ASSERT_TRUE(wait_for_text(log, "ready", 20 * test::kSlowdown)) << read_text(log);
@@ -83,7 +90,7 @@ TEST(ClusterFaults, AMasterRestartCostsTheWorkerNoSceneReload) {
 }
 
 TEST(ClusterFaults, AWorkerWaitsLongerForTheMasterThanTheMasterForIt) {
-  const std::string endpoint = endpoint_here(), log = test::output_path("patience-worker.log");
+  const std::string endpoint = endpoint_here(), log = fresh_log("patience-worker.log");
   // The master declares a worker dead after 2 s; the worker waits 2 s + two heartbeats.
   pid_t m = test::start(master(endpoint, "--frames 100000 --no-write --heartbeat-ms 100 --timeout-ms 2000 -o " +
                                              test::output_path("patience.exr")));
