@@ -120,9 +120,13 @@ void MasterSession::add_frame(const FrameSetup& frame) {
   open.pixels = pool_.acquire(frame.width, frame.height, pixel_format_);
   open.record.frame_id = frame.frame_id;
   frames_[frame.frame_id] = std::move(open);
-  const int border = tile_border(options_.render.settings);
-  const int tile = options_.render.tile_size;
-  scheduler_.add_frame(frame.frame_id, make_tiles(frame.width, frame.height, tile, tile, border));
+  if (tiles_.empty() || tiles_size_ != std::pair{frame.width, frame.height}) {  // cut once per size
+    const int border = tile_border(options_.render.settings);
+    const int tile = options_.render.tile_size;
+    tiles_ = make_tiles(frame.width, frame.height, tile, tile, border);
+    tiles_size_ = {frame.width, frame.height};
+  }
+  scheduler_.add_frame(frame.frame_id, tiles_);
 }
 
 std::vector<CompletedFrame> MasterSession::pump(int timeout_ms) {

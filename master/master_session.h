@@ -167,6 +167,8 @@ class MasterSession {
   std::set<std::string> quarantined_ids_;        // their later messages are ignored
   std::vector<std::string> quarantined_names_;   // for the statistics (at most 1000)
   std::map<uint64_t, OpenFrame> frames_;
+  std::vector<TileJob> tiles_;             // the tiles of a frame of tiles_size_
+  std::pair<int, int> tiles_size_{0, 0};
   std::vector<std::string> congested_;           // peers whose send queue was full: dropped after the batch
   Clock::time_point next_sweep_;
   uint64_t accepted_ = 0;

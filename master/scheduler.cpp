@@ -30,7 +30,7 @@ void Scheduler::add_worker(const WorkerId& id, int credits) {
 void Scheduler::remove_worker(const WorkerId& id) {
   auto it = workers_.find(id);
   if (it == workers_.end()) return;
-  const std::set<uint64_t> held = std::move(it->second.jobs);
+  const std::vector<uint64_t> held = std::move(it->second.jobs);
   workers_.erase(it);
   hungry_.erase(id);
   // Newest first: each goes to the front, so the oldest ends up leading.
@@ -57,6 +57,14 @@ bool Scheduler::trusted(const WorkerId& id) const {
 
 std::vector<WorkerId> Scheduler::take_quarantined() { return std::exchange(newly_quarantined_, {}); }
 
+// The worker no longer holds the job: its credit is free again.
+void Scheduler::take_back(Worker& w, const WorkerId& id, uint64_t job_id) {
+  auto it = std::find(w.jobs.begin(), w.jobs.end(), job_id);
+  if (it == w.jobs.end()) return;
+  w.jobs.erase(it);
+  if (int(w.jobs.size()) < w.credits) hungry_.insert(id);
+}
+
 // ---- Frames and the pool.
 
 void Scheduler::add_frame(uint64_t frame_id, const std::vector<TileJob>& tiles) {
@@ -64,6 +72,7 @@ void Scheduler::add_frame(uint64_t frame_id, const std::vector<TileJob>& tiles) 
   for (const TileJob& tile : tiles) {
     const uint64_t id = next_job_id_++;
     Job& job = jobs_[id];
+    job.holders.reserve(2);
     job.frame_id = frame_id;
     job.tile = tile;
     job.queued = true;
@@ -120,7 +129,7 @@ JobAssignment Scheduler::give(const WorkerId& id, uint64_t job_id, TimePoint now
   job.queued = false;
   job.holders.push_back({id, now});
   Worker& w = workers_.at(id);
-  w.jobs.insert(job_id);
+  w.jobs.push_back(job_id);
   if (int(w.jobs.size()) >= w.credits) hungry_.erase(id);
   issued_.push_back({now, job_id, id});
   return JobAssignment{id, job_id, job.frame_id, job.tile, duplicate};
@@ -281,8 +290,7 @@ ResultCheck Scheduler::check_result(const WorkerId& id, uint64_t job_id, uint64_
 
 void Scheduler::drop_result(const WorkerId& id, uint64_t job_id) {
   auto w = workers_.find(id);
-  if (w != workers_.end() && w->second.jobs.erase(job_id) && int(w->second.jobs.size()) < w->second.credits)
-    hungry_.insert(id);
+  if (w != workers_.end()) take_back(w->second, id, job_id);
   auto job = jobs_.find(job_id);
   if (job != jobs_.end()) release_holder(job->second, id, TimePoint{}, false);
 }
@@ -310,8 +318,7 @@ ResultVerdict Scheduler::on_result(const WorkerId& id, uint64_t job_id, uint64_t
   const bool first = !job.done && !job.held_by;
   release_holder(job, id, now, first);
   auto w = workers_.find(id);
-  if (w != workers_.end() && w->second.jobs.erase(job_id) && int(w->second.jobs.size()) < w->second.credits)
-    hungry_.insert(id);
+  if (w != workers_.end()) take_back(w->second, id, job_id);
   if (frame.reference) {
     if (hash != *frame.reference) {
       quarantine(id);

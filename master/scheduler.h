@@ -183,7 +183,7 @@ class Scheduler {
     std::vector<uint64_t> held;
   };
   struct Worker {
-    std::set<uint64_t> jobs;
+    std::vector<uint64_t> jobs;  // in the order given (at most its credits)
     int credits = 1;
     bool trusted = false;
   };
@@ -203,6 +203,7 @@ class Scheduler {
   size_t duplicate_budget(const Frame& frame) const;
   JobAssignment give(const WorkerId& id, uint64_t job_id, TimePoint now);
   void force_copy(const WorkerId& holder, uint64_t job_id, TimePoint now, std::vector<JobAssignment>& out);
+  void take_back(Worker& w, const WorkerId& id, uint64_t job_id);
   void requeue(uint64_t job_id);  // back to the front of the pool, unless out, held, done or queued
   bool release_holder(Job& job, const WorkerId& id, TimePoint now, bool sample);
   void complete(Frame& frame, Job& job);
