@@ -132,6 +132,7 @@ JobAssignment Scheduler::give(const WorkerId& id, uint64_t job_id, TimePoint now
   w.jobs.push_back(job_id);
   if (int(w.jobs.size()) >= w.credits) hungry_.erase(id);
   issued_.push_back({now, job_id, id});
+  trim_issued();
   return JobAssignment{id, job_id, job.frame_id, job.tile, duplicate};
 }
 
@@ -144,16 +145,21 @@ std::optional<uint64_t> Scheduler::front_unassigned() {
   return std::nullopt;
 }
 
-// One job per hungry worker per round, so work spreads over the workers.
+// Water-filling: first one job to each idle worker, then to each worker
+// holding one, and so on; so work spreads over the workers, and a job never
+// waits behind another on a busy worker while an idle one could take it.
 void Scheduler::assign_unassigned(TimePoint now, std::vector<JobAssignment>& out) {
-  bool progress = true;
-  while (progress && !hungry_.empty()) {
-    progress = false;
-    // give() changes hungry_: go round a snapshot (keys of workers_, which stay put meanwhile).
-    std::vector<const WorkerId*> round;
-    round.reserve(hungry_.size());
-    for (const WorkerId& id : hungry_) round.push_back(&workers_.find(id)->first);
-    for (const WorkerId* worker : round) {
+  std::vector<std::pair<size_t, const WorkerId*>> round;  // (jobs held, worker); give() changes hungry_
+  for (size_t level = 0; !hungry_.empty() && front_unassigned(); ++level) {
+    round.clear();
+    size_t deepest = 0;
+    for (const WorkerId& id : hungry_) {
+      const Worker& w = workers_.find(id)->second;
+      deepest = std::max(deepest, w.jobs.size());
+      if (w.jobs.size() <= level) round.push_back({w.jobs.size(), &workers_.find(id)->first});
+    }
+    bool progress = false;
+    for (const auto& [held, worker] : round) {
       const WorkerId& id = *worker;
       if (!hungry_.count(id)) continue;
       std::optional<uint64_t> job_id = front_unassigned();
@@ -167,6 +173,7 @@ void Scheduler::assign_unassigned(TimePoint now, std::vector<JobAssignment>& out
       if (forced_duplicates_ > 0 && !out.back().duplicate) force_copy(id, *job_id, now, out);
       progress = true;
     }
+    if (!progress && level >= deepest) return;  // every hungry worker had its turn and took nothing
   }
 }
 
@@ -215,8 +222,14 @@ bool Scheduler::straggler_eligible(const Issue& issue) const {
   return job.holders.size() == 1 && frames_.at(job.frame_id).copies < duplicate_budget(frames_.at(job.frame_id));
 }
 
-void Scheduler::assign_stragglers(TimePoint now, std::vector<JobAssignment>& out) {
+// Copies answered, released or of a finished frame leave the front: the
+// queue holds no more than the copies issued since the oldest still out.
+void Scheduler::trim_issued() {
   while (!issued_.empty() && !is_outstanding(issued_.front())) issued_.pop_front();
+}
+
+void Scheduler::assign_stragglers(TimePoint now, std::vector<JobAssignment>& out) {
+  trim_issued();
   const double late = straggler_seconds();
   // Oldest first; stop at the first that is not late yet (all after it are younger).
   const size_t n = issued_.size();
@@ -267,7 +280,7 @@ std::vector<JobAssignment> Scheduler::assign(TimePoint now) {
 
 std::optional<TimePoint> Scheduler::next_straggler_time() {
   if (hungry_.empty()) return std::nullopt;
-  while (!issued_.empty() && !is_outstanding(issued_.front())) issued_.pop_front();
+  trim_issued();
   const auto late = std::chrono::duration_cast<SchedulerClock::duration>(std::chrono::duration<double>(straggler_seconds()));
   for (const Issue& issue : issued_)
     if (is_outstanding(issue) && straggler_eligible(issue)) return issue.at + late;

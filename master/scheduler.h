@@ -157,6 +157,9 @@ class Scheduler {
   void force_duplicates(int n) { forced_duplicates_ = n; }
 
   const SchedulerConfig& config() const { return config_; }
+  // Bookkeeping that must stay bounded however many frames pass (tests).
+  size_t tracked_copies() const { return issued_.size(); }
+  size_t tracked_jobs() const { return jobs_.size() + unassigned_.size(); }
 
  private:
   struct Holder {
@@ -198,6 +201,7 @@ class Scheduler {
   void assign_verifications(TimePoint now, std::vector<JobAssignment>& out);
   std::optional<uint64_t> front_unassigned();
   bool is_outstanding(const Issue& issue) const;
+  void trim_issued();
   bool straggler_eligible(const Issue& issue) const;
   double straggler_seconds() const;
   size_t duplicate_budget(const Frame& frame) const;

@@ -165,11 +165,16 @@ TEST(Scale, SixtyFourWorkersWithChurnLoseNoFrame) {
   EXPECT_GT(reconnected, 0) << "stalled workers start over, replacements join";
 }
 
-// 20,000 frames of one tiny tile, as fast as the master goes: its memory
-// must not grow (the median RSS of the second half within 2 MiB of the first).
+// 20,000 frames of four tiny tiles, as fast as the master goes, with more
+// jobs than credit all the while: its memory must not grow. The bound
+// is 2 MiB between the median RSS of the two halves; the test allows 1 MiB,
+// since a leak of 48 bytes a tile (once found here) moved it by 1.76 MiB and
+// none by less than 0.01 MiB.
 TEST(Scale, MasterMemoryIsFlatOver20000Frames) {
-  LoadgenOptions o = options("memory", 2, test::kSlowdown > 1 ? 2000 : 20000);
-  o.width = o.height = o.tile = 32;
+  LoadgenOptions o = options("memory", 1, test::kSlowdown > 1 ? 2000 : 20000);
+  o.width = 32;
+  o.height = 8;
+  o.tile = 8;
   o.write_frames = false;
   o.stats = false;  // its records grow with the frames, by request
   o.warmup_frames = o.frames / 10;
@@ -181,7 +186,7 @@ TEST(Scale, MasterMemoryIsFlatOver20000Frames) {
               o.frames, r.rss_first_mib, r.rss_second_mib, r.rss_peak_mib, r.fps);
   if (test::kSlowdown > 1) GTEST_SKIP() << "sanitizers keep freed memory in quarantine: not judged";
   EXPECT_GT(r.rss_first_mib, 0.0);
-  EXPECT_LE(r.rss_second_mib, r.rss_first_mib + 2.0);
+  EXPECT_LE(r.rss_second_mib, r.rss_first_mib + 1.0);
 }
 
 }  // namespace

@@ -183,6 +183,30 @@ TEST(Scheduler, EquallyFastWorkersNeverRenderATileTwice) {
   EXPECT_EQ(s.stats().late_dropped, 0u);
 }
 
+// Always more work than credit (the copies' queue was only trimmed when a
+// worker had nothing to do, and grew by a copy a tile): 2,000 frames later
+// the bookkeeping holds what is in flight and no more.
+TEST(Scheduler, BookkeepingStaysBoundedOverThousandsOfFrames) {
+  Scheduler s(2, 2);
+  s.add_worker("a");
+  s.add_worker("b");
+  size_t most_copies = 0, most_jobs = 0;
+  int next = 0;
+  double clock = 0;
+  for (int completed = 0; completed < 2000;) {
+    while (s.can_add_frame()) s.add_frame(uint64_t(next++), tiles(8));
+    const auto jobs = s.assign(at(clock));
+    ASSERT_FALSE(jobs.empty());
+    clock += 1;
+    answer(s, jobs, 3, at(clock));
+    completed += int(s.take_completed_frames().size());
+    most_copies = std::max(most_copies, s.tracked_copies());
+    most_jobs = std::max(most_jobs, s.tracked_jobs());
+  }
+  EXPECT_LE(most_copies, 8u) << "copies tracked: at most those in flight, and the frame's";
+  EXPECT_LE(most_jobs, 2u * 16u) << "two open frames of 8 jobs, each at most once in the pool";
+}
+
 TEST(Scheduler, AWrongFirstHashQuarantinesOnlyTheDivergingWorker) {
   Scheduler s(2, 2);
   for (const char* w : {"bad", "good1", "good2"}) s.add_worker(w);

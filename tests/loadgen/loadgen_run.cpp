@@ -144,8 +144,10 @@ int tiles_per_frame(int width, int height, int tile) {
 
 double paced_tile_seconds(const LoadgenOptions& o) {
   if (o.tile_ms >= 0) return o.tile_ms * 1e-3;
-  const double tiles_per_second = o.fps * tiles_per_frame(o.width, o.height, o.tile);
-  return double(o.workers) * std::max(1, o.threads) / tiles_per_second;
+  // The master keeps two frames open: more workers than two frames' tiles cannot all be busy.
+  const int tiles = tiles_per_frame(o.width, o.height, o.tile);
+  const double busy = std::min(double(o.workers) * std::max(1, o.threads), 2.0 * tiles);
+  return busy / (o.fps * tiles);
 }
 
 int LoadgenReport::quarantined_workers() const {

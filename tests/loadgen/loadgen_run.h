@@ -23,7 +23,9 @@ struct LoadgenOptions {
   std::string pixels = "half";       // the master's --pixels
   int frames = 300;
   int warmup_frames = 10;
-  double fps = 30.0;                 // paces the workers: tile time = workers x threads / (fps x tiles per frame)
+  // Paces the workers: tile time = busy lanes / (fps x tiles per frame), where the busy lanes are
+  // workers x threads, at most two frames' tiles (the master keeps two frames open).
+  double fps = 30.0;
   double tile_ms = -1.0;             // >= 0: this render time instead (0: answer at once, flat out)
   int threads = 1;                   // per simulated worker
   int pools = 2;                     // driver threads
