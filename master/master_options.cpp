@@ -34,7 +34,7 @@ std::string master_usage(const std::string& program) {
          "  --heartbeat-ms MS     [250]   --timeout-ms MS  silent worker declared dead [1500]\n"
          "  --pixels F            pixels on the wire: float, half (6 bytes a pixel, display frames) or auto:\n"
          "                        float when -o is a float file (.exr, .hdr, .pfm, .tif), else half [auto]\n"
-         "  --io-threads N        ZeroMQ I/O threads [2]\n"
+         "  --io-threads N        ZeroMQ I/O threads [1]: more pay only past ~100,000 tiles a second\n"
          "render options (as igi-render):\n" + render_usage(program);
 }
 

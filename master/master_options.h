@@ -28,7 +28,7 @@ struct MasterOptions {
   int heartbeat_ms = 250;
   int timeout_ms = 1500;          // a silent worker is dead after this
   std::string pixels = "auto";    // pixel format on the wire: auto (float for float files, else half), float, half
-  int io_threads = 2;             // ZeroMQ I/O threads (receive and send off the session thread)
+  int io_threads = 1;             // ZeroMQ I/O threads (receive and send off the session thread)
   int screenshot_after = 4;       // window: save --screenshot after this many accumulated frames
   // Test hooks.
   int kill_worker_after = 0;      // SIGKILL local worker 0 after this many results

@@ -25,7 +25,7 @@ def tiles_per_frame(size, tile):
     return -(-w // tile) * -(-h // tile)
 
 
-def run(a, label, workers, size, tile, pixels="half", io=2, tile_ms=None, frames=None):
+def run(a, label, workers, size, tile, pixels="half", io=1, tile_ms=None, frames=None):
     args = [LOADGEN, "--workers", str(workers), "--size", size, "--tile", str(tile), "--pixels", pixels,
             "--io-threads", str(io), "--frames", str(frames or a.frames), "--warmup", str(a.warmup),
             "--dir", os.path.join(OUT, "run"), "--csv", os.path.join(OUT, "master.csv"), "--label", label]
@@ -49,8 +49,8 @@ def matrix(a):
     for tile in (32, 64):
         run(a, "flat out", 64, "1920x1080", tile, tile_ms=0)
         run(a, "float pixels", 64, "1920x1080", tile, pixels="float")
-    for io in (1, 4):
-        run(a, f"io threads", 64, "1920x1080", 32, io=io)
+    for io in (2, 4):
+        run(a, "io threads", 64, "1920x1080", 32, io=io)
 
 
 def read_rows():

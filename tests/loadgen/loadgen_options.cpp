@@ -16,7 +16,7 @@ std::string usage() {
          "  --tile-ms MS        render time per tile instead (0: answer at once, flat out)\n"
          "  --threads T         tiles a simulated worker renders at once [1]\n"
          "  --pools P           threads driving the simulated workers [2]\n"
-         "  --io-threads N      the master's ZeroMQ I/O threads [2]\n"
+         "  --io-threads N      the master's ZeroMQ I/O threads [1]\n"
          "  --heartbeat-ms MS   [250]   --timeout-ms MS [1500]\n"
          "  --write-frames      the master writes EXR frames (check them with --check-every N)\n"
          "  --check-every N     check every N-th frame pixel by pixel against the simulated tiles\n"

@@ -29,7 +29,7 @@ struct LoadgenOptions {
   double tile_ms = -1.0;             // >= 0: this render time instead (0: answer at once, flat out)
   int threads = 1;                   // per simulated worker
   int pools = 2;                     // driver threads
-  int io_threads = 2;                // the master's
+  int io_threads = 1;                // the master's
   int heartbeat_ms = 250, timeout_ms = 1500;
   bool write_frames = false;         // the master writes EXR frames into dir (float pixels) for checking
   bool stats = false;                // the master writes stats.json (grows with frames)
