@@ -249,7 +249,8 @@ void Scheduler::assign_stragglers(TimePoint now, std::vector<JobAssignment>& out
 // A frame whose every job is answered but whose hash is undecided needs
 // another worker's vote: an idle worker that has not voted renders a copy.
 void Scheduler::assign_verifications(TimePoint now, std::vector<JobAssignment>& out) {
-  for (auto& [frame_id, frame] : frames_) {
+  for (auto& entry : frames_) {
+    const Frame& frame = entry.second;  // a plain reference: clang 14 lambdas cannot capture structured bindings
     if (hungry_.empty()) return;
     if (frame.reference || frame.held.empty() || frame.done + frame.held.size() != frame.jobs.size()) continue;
     const bool copy_out = std::any_of(frame.held.begin(), frame.held.end(),

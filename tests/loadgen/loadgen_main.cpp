@@ -44,6 +44,15 @@ int main(int argc, char** argv) {
                 r.quarantined_workers());
     int status = r.exit_code == 0 && r.frames_done == c.run.frames ? 0 : 1;
     if (status != 0) std::printf("master log (end):\n%s\n", r.master_log.c_str());
+    // Exactly the diverging workers are quarantined: no correct one, none that diverges left in.
+    for (size_t i = 0; i < r.workers.size(); ++i) {
+      const bool diverging = int(i) < c.diverging;
+      if (r.workers[i].quarantined != diverging && r.workers[i].welcomed) {
+        std::printf("  FAIL: worker %zu (%s) was%s quarantined\n", i, diverging ? "diverging" : "correct",
+                    r.workers[i].quarantined ? "" : " not");
+        status = 1;
+      }
+    }
     if (c.check_every > 0) {
       const std::vector<std::string> problems = igi::loadgen::check_written_frames(c.run, c.check_every);
       for (const std::string& p : problems) std::printf("  FAIL: %s\n", p.c_str());
