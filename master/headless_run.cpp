@@ -107,6 +107,14 @@ int run_headless(const MasterOptions& o, const Scene& scene, MasterSession& sess
   }
   RunTotals totals = totals_now();
   totals.complete = true;
+  if (!o.render.quiet) {
+    const SchedulerStats& s = session.scheduler_stats();
+    std::fprintf(stderr, "igi-master: %d frames; tiles copied %llu, reissued %llu, verification copies %llu, "
+                 "results failing validation %llu, workers quarantined %llu, non-finite pixels %llu\n", done,
+                 (unsigned long long)s.duplicated, (unsigned long long)s.reissued, (unsigned long long)s.verified,
+                 (unsigned long long)s.failed_results, (unsigned long long)s.quarantined,
+                 (unsigned long long)session.nonfinite_pixels());
+  }
   session.close(done == total ? "done" : failure.empty() ? "interrupted" : "failed");
   workers.stop_all();
   sink->finish();  // waits for the last images

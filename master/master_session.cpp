@@ -458,6 +458,9 @@ std::vector<CompletedFrame> MasterSession::take_completed() {
 void MasterSession::close(const std::string& reason) {
   for (const auto& [identity, peer] : peers_) send(identity, protocol::Bye{reason});
   peers_.clear();
+  // The goodbyes must leave before the process does (linger 0 would drop them
+  // when the context ends): up to a second, then they are abandoned.
+  router_.set(zmq::sockopt::linger, 1000);
   if (refused_keys_ + failed_handshakes_ > 0)
     log("CURVE: refused " + std::to_string(refused_keys_) + " unknown worker keys; " +
         std::to_string(failed_handshakes_) + " failed handshakes");

@@ -258,6 +258,7 @@ std::optional<WorkerSession::Outcome> WorkerSession::poll_loading(zmq::socket_t&
     const std::string why = "cannot load the scene " + (welcome_ ? welcome_->scene_name : loading_key_) + ": " + result.error;
     announce(why + ": exiting with status 6");
     send(socket, protocol::Bye{why, protocol::ByeKind::Failed});
+    socket.set(zmq::sockopt::linger, 500);  // the Bye leaves before the process does
     return Outcome::SceneFailed;
   }
   if (result.need_bytes) {

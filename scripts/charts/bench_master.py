@@ -61,7 +61,7 @@ def read_rows():
 def summary(rows):
     lines = ["| run | workers | size | tile | pixels | I/O threads | fps reached | tiles/s | master CPU a tile (us) "
              "| of which session thread (us) | master cores | cores at 30 fps | latency median / p95 (ms) "
-             "| RSS first / second half (MiB) |", "|" + "---|" * 14]
+             "| RSS first / second half (MiB) | tiles copied |", "|" + "---|" * 15]
     for r in rows:
         size = f"{r['width']}x{r['height']}"
         t = tiles_per_frame(size, int(r["tile"]))
@@ -70,7 +70,7 @@ def summary(rows):
                      f"{float(r['fps']):.1f} | {float(r['tiles_per_s']):.0f} | {float(r['cpu_us_per_tile']):.1f} | "
                      f"{float(r['session_us_per_tile']):.1f} | {float(r['cores']):.2f} | {at30:.2f} | "
                      f"{float(r['latency_median_ms']):.0f} / {float(r['latency_p95_ms']):.0f} | "
-                     f"{float(r['rss_first_mib']):.1f} / {float(r['rss_second_mib']):.1f} |")
+                     f"{float(r['rss_first_mib']):.1f} / {float(r['rss_second_mib']):.1f} | {r['duplicated']} |")
     return "\n".join(lines) + "\n"
 
 

@@ -14,13 +14,13 @@ void append_csv(const std::string& path, const igi::loadgen::CommandLine& c, con
   if (fresh)
     out << "label,workers,width,height,tile,pixels,io_threads,frames,tile_ms,fps,tiles_per_s,cpu_us_per_tile,"
            "session_us_per_tile,cores,latency_median_ms,latency_p95_ms,rss_first_mib,rss_second_mib,rss_peak_mib,"
-           "exit_code,quarantined\n";
+           "exit_code,quarantined,duplicated,reissued\n";
   const auto& o = c.run;
   out << c.label << "," << o.workers << "," << o.width << "," << o.height << "," << o.tile << "," << o.pixels << ","
       << o.io_threads << "," << r.frames_done << "," << 1e3 * r.tile_seconds << "," << r.fps << "," << r.tiles_per_second
       << "," << r.cpu_us_per_tile << "," << r.session_us_per_tile << "," << r.cores << "," << r.latency_median_ms << ","
       << r.latency_p95_ms << "," << r.rss_first_mib << "," << r.rss_second_mib << "," << r.rss_peak_mib << ","
-      << r.exit_code << "," << r.quarantined_workers() << "\n";
+      << r.exit_code << "," << r.quarantined_workers() << "," << r.duplicated << "," << r.reissued << "\n";
 }
 
 }  // namespace
@@ -42,6 +42,9 @@ int main(int argc, char** argv) {
                 "%d of %d workers welcomed, %d quarantined\n",
                 r.rss_first_mib, r.rss_second_mib, r.rss_peak_mib, r.welcomed_workers(), int(r.workers.size()),
                 r.quarantined_workers());
+    if (r.duplicated >= 0)
+      std::printf("  tiles copied (stragglers): %ld, reissued: %ld, verification copies: %ld\n", r.duplicated,
+                  r.reissued, r.verified);
     int status = r.exit_code == 0 && r.frames_done == c.run.frames ? 0 : 1;
     if (status != 0) std::printf("master log (end):\n%s\n", r.master_log.c_str());
     // Exactly the diverging workers are quarantined: no correct one, none that diverges left in.

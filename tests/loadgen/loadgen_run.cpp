@@ -206,6 +206,15 @@ LoadgenReport run_loadgen(const LoadgenOptions& o, const std::vector<SimBehaviou
   report.frames_done = follower.frames();
   report.master_log = tail(log, 4000);
   measure(o, samples, follower.latencies_ms(), report);
+  // The master's last line: "... tiles copied N, reissued M, verification copies K, ...".
+  const std::string text = tail(log, 4000);
+  auto figure = [&](const std::string& name) -> long {
+    const size_t at = text.rfind(name + " ");
+    return at == std::string::npos ? -1 : std::atol(text.c_str() + at + name.size() + 1);
+  };
+  report.duplicated = figure("tiles copied");
+  report.reissued = figure("reissued");
+  report.verified = figure("verification copies");
   return report;
 }
 

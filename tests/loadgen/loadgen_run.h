@@ -52,6 +52,8 @@ struct LoadgenReport {
   double latency_median_ms = 0.0, latency_p95_ms = 0.0;
   // Memory: median RSS over the first and second halves of the frames after warm-up, and the peak.
   double rss_first_mib = 0.0, rss_second_mib = 0.0, rss_peak_mib = 0.0;
+  // The scheduler's totals, from the master's last log line (-1: not found).
+  long duplicated = -1, reissued = -1, verified = -1;
   std::vector<SimOutcome> workers;
   int quarantined_workers() const;
   int welcomed_workers() const;
