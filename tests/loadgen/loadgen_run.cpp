@@ -196,6 +196,11 @@ LoadgenReport run_loadgen(const LoadgenOptions& o, const std::vector<SimBehaviou
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   follower.poll();
+  {  // every sample, for plotting a run whose memory or rate looks odd
+    std::ofstream csv(fs::path(o.dir) / "samples.csv");
+    csv << "seconds,frames,cpu_seconds,session_cpu_seconds,rss_kib\n";
+    for (const Sample& s : samples) csv << s.t << "," << s.frames << "," << s.cpu << "," << s.session_cpu << "," << s.rss_kib << "\n";
+  }
   std::vector<std::vector<SimOutcome>> by_pool;
   for (auto& pool : pools) {
     pool->stop();

@@ -6,7 +6,8 @@
 // CPU comes from /proc (every thread of the master: its session thread and
 // ZeroMQ's I/O threads) over a window that starts after the warm-up frames;
 // so does RSS, sampled every 20 ms. Frame latency is what the master prints
-// per frame (first job out to last result in).
+// per frame (first job out to last result in). Every sample is written to
+// DIR/samples.csv.
 #include <cstdint>
 #include <string>
 #include <vector>
