@@ -315,6 +315,9 @@ std::span<const uint8_t> read_pixel_block(Reader& r, const TileResult& m) {
 void read(Reader& r, TileResult& m) {
   read_fields(r, m);
   const std::span<const uint8_t> block = read_pixel_block(r, m);
+  // Trailing bytes before finiteness: the order decode_tile_result + copy_tile_pixels check them in.
+  if (r.ok() && r.remaining() != 0)
+    r.fail("TileResult: " + std::to_string(r.remaining()) + " trailing bytes after the payload");
   if (!r.ok()) return;
   const size_t n = block.size() / bytes_per_pixel(m.pixel_format);
   m.pixels.resize(n);
