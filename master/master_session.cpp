@@ -285,7 +285,11 @@ void MasterSession::on_result(const std::string& identity, std::span<const uint8
   peer->second.last_heard = Clock::now();
   std::string error;
   std::optional<protocol::TileResultView> view = protocol::decode_tile_result(bytes, error);
-  if (!view) return on_bad_message(identity, error);
+  if (!view) {
+    const std::optional<uint64_t> job_id = protocol::tile_result_job_id(bytes);
+    if (job_id && scheduler_.holds(identity, *job_id)) return on_bad_result(identity, *job_id, error);
+    return on_bad_message(identity, error);
+  }
   const protocol::TileResult& r = view->fields;
   switch (scheduler_.check_result(identity, r.job_id, r.frame_id, r.tile)) {
     case ResultCheck::Unknown:
@@ -353,6 +357,10 @@ void MasterSession::on_bad_message(const std::string& identity, const std::strin
     log("dropped a bad message (" + std::to_string(bad_messages_) + " so far): " + error);
   // A peer that speaks another protocol version is told why, in our version.
   if (error.find("version") != std::string::npos) send(identity, protocol::Refuse{error});
+  // A worker of this build never sends what does not decode: one that keeps doing so is broken.
+  auto peer = peers_.find(identity);
+  if (peer != peers_.end() && ++peer->second.failed_results >= kMaxFailedResults)
+    quarantine_peer(identity, std::to_string(peer->second.failed_results) + " of its messages failed to decode");
 }
 
 // ---- Peers.

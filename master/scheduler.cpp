@@ -50,6 +50,12 @@ int Scheduler::outstanding(const WorkerId& id) const {
   return w == workers_.end() ? 0 : int(w->second.jobs.size());
 }
 
+bool Scheduler::holds(const WorkerId& id, uint64_t job_id) const {
+  auto job = jobs_.find(job_id);
+  return job != jobs_.end() && std::any_of(job->second.holders.begin(), job->second.holders.end(),
+                                           [&](const Holder& h) { return h.worker == id; });
+}
+
 bool Scheduler::trusted(const WorkerId& id) const {
   auto w = workers_.find(id);
   return w != workers_.end() && w->second.trusted;
@@ -111,10 +117,16 @@ void Scheduler::complete(Frame& frame, Job& job) {
   ++frame.done;
 }
 
+// A copy still out when its frame completes will never be wanted: its worker
+// gets the credit back now (its result may have been lost on the way).
 std::vector<uint64_t> Scheduler::take_completed_frames() {
   std::vector<uint64_t> done;
   while (!frames_.empty() && frames_.begin()->second.done == frames_.begin()->second.jobs.size()) {
-    for (uint64_t job_id : frames_.begin()->second.jobs) jobs_.erase(job_id);
+    for (uint64_t job_id : frames_.begin()->second.jobs) {
+      for (const Holder& h : jobs_.at(job_id).holders)
+        if (auto w = workers_.find(h.worker); w != workers_.end()) take_back(w->second, h.worker, job_id);
+      jobs_.erase(job_id);
+    }
     done.push_back(frames_.begin()->first);
     frames_.erase(frames_.begin());
   }
@@ -217,9 +229,14 @@ bool Scheduler::is_outstanding(const Issue& issue) const {
 }
 
 // Outstanding with a single copy out, and its frame has copies to spare.
-bool Scheduler::straggler_eligible(const Issue& issue) const {
+// Outstanding with a single copy out, and its frame has copies to spare; or
+// so overdue (ten times late) that its result was surely lost: a frame must
+// not wait for ever on a worker that is alive but lost what it was sending.
+bool Scheduler::straggler_eligible(const Issue& issue, TimePoint now) const {
   const Job& job = jobs_.at(issue.job_id);
-  return job.holders.size() == 1 && frames_.at(job.frame_id).copies < duplicate_budget(frames_.at(job.frame_id));
+  const Frame& frame = frames_.at(job.frame_id);
+  const bool overdue = seconds_between(issue.at, now) >= 10.0 * straggler_seconds();
+  return job.holders.size() == 1 && (frame.copies < duplicate_budget(frame) || overdue);
 }
 
 // Copies answered, released or of a finished frame leave the front: the
@@ -236,13 +253,27 @@ void Scheduler::assign_stragglers(TimePoint now, std::vector<JobAssignment>& out
   for (size_t i = 0; i < n && !hungry_.empty(); ++i) {
     const Issue issue = issued_[i];
     if (seconds_between(issue.at, now) < late) break;
-    if (!is_outstanding(issue) || !straggler_eligible(issue)) continue;
+    if (!is_outstanding(issue) || !straggler_eligible(issue, now)) continue;
     auto w = std::find_if(hungry_.begin(), hungry_.end(), [&](const WorkerId& id) { return id != issue.worker; });
     if (w == hungry_.end()) break;
     const WorkerId id = *w;
     ++frames_.at(jobs_.at(issue.job_id).frame_id).copies;
     ++stats_.duplicated;
     out.push_back(give(id, issue.job_id, now));
+  }
+}
+
+// A copy of an answered job that is late has surely been lost (a worker
+// that is alive and dropped its result): its worker gets the credit back, so
+// that it can vote on the frame with a fresh copy.
+void Scheduler::release_lost_copies(const Frame& frame, TimePoint now) {
+  const double late = straggler_seconds();
+  for (uint64_t job_id : frame.held) {
+    Job& job = jobs_.at(job_id);
+    std::vector<WorkerId> lost;
+    for (const Holder& h : job.holders)
+      if (seconds_between(h.issued, now) >= late) lost.push_back(h.worker);
+    for (const WorkerId& id : lost) drop_result(id, job_id);
   }
 }
 
@@ -253,6 +284,7 @@ void Scheduler::assign_verifications(TimePoint now, std::vector<JobAssignment>& 
     const Frame& frame = entry.second;  // a plain reference: clang 14 lambdas cannot capture structured bindings
     if (hungry_.empty()) return;
     if (frame.reference || frame.held.empty() || frame.done + frame.held.size() != frame.jobs.size()) continue;
+    release_lost_copies(frame, now);
     const bool copy_out = std::any_of(frame.held.begin(), frame.held.end(),
                                       [&](uint64_t j) { return !jobs_.at(j).holders.empty(); });
     if (copy_out) continue;
@@ -283,8 +315,13 @@ std::optional<TimePoint> Scheduler::next_straggler_time() {
   if (hungry_.empty()) return std::nullopt;
   trim_issued();
   const auto late = std::chrono::duration_cast<SchedulerClock::duration>(std::chrono::duration<double>(straggler_seconds()));
-  for (const Issue& issue : issued_)
-    if (is_outstanding(issue) && straggler_eligible(issue)) return issue.at + late;
+  for (const Issue& issue : issued_) {
+    if (!is_outstanding(issue)) continue;
+    const Job& job = jobs_.at(issue.job_id);
+    const Frame& frame = frames_.at(job.frame_id);
+    if (job.holders.size() != 1) continue;
+    return issue.at + (frame.copies < duplicate_budget(frame) ? late : 10 * late);
+  }
   return std::nullopt;
 }
 

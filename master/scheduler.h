@@ -12,10 +12,13 @@
 //    `straggler_factor` x the median round trip of recent jobs (at least
 //    `min_straggler_seconds`; 1 s until 8 round trips are known), at most two
 //    copies of a job, and at most `duplicate_budget` x the frame's jobs copies
-//    per frame. Workers that are all equally fast never render a tile twice.
+//    per frame (a job ten times late is copied whatever the budget: its
+//    result was lost). Workers that are all equally fast never render a tile
+//    twice. Water-filling: idle workers get jobs before busy ones.
+//  - A copy still out when its frame completes gives its worker's credit back.
 //  - The first usable result for a job wins; later copies are dropped.
-//  - A result that fails validation (non-finite pixels, a rectangle that is
-//    not its job's) releases the job to the pool; a job whose results failed
+//  - A result that fails validation (it does not decode, non-finite pixels,
+//    a rectangle that is not its job's) releases the job to the pool; a job whose results failed
 //    on `max_failed_workers` distinct workers, or `max_failures` times in all,
 //    fails deterministically and the caller must end the run.
 //  - A worker declared dead gives its outstanding jobs back to the pool.
@@ -30,7 +33,9 @@
 //    joins later is not judged by a hash nobody confirmed.
 //  - Until then results are held: their pixels are kept, but they do not
 //    count. A held job is not reissued; if no other worker has voted on the
-//    frame once all its jobs are held, an idle worker gets a copy to verify.
+//    frame once all its jobs are held, an idle worker gets a copy to verify
+//    (a late copy still out on a held job counts as lost, and its worker's
+//    credit comes back so it can be the one).
 //  - When the reference is decided, held results with it count, the others go
 //    back to the pool, and every worker that reported another hash for the
 //    frame is quarantined: removed, its jobs reissued, its unconfirmed results
@@ -141,7 +146,8 @@ class Scheduler {
   // goes back to the pool. True when the job now fails deterministically.
   bool on_bad_result(const WorkerId& id, uint64_t job_id);
 
-  // Frames whose every job is back and counted, in frame order; removes them.
+  // Frames whose every job is back and counted, in frame order; removes them,
+  // and gives workers back the credit of copies still out for them.
   std::vector<uint64_t> take_completed_frames();
   // Workers quarantined since the last call (by on_result, or by a removal
   // that decided a frame); each is already removed, its jobs back in the pool.
@@ -150,6 +156,7 @@ class Scheduler {
   std::optional<HashSplit> stalled_split() const;
 
   int outstanding(const WorkerId& id) const;
+  bool holds(const WorkerId& id, uint64_t job_id) const;  // the worker has this job and has not answered it
   bool trusted(const WorkerId& id) const;
   const SchedulerStats& stats() const { return stats_; }
   double median_round_trip() const;  // seconds; 0 before any
@@ -202,7 +209,8 @@ class Scheduler {
   std::optional<uint64_t> front_unassigned();
   bool is_outstanding(const Issue& issue) const;
   void trim_issued();
-  bool straggler_eligible(const Issue& issue) const;
+  bool straggler_eligible(const Issue& issue, TimePoint now) const;
+  void release_lost_copies(const Frame& frame, TimePoint now);
   double straggler_seconds() const;
   size_t duplicate_budget(const Frame& frame) const;
   JobAssignment give(const WorkerId& id, uint64_t job_id, TimePoint now);

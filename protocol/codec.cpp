@@ -426,6 +426,15 @@ bool is_tile_result(std::span<const uint8_t> bytes) {
   return bytes.size() >= kHeaderBytes && bytes[6] == static_cast<uint8_t>(MessageType::TileResult);
 }
 
+std::optional<uint64_t> tile_result_job_id(std::span<const uint8_t> bytes) {
+  Reader r(bytes);
+  std::optional<MessageType> type = read_header(r);
+  if (type != MessageType::TileResult) return std::nullopt;
+  r.u64("frame_id");
+  const uint64_t job_id = r.u64("job_id");
+  return r.ok() ? std::optional<uint64_t>(job_id) : std::nullopt;
+}
+
 std::optional<TileResultView> decode_tile_result(std::span<const uint8_t> bytes, std::string& error) {
   if (bytes.size() > kMaxMessageBytes) {
     error = oversized(bytes.size());

@@ -43,6 +43,10 @@ struct TileResultView {
 
 // The header's type byte says TileResult (nothing else is checked).
 bool is_tile_result(std::span<const uint8_t> bytes);
+// The job id of a TileResult whose header (magic, version, type, flags) is
+// valid and whose job id is there, whatever follows: so that a result that
+// fails to decode still sends its job to another worker.
+std::optional<uint64_t> tile_result_job_id(std::span<const uint8_t> bytes);
 // Checks everything decode() checks except that the pixels are finite, which
 // copy_tile_pixels() checks as it copies them; so a message passes both
 // exactly when decode() accepts it, with the same error text otherwise.

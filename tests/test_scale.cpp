@@ -137,6 +137,18 @@ TEST(Scale, AResultWithTheWrongRectangleIsRenderedAgain) {
   EXPECT_NE(r.master_log.find("is not what job"), std::string::npos) << r.master_log;
 }
 
+TEST(Scale, AResultThatDoesNotDecodeIsRenderedAgainAndItsWorkerQuarantined) {
+  LoadgenOptions o = options("truncated", 4, 10);
+  std::vector<SimBehaviour> b = paced(o);
+  b[2].truncate_every = 3;
+  const LoadgenReport r = run_loadgen(o, b);
+  ASSERT_EQ(r.exit_code, 0) << r.master_log;
+  EXPECT_TRUE(frames_exact(o));
+  EXPECT_TRUE(r.workers[2].quarantined) << "three results that do not decode";
+  EXPECT_GE(stats(o)["frames"].back()["failed_results_total"].get<int>(), 1) << "its jobs went to others at once";
+  EXPECT_NE(r.master_log.find("truncated"), std::string::npos) << r.master_log;
+}
+
 // The soak at simulated scale: 64 workers, a tenth joining late, a tenth
 // stalling past the master's timeout, a tenth dying and replaced.
 TEST(Scale, SixtyFourWorkersWithChurnLoseNoFrame) {

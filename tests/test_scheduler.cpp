@@ -43,6 +43,14 @@ void answer(Scheduler& s, const std::vector<JobAssignment>& jobs, uint64_t hash,
   }
 }
 
+// Answers copies of jobs another result already answered (their hash still votes).
+void answer_late(Scheduler& s, const std::vector<JobAssignment>& jobs, uint64_t hash, TimePoint when) {
+  for (const JobAssignment& j : jobs) {
+    ASSERT_EQ(s.check_result(j.worker, j.job_id, j.frame_id, j.tile), ResultCheck::NotNeeded);
+    s.on_result(j.worker, j.job_id, hash, when);
+  }
+}
+
 TEST(Scheduler, WorkersHoldAtMostTheirCredits) {
   Scheduler s(2, 2);
   s.add_worker("a");
@@ -373,6 +381,32 @@ TEST(Scheduler, AResultIsCheckedAgainstItsOwnJob) {
   EXPECT_EQ(s.check_result("a", j[0].job_id, 1, j[0].tile), ResultCheck::WrongTile) << "another frame";
   EXPECT_EQ(s.check_result("b", j[0].job_id, 0, j[0].tile), ResultCheck::Unknown) << "not b's job";
   EXPECT_EQ(s.check_result("a", j[0].job_id, 0, j[0].tile), ResultCheck::Wanted);
+}
+
+// Two workers; one answers a tile but its result is lost on the way (it is
+// alive and heartbeats). The other copies the late tile, but its result alone
+// cannot decide the frame's hash: the lost copy is given up, and the worker
+// that lost it votes with a fresh copy. Nothing hangs, no credit is kept.
+TEST(Scheduler, AResultLostOnTheWayNeitherHangsTheFrameNorKeepsItsCredit) {
+  Scheduler s(1, 2);
+  s.add_worker("lost");
+  double clock = 0;
+  learn_round_trips(s, clock);  // 10 ms tiles: late after 30 ms
+  s.add_worker("fast");
+  s.add_frame(0, tiles(1));
+  const auto original = s.assign(at(clock));
+  ASSERT_EQ(original.size(), 1u);
+  const auto copy = s.assign(at(clock + 40));
+  ASSERT_EQ(copy.size(), 1u) << "the late tile is copied";
+  EXPECT_EQ(s.on_result(copy[0].worker, copy[0].job_id, 1, at(clock + 50)), ResultVerdict::Held);
+  const auto verify = s.assign(at(clock + 100));
+  ASSERT_EQ(verify.size(), 1u) << "the lost copy is given up; its worker verifies";
+  EXPECT_EQ(verify[0].worker, original[0].worker);
+  EXPECT_EQ(s.stats().verified, 1u);
+  answer_late(s, verify, 1, at(clock + 110));
+  EXPECT_EQ(s.take_completed_frames().size(), 1u);
+  EXPECT_EQ(s.outstanding("lost"), 0);
+  EXPECT_EQ(s.outstanding("fast"), 0);
 }
 
 TEST(Scheduler, UnknownResultsAreHarmless) {

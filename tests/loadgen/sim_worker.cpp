@@ -123,6 +123,8 @@ void SimWorker::send_answer(const Due& due) {
   const bool nan = (behaviour_.nan_every > 0 && answers_ % uint64_t(behaviour_.nan_every) == 0) ||
                    (behaviour_.poison_pixel && contains(due.tile, *behaviour_.poison_pixel));
   if (nan) TileCache::poison(message, format);
+  if (behaviour_.truncate_every > 0 && answers_ % uint64_t(behaviour_.truncate_every) == 0)
+    message = zmq::message_t(message.data<uint8_t>(), message.size() - 5);  // cut inside the pixels
   if (socket_->send(message, zmq::send_flags::dontwait)) ++outcome_.answers;
 }
 

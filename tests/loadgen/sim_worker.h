@@ -31,6 +31,7 @@ struct SimBehaviour {
   uint64_t hash_offset = 0;    // not 0: its VPL sets differ from everyone else's
   int nan_every = 0;           // every n-th answer has a NaN pixel (0: never)
   int wrong_tile_every = 0;    // every n-th answer claims another rectangle (0: never)
+  int truncate_every = 0;      // every n-th answer loses its last bytes (it does not decode)
   std::optional<std::pair<int, int>> poison_pixel;  // the tile holding this pixel always has a NaN
 };
 
