@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <thread>
 
@@ -46,12 +47,21 @@ std::optional<CurveSetup> curve_setup(const igi::MasterOptions& o) {
   return c;
 }
 
-// Test hooks: a signal to local worker 0 after so many accepted results.
+// Test hooks: a signal to local worker 0 after so many accepted results, once
+// every local worker has joined (so that it hits one that holds jobs).
 void arm_test_hooks(const igi::MasterOptions& o, igi::MasterSession& session, igi::LocalWorkers& workers) {
   if (o.kill_worker_after <= 0 && o.stop_worker_after <= 0) return;
-  session.on_accepted = [&o, &workers](uint64_t n) {
-    if (n == uint64_t(o.kill_worker_after)) workers.kill_one(0, SIGKILL);
-    if (n == uint64_t(o.stop_worker_after)) workers.kill_one(0, SIGSTOP);
+  auto fired = std::make_shared<std::pair<bool, bool>>(false, false);  // killed, stopped
+  session.on_accepted = [&o, &session, &workers, fired](uint64_t n) {
+    if (session.worker_count() < size_t(o.workers)) return;
+    if (o.kill_worker_after > 0 && n >= uint64_t(o.kill_worker_after) && !fired->first) {
+      fired->first = true;
+      workers.kill_one(0, SIGKILL);
+    }
+    if (o.stop_worker_after > 0 && n >= uint64_t(o.stop_worker_after) && !fired->second) {
+      fired->second = true;
+      workers.kill_one(0, SIGSTOP);
+    }
   };
 }
 

@@ -31,7 +31,7 @@ struct MasterOptions {
   int io_threads = 1;             // ZeroMQ I/O threads (receive and send off the session thread)
   int screenshot_after = 4;       // window: save --screenshot after this many accumulated frames
   // Test hooks.
-  int kill_worker_after = 0;      // SIGKILL local worker 0 after this many results
+  int kill_worker_after = 0;      // SIGKILL local worker 0 after this many results (once all have joined)
   int force_duplicates = 0;       // hand this many jobs to two workers on purpose
   int stop_worker_after = 0;      // SIGSTOP local worker 0 after this many results (and never resume it)
   int send_hwm = 0;               // the master's ZMQ_SNDHWM per peer; 0: ZeroMQ's default (1000)

@@ -471,7 +471,13 @@ int serve_scene(const fs::path& dir, uint64_t hash, const std::vector<uint8_t>& 
       protocol::send_to(router, got->identity, welcome);
     } else if (std::holds_alternative<protocol::SceneRequest>(*got->message)) {
       protocol::send_to(router, got->identity, protocol::SceneData{hash, "box.glb", bytes});
-      std::this_thread::sleep_for(std::chrono::milliseconds(300));  // stored (or refused) by now
+      // The worker stores (or refuses) the bytes, then tries to load them: it
+      // leaves by itself (refused: 3, not a scene: a Bye and 6); else say goodbye.
+      int status = 0;
+      for (int i = 0; i < 100; ++i) {
+        if (waitpid(w, &status, WNOHANG) == w) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      }
       protocol::send_to(router, got->identity, protocol::Bye{"done"});
       break;
     }
