@@ -101,9 +101,9 @@ TEST(ClusterFaults, AWorkerWaitsLongerForTheMasterThanTheMasterForIt) {
   std::this_thread::sleep_for(std::chrono::seconds(1));
   kill(m, SIGCONT);
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  test::stop(m);
+  const std::string text = read_text(log);  // before the master goes: its end is a lost master too
   test::stop(worker);
-  const std::string text = read_text(log);
+  test::stop(m);
   EXPECT_EQ(text.find("master lost"), std::string::npos) << "the worker gave up before the master would have:\n" << text;
 }
 
