@@ -15,17 +15,19 @@ void BiasCompensation::add(const GBuffer& gbuffer, uint32_t frame_seed, std::vec
                            RayCounts& rays) const {
   if (!enabled()) return;
   const Region& region = gbuffer.region;
-  for (int k = 0; k < gbuffer.samples; ++k)
+  for (int l = 0; l < gbuffer.layer_count(); ++l)
     for (int j = 0; j < region.height; ++j)
       for (int i = 0; i < region.width; ++i) {
-        const size_t index = size_t(k) * region.pixels() + size_t(j) * region.width + i;
+        const size_t index = size_t(l) * region.pixels() + size_t(j) * region.width + i;
         if (gbuffer.layers[index].valid())
-          irradiance[index] += at_sample(gbuffer.layers[index], region.x0 + i, region.y0 + j, k, frame_seed, rays);
+          irradiance[index] += at_sample(gbuffer.layers[index], region.x0 + i, region.y0 + j, l,
+                                         gbuffer.subsample_of_layer(l), frame_seed, rays);
       }
 }
 
-// Demodulated compensation at sub-sample k of pixel (x, y) (global coordinates).
-glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int k, uint32_t frame_seed,
+// Demodulated compensation at layer l (sub-sample k) of pixel (x, y) (global
+// coordinates). Layers of glass branch 0 (l = k) keep the sub-sample's numbers.
+glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int l, int k, uint32_t frame_seed,
                                       RayCounts& rays) const {
   const SurfacePoint& sp = g.surface;
   // GGX receivers would need f cos / pdf from their lobe, not the albedo:
@@ -36,12 +38,12 @@ glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int k, uin
   const glm::vec3 n = front ? sp.shading_normal : -sp.shading_normal;
   const glm::vec3 ng = front ? sp.geometric_normal : -sp.geometric_normal;
   const Frame frame(n);
-  const uint32_t seed = hash(hash(uint32_t(x), uint32_t(y), frame_seed), uint32_t(k));
+  const uint32_t seed = hash(hash(uint32_t(x), uint32_t(y), frame_seed), uint32_t(l));
   const int set = interleaved_ ? vpls_.set_of_pixel(x, y) : -1;
   const int group = group_of_subsample(x, y, k, vpls_.groups);
   glm::vec3 sum(0.0f);
-  for (int k = 0; k < samples_; ++k) {
-    const glm::vec3 wi = frame.to_world(cosine_hemisphere(sample_2d(uint32_t(k), 0, seed)));
+  for (int i = 0; i < samples_; ++i) {
+    const glm::vec3 wi = frame.to_world(cosine_hemisphere(sample_2d(uint32_t(i), 0, seed)));
     const float cos_x = glm::dot(wi, n);
     if (cos_x <= 0.0f || glm::dot(wi, ng) <= 0.0f) continue;  // below the surface: no light
     // Past this distance G <= cos_x / d^2 <= b: the clamp cut nothing there.

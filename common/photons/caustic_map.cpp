@@ -1,0 +1,45 @@
+#include "photons/caustic_map.h"
+
+#include <algorithm>
+#include <thread>
+
+#include "methods/vpl_contribution.h"
+#include "photons/photon_paths.h"
+#include "sampling/hash.h"
+#include "sampling/warp.h"
+
+namespace igi {
+
+uint64_t hash_photons(const std::vector<Photon>& photons) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (const Photon& p : photons) h = fnv1a64(&p, sizeof p, h);  // four vec3, no padding
+  return h;
+}
+
+CausticMap::CausticMap(const SceneContext& context, const RenderSettings& settings)
+    : context_(context), settings_(settings),
+      radius_(settings.caustic_radius * context.scene.bounds().diagonal()),
+      paths_(uint32_t(settings.caustic_photons)) {}
+
+void CausticMap::build(uint32_t frame_seed, int threads) {
+  if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  rays_ = RayCounts{};
+  const std::vector<Photon> photons = trace_photon_paths(context_, settings_, frame_seed, paths_, threads, rays_);
+  hash_ = hash_photons(photons);
+  grid_ = PhotonGrid(photons, radius_, context_.scene.bounds().lower);
+}
+
+glm::vec3 CausticMap::radiance(const GSample& g) const {
+  const SurfacePoint& sp = g.surface;
+  const glm::vec3 n = glm::dot(g.wo, sp.geometric_normal) >= 0.0f ? sp.geometric_normal : -sp.geometric_normal;
+  const float inv_r2 = 1.0f / (radius_ * radius_);
+  glm::vec3 sum(0.0f);
+  grid_.for_each_within(sp.position, [&](const Photon& p, float d2) {
+    if (glm::dot(p.normal, n) < kNormalCos) return;
+    const float t = 1.0f - d2 * inv_r2;
+    sum += VplShading::demodulated_bsdf(g, p.incident) * p.flux * (t * t);
+  });
+  return sum * (3.0f * kInvPi * inv_r2);
+}
+
+}  // namespace igi
