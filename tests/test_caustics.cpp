@@ -11,12 +11,16 @@
 #include "methods/path_tracer.h"
 #include "methods/vpl_method.h"
 #include "photons/caustic_map.h"
+#include "photons/caustic_settings.h"
 #include "photons/photon_grid.h"
 #include "photons/photon_paths.h"
 #include "scene/builtin_scenes.h"
+#include "scene/camera_rays.h"
 #include "scene/load_scene.h"
+#include "scene/surface.h"
 #include "scene/suite_scenes.h"
 #include "support/image_compare.h"
+#include "support/process.h"
 #include "support/render_fixture.h"
 
 namespace igi {
@@ -173,6 +177,187 @@ TEST(CausticMap, PhotonsArriveThroughMirrorsAndGlassOnly) {
     EXPECT_NEAR(glm::length(ph.incident), 1.0f, 1e-4f);
     EXPECT_GT(glm::dot(ph.incident, ph.normal), 0.0f) << "light arrives on the side it is stored for";
   }
+}
+
+// --- The caustic against the path tracer.
+//
+// The glass sphere focuses the ceiling light on the floor around C (its
+// centre on the line from the light's centre through the ball's, 1.5 radii
+// beyond the ball's centre, at the floor: scene/suite_scenes.h). The region
+// is every pixel of a tile around C whose camera ray meets the floor within
+// 3 cm of C directly (not through the glass). pt renders only that tile.
+
+struct CausticRegion {
+  TileJob tile;
+  std::vector<size_t> pixels;  // inside the tile, row-major
+};
+
+CausticRegion caustic_region(const test::Prepared& p, int width, int height) {
+  const glm::vec3 light(0.278f, 0.5487f, 0.2795f), ball(0.185f, 0.135f, 0.17f);
+  const glm::vec3 d = glm::normalize(ball - light);
+  const glm::vec3 focus = ball + d * (ball.y / -d.y);  // where the axis meets the floor
+  const CameraBasis camera(p.frame(width, height).camera, width, height);
+  int x0 = width, y0 = height, x1 = -1, y1 = -1;
+  std::vector<std::pair<int, int>> inside;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      Hit hit;
+      const Ray ray = camera.ray(x + 0.5f, y + 0.5f);
+      if (!p.accel->intersect(ray, hit)) continue;
+      const SurfacePoint sp = surface_at(p.scene, hit, ray.direction);
+      if (sp.material->type != MaterialType::Diffuse || sp.position.y > 1e-4f) continue;
+      if (glm::length(sp.position - focus) > 0.03f) continue;
+      inside.emplace_back(x, y);
+      x0 = std::min(x0, x); y0 = std::min(y0, y); x1 = std::max(x1, x); y1 = std::max(y1, y);
+    }
+  CausticRegion r;
+  r.tile = TileJob{x0, y0, x1 - x0 + 1, y1 - y0 + 1, 0};
+  for (auto [x, y] : inside) r.pixels.push_back(size_t(y - y0) * r.tile.w + size_t(x - x0));
+  return r;
+}
+
+// Mean luminance over the region's pixels of a tile rendered by `method`.
+double region_mean(const Method& method, const FrameSetup& frame, const RenderSettings& s, const CausticRegion& r) {
+  TileJob job = r.tile;
+  job.border = tile_border(s);
+  std::vector<glm::vec3> pixels(size_t(job.w) * job.h);
+  RayCounts rays;
+  method.render_tile(job, pixels, rays);
+  double sum = 0.0;
+  for (size_t i : r.pixels) sum += luminance(pixels[i]);
+  return sum / double(r.pixels.size());
+}
+
+TEST(CausticAccuracy, TheCausticsMeanConvergesToThePathTracersAsPhotonsGrow) {
+  const test::Prepared& p = glass_scene();
+  const int width = 320, height = 240;
+  const CausticRegion region = caustic_region(p, width, height);
+  ASSERT_GE(region.pixels.size(), 40u) << "the caustic is in view";
+  // pt over the region's tile only, sample indices [0, 2048).
+  RenderSettings pts;
+  pts.method = MethodKind::PathTracer;
+  PathTracer pt(p.context(), pts);
+  FrameSetup frame = p.frame(width, height, 7);
+  frame.sample_count = 2048;
+  pt.begin_frame(frame);
+  const double reference = region_mean(pt, frame, pts, region);
+  // igi with 4 passes of fresh VPLs and photons, the photon count growing.
+  auto igi_mean = [&](int photons) {
+    RenderSettings s = caustic_settings(std::max(photons, 1));
+    s.caustics = photons > 0;
+    VplMethod igi(p.context(), s);
+    double sum = 0.0;
+    for (uint32_t pass = 0; pass < 4; ++pass) {
+      const FrameSetup f = p.frame(width, height, 11 + pass);
+      igi.begin_frame(f);
+      sum += region_mean(igi, f, s, region);
+    }
+    return sum / 4.0;
+  };
+  const double without = igi_mean(0);
+  std::printf("[caustic] %zu pixels: pt %.4f; igi without caustics %.4f (%+.1f %%)\n", region.pixels.size(),
+              reference, without, 100.0 * (without / reference - 1.0));
+  EXPECT_LT(without, 0.5 * reference) << "the caustic is most of the region's light";
+  double previous = 1e30;
+  for (int photons : {1000, 10000, 100000}) {
+    const double mean = igi_mean(photons);
+    const double error = std::abs(mean / reference - 1.0);
+    std::printf("[caustic] %6d photon paths: igi %.4f (%+.1f %%)\n", photons, mean, 100.0 * (mean / reference - 1.0));
+    EXPECT_LT(error, std::max(previous, 0.02)) << photons << " photon paths: the error must not grow";
+    previous = error;
+  }
+  EXPECT_LT(previous, 0.10) << "within 10 % of pt at 100,000 photon paths";
+}
+
+// --- Bad options: a clear error naming the option, before any work.
+
+TEST(CausticOptions, BadValuesAreRefusedBeforeAnyWork) {
+  struct Case {
+    std::string command, expected;
+  };
+  const std::string render = std::string(IGI_RENDER_BINARY) + " --scene glass --quiet -o " + test::output_path("bad.exr");
+  const std::vector<Case> cases = {
+      {render + " --caustic-photons 0", "--caustic-photons: 0, expected 1 to 67108864 photon paths per frame"},
+      {render + " --caustic-photons -5", "--caustic-photons: expected an integer >= 0"},
+      {render + " --caustic-photons 67108865", "--caustic-photons: 67108865, expected 1 to 67108864"},
+      {render + " --caustic-radius 0", "--caustic-radius: 0, expected a fraction of the scene diagonal in [1e-05, 0.25]"},
+      {render + " --caustics --caustic-radius 0.5", "--caustic-radius: 0.5, expected"},
+      {render + " --caustic-radius x", "--caustic-radius: expected a non-negative number, got 'x'"},
+      {render + " --caustics --method pt", "--caustics: only the ir and igi methods"},
+      {render + " --glass-branches 0", "--glass-branches: expected an integer >= 1"},
+      {render + " --glass-branches 9", "--glass-branches: expected 1..8, got 9"},
+      {std::string(IGI_MASTER_BINARY) + " --workers 0 --frames 1 --caustic-radius 0 -o " + test::output_path("bad.exr"),
+       "--caustic-radius: 0, expected"},
+  };
+  for (const Case& c : cases) {
+    const test::RunResult r = test::run(c.command, 20);
+    EXPECT_EQ(r.exit_code, 1) << c.command << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.command << "\n" << r.output;
+  }
+  // Beyond memory: refused from the settings alone (the check the command lines make).
+  RenderSettings s = caustic_settings(1 << 26);
+  const std::string error = photons::memory_error(s, 16ull << 30);
+  EXPECT_NE(error.find("--caustic-photons: 67108864 photon paths can store up to 28.0 GiB"), std::string::npos) << error;
+  EXPECT_EQ(photons::memory_error(caustic_settings(20000), 16ull << 30), "");
+}
+
+// --- Energy: a glass sphere in a uniformly lit closed box.
+//
+// In the white furnace (every wall emits 1 and reflects half) the radiance is
+// 1 / (1 - 0.5) = 2 everywhere, and a clear glass sphere, which absorbs
+// nothing, cannot change that: seen through it or beside it, every pixel is
+// 2. Without the photon map the walls lose what reaches them through the
+// glass (shadow rays stop at it); the map must give back exactly that.
+
+Scene furnace_with_glass_sphere() {
+  Scene s = make_furnace(0.5f, 1.0f);
+  const uint32_t glass = add_material(s, clear_glass());
+  add_bumpy_sphere(s, {0.2f, 0.0f, 0.55f}, 0.22f, 16, [](float, float) { return 1.0f; }, glass);
+  return s;
+}
+
+struct FurnaceMeans {
+  double all, through_glass;
+};
+
+FurnaceMeans furnace_means(const test::Prepared& p, const RenderSettings& s, int width, int height, int passes) {
+  const Image image = p.render(s, width, height, passes, 5);
+  FrameSetup frame = p.frame(width, height);
+  const CameraBasis camera(frame.camera, width, height);
+  double all = 0.0, glass = 0.0;
+  int glass_count = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const double v = luminance(image.at(x, y));
+      all += v;
+      Hit hit;
+      // Pixel centres of the passes' jitter vary; the centre decides the class.
+      if (p.accel->intersect(camera.ray(x + 0.5f, y + 0.5f), hit) &&
+          p.scene.materials[p.scene.triangle_material[hit.triangle]].type == MaterialType::Glass) {
+        glass += v;
+        ++glass_count;
+      }
+    }
+  return {all / (width * height), glass_count ? glass / glass_count : 0.0};
+}
+
+TEST(CausticFurnace, AGlassSphereNeitherAddsNorLosesEnergy) {
+  const test::Prepared p(furnace_with_glass_sphere());
+  RenderSettings s = caustic_settings(40000);
+  s.paths_per_set = 16;
+  for (int branches : {1, 3}) {
+    s.glass_branches = branches;
+    const FurnaceMeans m = furnace_means(p, s, 48, 36, 4);
+    std::printf("[furnace] glass branches %d: mean %.4f, through the glass %.4f (exact 2)\n", branches, m.all,
+                m.through_glass);
+    EXPECT_NEAR(m.all, 2.0, 0.03) << "branches " << branches;
+    EXPECT_NEAR(m.through_glass, 2.0, 0.06) << "branches " << branches;
+  }
+  // The test can fail: without the map the light through the glass is lost.
+  s.caustics = false;
+  const FurnaceMeans off = furnace_means(p, s, 48, 36, 4);
+  std::printf("[furnace] without caustics: mean %.4f, through the glass %.4f\n", off.all, off.through_glass);
+  EXPECT_LT(off.all, 2.0 - 0.06);
 }
 
 }  // namespace
