@@ -345,13 +345,18 @@ TEST(CausticFurnace, AGlassSphereNeitherAddsNorLosesEnergy) {
   const test::Prepared p(furnace_with_glass_sphere());
   RenderSettings s = caustic_settings(40000);
   s.paths_per_set = 16;
+  // Unbounded camera chains: in this faceted sphere, rays that enter near
+  // the rim reflect inside it many times before leaving (Fresnel near the
+  // critical angle), and the default cut at 16 surfaces loses 3 % of the
+  // light seen through it (2.9 % of those pixels end inside the glass).
+  s.specular_depth = 0;
   for (int branches : {1, 3}) {
     s.glass_branches = branches;
     const FurnaceMeans m = furnace_means(p, s, 48, 36, 4);
     std::printf("[furnace] glass branches %d: mean %.4f, through the glass %.4f (exact 2)\n", branches, m.all,
                 m.through_glass);
-    EXPECT_NEAR(m.all, 2.0, 0.03) << "branches " << branches;
-    EXPECT_NEAR(m.through_glass, 2.0, 0.06) << "branches " << branches;
+    EXPECT_NEAR(m.all, 2.0, 0.02) << "branches " << branches;
+    EXPECT_NEAR(m.through_glass, 2.0, 0.03) << "branches " << branches;
   }
   // The test can fail: without the map the light through the glass is lost.
   s.caustics = false;
