@@ -39,15 +39,16 @@ void trace_path(const SceneContext& ctx, const RenderSettings& settings, uint32_
       }
     }
     after_specular = sp.material->is_specular();
+    // The lobe and roulette numbers share one 2D point (each 1D draw would
+    // cost a whole 2D Sobol point: a third of the pass's sampling).
     SampleStream u(path, seed, kStartDims + kDimsPerBounce * uint32_t(depth));
     const glm::vec2 u_dir = u.next_2d();
-    const float u_lobe = u.next_1d();
-    const float u_roulette = u.next_1d();
-    auto bs = bsdf_sample(sp, wo, u_dir, u_lobe);
+    const glm::vec2 u_lobe_roulette = u.next_2d();
+    auto bs = bsdf_sample(sp, wo, u_dir, u_lobe_roulette.x);
     if (!bs) return;
     // Russian roulette by albedo, as VPL paths: survivors carry the lost share.
     const float q = std::min(1.0f, max_component(bs->weight));
-    if (!(u_roulette < q)) return;
+    if (!(u_lobe_roulette.y < q)) return;
     flux *= bs->weight / q;
     ray = Ray{offset_origin(sp, bs->wi), bs->wi};
   }
