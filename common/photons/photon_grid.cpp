@@ -2,13 +2,7 @@
 
 #include <bit>
 
-#include "sampling/hash.h"
-
 namespace igi {
-
-uint32_t PhotonGrid::bucket(glm::ivec3 c) const {
-  return hash(uint32_t(c.x), uint32_t(c.y), uint32_t(c.z)) & mask_;
-}
 
 PhotonGrid::PhotonGrid(const std::vector<Photon>& photons, float radius, glm::vec3 origin)
     : radius_(radius), inv_cell_(0.5f / radius), origin_(origin) {

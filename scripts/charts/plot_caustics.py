@@ -47,11 +47,15 @@ def main():
         axes[0].legend()
         axes[0].grid(True, which="both", alpha=0.25)
 
-    fps = rows(os.path.join(args.folder, "fps.csv"))
+    all_fps = rows(os.path.join(args.folder, "fps.csv"))
+    fps = [r for r in all_fps if r["scene"] != "cornell"]
+    baseline = [r for r in all_fps if r["scene"] == "cornell"]
     if fps:
         n = [max(1, int(r["photon_paths"])) for r in fps]
         axes[1].plot(n, [float(r["fps"]) for r in fps], "o-")
         axes[1].axhline(20, color="gray", ls=":", label="20 fps")
+        for r in baseline:
+            axes[1].axhline(float(r["fps"]), color="tab:green", ls="--", label="Cornell box, no caustics")
         axes[1].set_xscale("log")
         axes[1].set_xlabel("photon paths per frame (1 = caustics off)")
         axes[1].set_ylabel("frames per second")

@@ -16,7 +16,7 @@
 // lightcuts (default 2 % error) over M, unclamped and at clamp 0.02; on
 // scenes with mirrors or glass, igi with the caustic photon map
 // ("igi+caustics", kCausticPhotons photon paths a frame, default radius and
-// glass branches, unclamped, filtered) over the same budgets as igi.
+// glass branches, filtered, unclamped and at clamp 0.02) over igi's budgets.
 // Unclamped VPL errors have infinite variance: a single seed is one draw of
 // a heavy-tailed figure, so each VPL point is the median over three seeds,
 // with the median seed's time.
@@ -207,13 +207,15 @@ void sweep_vpl(const Prepared& p, const std::string& name, const Options& o, con
   const bool specular = std::any_of(p.scene.materials.begin(), p.scene.materials.end(),
                                     [](const Material& m) { return m.is_specular(); });
   if (!specular) return;
-  for (int photons : o.quick ? std::vector<int>{kCausticPhotons.front()} : kCausticPhotons) {
-    RenderSettings s;
-    s.method = MethodKind::Igi;
-    s.caustics = true;
-    s.caustic_photons = photons;
-    sweep_budgets(p, name, o, ref, s, csv);
-  }
+  for (int photons : o.quick ? std::vector<int>{kCausticPhotons.front()} : kCausticPhotons)
+    for (float clamp : {0.0f, 0.02f}) {
+      RenderSettings s;
+      s.method = MethodKind::Igi;
+      s.clamp = clamp;
+      s.caustics = true;
+      s.caustic_photons = photons;
+      sweep_budgets(p, name, o, ref, s, csv);
+    }
 }
 
 // Lightcuts' cost grows slowly with the VPL count, so its budgets go further than ir's.

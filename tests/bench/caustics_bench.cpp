@@ -9,9 +9,11 @@
 //  1. pass: the photon pass alone (trace the frame's photon paths on T
 //     threads, grid them) per photon count, median of F frames (seeds 1..F),
 //     wall and process CPU time, photons stored, rays -> DIR/pass.csv.
-//  2. fps: whole frames of igi at --fps-size (640x480) on T threads, without
-//     caustics and with them at each photon count (median of F frames, photon
-//     pass included) -> DIR/fps.csv.
+//  2. fps: whole frames of igi at --fps-size (640x480) on T threads, 40x40
+//     tiles and --fps-vpl-paths (6: scripts/bench-igi.sh's setting), on the
+//     Cornell box (the baseline), then on the scene without caustics and with
+//     them at each photon count (median of F frames, photon pass included)
+//     -> DIR/fps.csv.
 //  3. reach: time for pt and for igi with caustics to reach relMSE 0.03 and
 //     FLIP 0.1 against the converged reference --ref at --size (its size):
 //     pt doubles its samples per pixel, igi its progressive passes (each a
@@ -59,6 +61,7 @@ struct Options {
   std::string out = "results/caustics";
   bool pass = true, fps = true, reach = true, branches = true;
   int vpl_paths = 16;
+  int fps_vpl_paths = 6;
   float clamp = 0.0f;
   std::vector<int> reach_photons = {10000, 30000, 100000};
 };
@@ -93,6 +96,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--ref") o.ref = value();
     else if (a == "--out") o.out = value();
     else if (a == "--vpl-paths") o.vpl_paths = std::stoi(value());
+    else if (a == "--fps-vpl-paths") o.fps_vpl_paths = std::stoi(value());
     else if (a == "--clamp") o.clamp = std::stof(value());
     else if (a == "--skip-pass") o.pass = false;
     else if (a == "--skip-fps") o.fps = false;
@@ -172,35 +176,45 @@ void bench_pass(const Prepared& p, const Options& o) {
   }
 }
 
-void bench_fps(const Prepared& p, const Options& o) {
-  std::ofstream csv(o.out + "/fps.csv");
-  csv << "scene,width,height,threads,photon_paths,ms,cpu_ms,fps\n";
-  std::printf("\nigi frames at %dx%d on %d threads (median of %d; photon pass included)\n%10s %9s %9s %7s\n",
-              o.fps_width, o.fps_height, o.threads, o.frames, "paths", "ms", "cpu ms", "fps");
-  std::vector<int> counts = {0};
-  counts.insert(counts.end(), o.photons.begin(), o.photons.end());
+// Median whole-frame time of igi (photon pass included), wall and CPU.
+Clock frame_time(const Prepared& p, const RenderSettings& s, const Options& o) {
   FrameOptions options;
   options.threads = o.threads;
-  for (int n : counts) {
-    auto method = make_method(p.context(), igi_settings(o, n));
-    std::vector<double> wall, cpu;
-    for (int f = 0; f < o.frames; ++f) {
-      const FrameSetup frame = p.frame(o.fps_width, o.fps_height, uint32_t(f + 1));
-      RayCounts rays;
-      const Clock start = Clock::now();
-      method->begin_frame(frame);
-      render_frame(*method, frame, tile_border(igi_settings(o, n)), options, rays);
-      const Clock d = Clock::now() - start;
-      wall.push_back(d.wall);
-      cpu.push_back(d.cpu);
-    }
-    const double ms = 1e3 * median(wall), cpu_ms = 1e3 * median(cpu);
-    char line[256];
-    std::snprintf(line, sizeof line, "%s,%d,%d,%d,%d,%.2f,%.2f,%.2f\n", o.scene.c_str(), o.fps_width, o.fps_height,
-                  o.threads, n, ms, cpu_ms, 1e3 / ms);
-    csv << line;
-    std::printf("%10d %9.1f %9.1f %7.2f\n", n, ms, cpu_ms, 1e3 / ms);
+  options.tile_size = 40;
+  auto method = make_method(p.context(), s);
+  std::vector<double> wall, cpu;
+  for (int f = 0; f < o.frames; ++f) {
+    const FrameSetup frame = p.frame(o.fps_width, o.fps_height, uint32_t(f + 1));
+    RayCounts rays;
+    const Clock start = Clock::now();
+    method->begin_frame(frame);
+    render_frame(*method, frame, tile_border(s), options, rays);
+    const Clock d = Clock::now() - start;
+    wall.push_back(d.wall);
+    cpu.push_back(d.cpu);
   }
+  return {median(wall), median(cpu)};
+}
+
+void bench_fps(const Prepared& p, const Options& o) {
+  std::ofstream csv(o.out + "/fps.csv");
+  csv << "scene,width,height,threads,vpl_paths,photon_paths,ms,cpu_ms,fps\n";
+  std::printf("\nigi frames at %dx%d on %d threads, %d paths per set (median of %d; photon pass included)\n"
+              "%-8s %10s %9s %9s %7s\n",
+              o.fps_width, o.fps_height, o.threads, o.fps_vpl_paths, o.frames, "scene", "paths", "ms", "cpu ms", "fps");
+  auto row = [&](const Prepared& scene, const std::string& name, int n) {
+    RenderSettings s = igi_settings(o, n);
+    s.paths_per_set = o.fps_vpl_paths;
+    const Clock t = frame_time(scene, s, o);
+    char line[256];
+    std::snprintf(line, sizeof line, "%s,%d,%d,%d,%d,%d,%.2f,%.2f,%.2f\n", name.c_str(), o.fps_width, o.fps_height,
+                  o.threads, o.fps_vpl_paths, n, 1e3 * t.wall, 1e3 * t.cpu, 1.0 / t.wall);
+    csv << line;
+    std::printf("%-8s %10d %9.1f %9.1f %7.2f\n", name.c_str(), n, 1e3 * t.wall, 1e3 * t.cpu, 1.0 / t.wall);
+  };
+  row(Prepared(load_scene("cornell")), "cornell", 0);
+  row(p, o.scene, 0);
+  for (int n : o.photons) row(p, o.scene, n);
 }
 
 struct Reached {
