@@ -39,8 +39,8 @@ float lobe_number(uint32_t seed, int branch, int depth) {
 
 }  // namespace
 
-void follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, int specular_depth, int branches,
-                          GSample* const* out, RayCounts& rays) {
+int follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, int specular_depth, int branches,
+                         GSample* const* out, RayCounts& rays) {
   const Scene& scene = accel.scene();
   Branch pending[kMaxGlassBranches];
   int pending_count = 0, used = 1;
@@ -48,6 +48,7 @@ void follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, i
   while (pending_count > 0) {
     Branch b = pending[--pending_count];
     GSample& g = *out[b.index];
+    g = GSample{};
     g.throughput = b.throughput;
     if (!b.traced) {
       ++rays.secondary;
@@ -86,6 +87,7 @@ void follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, i
       if (!accel.intersect(b.ray, b.hit)) break;
     }
   }
+  return used;
 }
 
 void follow_specular_chain(const Accel& accel, Ray ray, Hit hit, uint32_t seed, int specular_depth, GSample& g,
@@ -98,7 +100,8 @@ namespace {
 
 // One 4x4 block of one layer as a 16-wide packet.
 void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis& camera, glm::vec2 offset,
-                 int bx, int by, int k, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log) {
+                 int bx, int by, int k, int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays,
+                 RayLog* log) {
   const Region& region = out.region;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -123,6 +126,7 @@ void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis&
     log->primary.back().rays = packet;
   }
   rtcIntersect16(valid, accel.handle(), &context, &packet);
+  GSample more[kMaxGlassBranches];  // reset by follow_specular_tree as it uses them
   for (int i = 0; i < 16; ++i) {
     const int x = bx + (i & 3), y = by + (i >> 2);
     if (!valid[i] || packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
@@ -130,9 +134,18 @@ void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis&
     Hit hit{packet.ray.tfar[i], accel.triangle_index(packet.hit.geomID[i], packet.hit.primID[i]),
             {packet.hit.u[i], packet.hit.v[i]}};
     const uint32_t seed = hash(hash(uint32_t(region.x0 + x), uint32_t(region.y0 + y), frame.seed), uint32_t(k));
-    GSample* branches[kMaxGlassBranches];
-    for (int b = 0; b < out.branches; ++b) branches[b] = &out.at(b * out.samples + k, size_t(y) * region.width + x);
-    follow_specular_tree(accel, ray, hit, seed, specular_depth, out.branches, branches, rays);
+    // Branch 0 into its layer; further branches on the stack, then into
+    // layers of their own, which the region gets when a pixel first needs one.
+    const size_t pixel = size_t(y) * region.width + x;
+    GSample* branches[kMaxGlassBranches] = {&out.at(k, pixel)};
+    for (int b = 1; b < glass_branches; ++b) branches[b] = &more[b];
+    const int used = follow_specular_tree(accel, ray, hit, seed, specular_depth, glass_branches, branches, rays);
+    for (int b = 1; b < used; ++b) {
+      for (; out.branches <= b; ++out.branches)
+        std::fill_n(out.layers.begin() + ptrdiff_t(size_t(out.branches) * out.samples * region.pixels()),
+                    size_t(out.samples) * region.pixels(), GSample{});
+      out.at(b * out.samples + k, pixel) = more[b];
+    }
   }
 }
 
@@ -142,15 +155,18 @@ void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& re
                    int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log) {
   out.region = region;
   out.samples = samples;
-  out.branches = glass_branches;
-  out.layers.assign(size_t(out.layer_count()) * region.pixels(), GSample{});
+  out.branches = 1;
+  // Room for every branch (kept between tiles); only branch 0's layers are reset here.
+  const size_t layer_pixels = size_t(samples) * region.pixels();
+  if (out.layers.size() < size_t(glass_branches) * layer_pixels) out.layers.resize(size_t(glass_branches) * layer_pixels);
+  std::fill_n(out.layers.begin(), layer_pixels, GSample{});
   const CameraBasis camera(frame.camera, frame.width, frame.height);
   const int side = subpixel_side(samples);
   for (int k = 0; k < samples; ++k) {
     const glm::vec2 offset = subpixel_offset(k, side, frame.jitter_x, frame.jitter_y);
     for (int by = 0; by < region.height; by += 4)
       for (int bx = 0; bx < region.width; bx += 4)
-        trace_block(accel, frame, camera, offset, bx, by, k, specular_depth, out, rays, log);
+        trace_block(accel, frame, camera, offset, bx, by, k, glass_branches, specular_depth, out, rays, log);
   }
 }
 

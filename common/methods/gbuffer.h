@@ -31,18 +31,21 @@ struct Region {
 // The tile plus its border, clipped to the image.
 Region tile_region(const TileJob& job, int image_width, int image_height);
 
-// The region's layers: S sub-sample positions (methods/subpixel.h) times B
+// The region's layers: S sub-sample positions (methods/subpixel.h) times the
 // glass branches. Layer l = b S + k holds branch b of sub-sample k of every
 // pixel, row-major, so each layer reads like a one-sample G-buffer of the
-// region and the discontinuity buffer filters it on its own. Branch 0 is what
-// the camera ray reaches by refraction (or the mirror); branch b > 0 is the
-// b-th reflection split off a glass surface along the way (see
-// follow_specular_tree), invalid where there was none.
+// region and the discontinuity buffer filters it on its own. Branch 0 is
+// where the camera ray's chain ends (refracted at glass, or reflected under
+// total internal reflection); branch b > 0 is the b-th reflection split off a
+// glass surface along the way (see follow_specular_tree), invalid where
+// there was none. Only the branches some pixel of the region reached are
+// present (`branches` <= the setting): a tile without glass has S layers and
+// costs what it did before glass branches existed.
 struct GBuffer {
   Region region;
   int samples = 1;   // S
-  int branches = 1;  // B
-  std::vector<GSample> layers;  // S B region.pixels()
+  int branches = 1;  // branches present in this region, 1 <= branches <= --glass-branches
+  std::vector<GSample> layers;  // at least S branches region.pixels(); the rest is scratch
 
   int layer_count() const { return samples * branches; }
   // The sub-sample a layer belongs to (its VPL group, its position).
@@ -74,8 +77,9 @@ void follow_specular_chain(const Accel& accel, Ray ray, Hit hit, uint32_t seed, 
 // glass picks by Fresnel as follow_specular_chain does (branch 0 with the
 // same numbers). Every branch is an unbiased estimate of its part, and their
 // sum is the pixel's: the split changes the noise, never the mean.
-// `out[b]` receives branch b, for b < branches (those not reached stay invalid).
-void follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, int specular_depth, int branches,
-                          GSample* const* out, RayCounts& rays);
+// `out[b]` receives branch b, reset first, for the b < returned count that
+// were created; the others are not touched.
+int follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, int specular_depth, int branches,
+                         GSample* const* out, RayCounts& rays);
 
 }  // namespace igi
