@@ -272,20 +272,37 @@ TEST(CausticAccuracy, TheCausticsMeanConvergesToThePathTracersAsPhotonsGrow) {
 // --- Bad options: a clear error naming the option, before any work.
 
 TEST(CausticOptions, BadValuesAreRefusedBeforeAnyWork) {
+  // The checks both command lines and the wire make, in process.
+  auto error = [](void (*change)(RenderSettings&)) {
+    RenderSettings s = caustic_settings(20000);
+    change(s);
+    return settings_error(s).value_or("");
+  };
+  EXPECT_EQ(error([](RenderSettings&) {}), "");
+  EXPECT_EQ(error([](RenderSettings& s) { s.caustic_photons = 0; }).rfind("--caustic-photons: 0, expected 1 to 67108864", 0), 0u);
+  EXPECT_EQ(error([](RenderSettings& s) { s.caustic_photons = (1 << 26) + 1; }).rfind("--caustic-photons: 67108865", 0), 0u);
+  EXPECT_EQ(error([](RenderSettings& s) { s.caustic_radius = 0; })
+                .rfind("--caustic-radius: 0, expected a fraction of the scene diagonal in [1e-05, 0.25]", 0), 0u);
+  EXPECT_EQ(error([](RenderSettings& s) { s.caustic_radius = 0.5f; }).rfind("--caustic-radius: 0.5", 0), 0u);
+  EXPECT_EQ(error([](RenderSettings& s) { s.caustic_radius = NAN; }).rfind("--caustic-radius: nan", 0), 0u);
+  EXPECT_EQ(error([](RenderSettings& s) { s.glass_branches = 9; }), "--glass-branches: expected 1..8, got 9");
+  EXPECT_EQ(error([](RenderSettings& s) { s.glass_branches = 0; }), "--glass-branches: expected 1..8, got 0");
+  // Beyond memory: 2^26 paths may store 4 photons each.
+  const std::string memory = photons::memory_error(caustic_settings(1 << 26), 16ull << 30);
+  EXPECT_EQ(memory.rfind("--caustic-photons: 67108864 photon paths can store up to 28.0 GiB", 0), 0u) << memory;
+  EXPECT_EQ(photons::memory_error(caustic_settings(20000), 16ull << 30), "");
+  RenderSettings off = caustic_settings(1 << 26);
+  off.caustics = false;
+  EXPECT_EQ(photons::memory_error(off, 16ull << 30), "") << "no map, no memory";
+  // The command lines: exit 1 with the message, before the scene is loaded.
   struct Case {
     std::string command, expected;
   };
-  const std::string render = std::string(IGI_RENDER_BINARY) + " --scene glass --quiet -o " + test::output_path("bad.exr");
+  const std::string render = std::string(IGI_RENDER_BINARY) + " --scene no-such-scene --quiet -o " + test::output_path("bad.exr");
   const std::vector<Case> cases = {
       {render + " --caustic-photons 0", "--caustic-photons: 0, expected 1 to 67108864 photon paths per frame"},
-      {render + " --caustic-photons -5", "--caustic-photons: expected an integer >= 0"},
-      {render + " --caustic-photons 67108865", "--caustic-photons: 67108865, expected 1 to 67108864"},
-      {render + " --caustic-radius 0", "--caustic-radius: 0, expected a fraction of the scene diagonal in [1e-05, 0.25]"},
-      {render + " --caustics --caustic-radius 0.5", "--caustic-radius: 0.5, expected"},
       {render + " --caustic-radius x", "--caustic-radius: expected a non-negative number, got 'x'"},
       {render + " --caustics --method pt", "--caustics: only the ir and igi methods"},
-      {render + " --glass-branches 0", "--glass-branches: expected an integer >= 1"},
-      {render + " --glass-branches 9", "--glass-branches: expected 1..8, got 9"},
       {std::string(IGI_MASTER_BINARY) + " --workers 0 --frames 1 --caustic-radius 0 -o " + test::output_path("bad.exr"),
        "--caustic-radius: 0, expected"},
   };
@@ -294,11 +311,6 @@ TEST(CausticOptions, BadValuesAreRefusedBeforeAnyWork) {
     EXPECT_EQ(r.exit_code, 1) << c.command << "\n" << r.output;
     EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.command << "\n" << r.output;
   }
-  // Beyond memory: refused from the settings alone (the check the command lines make).
-  RenderSettings s = caustic_settings(1 << 26);
-  const std::string error = photons::memory_error(s, 16ull << 30);
-  EXPECT_NE(error.find("--caustic-photons: 67108864 photon paths can store up to 28.0 GiB"), std::string::npos) << error;
-  EXPECT_EQ(photons::memory_error(caustic_settings(20000), 16ull << 30), "");
 }
 
 // --- Energy: a glass sphere in a uniformly lit closed box.
