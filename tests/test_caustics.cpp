@@ -216,8 +216,8 @@ CausticRegion caustic_region(const test::Prepared& p, int width, int height) {
   return r;
 }
 
-// Mean luminance over the region's pixels of a tile rendered by `method`.
-double region_mean(const Method& method, const FrameSetup& frame, const RenderSettings& s, const CausticRegion& r) {
+// Mean luminance over the region's pixels of its tile, rendered by `method` (begun).
+double region_mean(const Method& method, const RenderSettings& s, const CausticRegion& r) {
   TileJob job = r.tile;
   job.border = tile_border(s);
   std::vector<glm::vec3> pixels(size_t(job.w) * job.h);
@@ -240,7 +240,7 @@ TEST(CausticAccuracy, TheCausticsMeanConvergesToThePathTracersAsPhotonsGrow) {
   FrameSetup frame = p.frame(width, height, 7);
   frame.sample_count = 2048;
   pt.begin_frame(frame);
-  const double reference = region_mean(pt, frame, pts, region);
+  const double reference = region_mean(pt, pts, region);
   // igi with 4 passes of fresh VPLs and photons, the photon count growing.
   auto igi_mean = [&](int photons) {
     RenderSettings s = caustic_settings(std::max(photons, 1));
@@ -250,7 +250,7 @@ TEST(CausticAccuracy, TheCausticsMeanConvergesToThePathTracersAsPhotonsGrow) {
     for (uint32_t pass = 0; pass < 4; ++pass) {
       const FrameSetup f = p.frame(width, height, 11 + pass);
       igi.begin_frame(f);
-      sum += region_mean(igi, f, s, region);
+      sum += region_mean(igi, s, region);
     }
     return sum / 4.0;
   };

@@ -48,6 +48,8 @@ struct GBuffer {
   std::vector<GSample> layers;  // at least S branches region.pixels(); the rest is scratch
 
   int layer_count() const { return samples * branches; }
+  // Shading points in the present layers (layers.size() may hold more: scratch).
+  size_t points() const { return size_t(layer_count()) * region.pixels(); }
   // The sub-sample a layer belongs to (its VPL group, its position).
   int subsample_of_layer(int layer) const { return layer % samples; }
   GSample& at(int layer, size_t pixel) { return layers[size_t(layer) * region.pixels() + pixel]; }

@@ -86,7 +86,7 @@ void VplMethod::collect_set_samples(const GBuffer& gbuffer, int s, int group, Pi
 // each (set, group), then the gather hits traced from them.
 void VplMethod::shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch, RayCounts& rays) const {
   const Region& region = gbuffer.region;
-  const size_t camera_points = gbuffer.layers.size();
+  const size_t camera_points = gbuffer.points();
   const int sets = interleaved() ? vpls_.set_count() : 1;
   const int groups = vpls_.groups;
   scratch.sums.assign(camera_points + hits.points.size(), glm::vec3(0.0f));
@@ -127,7 +127,7 @@ void VplMethod::shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scrat
 void VplMethod::shade_exact(const GBuffer& gbuffer, const TileJob& job, const GlossyHits& hits, Scratch& scratch,
                             RayCounts& rays) const {
   const Region& region = gbuffer.region;
-  const size_t camera_points = gbuffer.layers.size();
+  const size_t camera_points = gbuffer.points();
   scratch.direct.assign(camera_points + hits.points.size(), glm::vec3(0.0f));
   if (exact_.empty()) return;
   PixelBatch& batch = scratch.batch;
@@ -153,7 +153,7 @@ void VplMethod::shade_exact(const GBuffer& gbuffer, const TileJob& job, const Gl
 // whole set's estimate, plus what its gather rays brought back (a gather
 // ray that lands on a diffuse surface brings its caustic too).
 void VplMethod::combine(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch) const {
-  const size_t camera_points = gbuffer.layers.size();
+  const size_t camera_points = gbuffer.points();
   // Each set alone estimates the full light (ir averages all of them); each group 1 / G of it.
   const float scale = float(vpls_.groups) / (interleaved() ? 1.0f : float(vpls_.set_count()));
   scratch.value.resize(camera_points);
