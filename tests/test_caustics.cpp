@@ -289,7 +289,7 @@ TEST(CausticOptions, BadValuesAreRefusedBeforeAnyWork) {
   EXPECT_EQ(error([](RenderSettings& s) { s.glass_branches = 0; }), "--glass-branches: expected 1..8, got 0");
   // Beyond memory: 2^26 paths may store 4 photons each.
   const std::string memory = photons::memory_error(caustic_settings(1 << 26), 16ull << 30);
-  EXPECT_EQ(memory.rfind("--caustic-photons: 67108864 photon paths can store up to 28.0 GiB", 0), 0u) << memory;
+  EXPECT_EQ(memory.rfind("--caustic-photons: 67108864 photon paths can store up to 30.0 GiB", 0), 0u) << memory;
   EXPECT_EQ(photons::memory_error(caustic_settings(20000), 16ull << 30), "");
   RenderSettings off = caustic_settings(1 << 26);
   off.caustics = false;

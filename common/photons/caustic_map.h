@@ -14,7 +14,14 @@
 //   L(x, wo) = sum_p f(x, wo, wi_p) flux_p K(|x - x_p|),
 //   K(d) = 3 / (pi r^2) (1 - d^2 / r^2)^2,
 // the Silverman-type kernel of pbrt-v2's photon map (it integrates to 1
-// over the disc of radius r and falls smoothly to 0 at its edge). Only
+// over the disc of radius r and falls smoothly to 0 at its edge), with two
+// radii: r (--caustic-radius) for photons straight from an emitter through
+// mirrors and glass (L S+ D, the focused caustics), and kBouncedRadiusScale
+// x r for photons whose path bounced off a diffuse or glossy surface first
+// (L (D|G)+ S+ D: indirect light passed on by a mirror or glass, as smooth as
+// any indirect light, and sparse: at one radius for both it speckles every
+// wall the mirror faces). Each kernel integrates to 1, so the split moves no
+// energy, it only blurs the smooth part more. Only
 // photons on the viewer's side of a surface facing the same way count
 // (normals within kNormalCos), so light does not leak through thin walls or
 // round corners; near such edges the disc is partly empty and the estimate
@@ -33,6 +40,7 @@ namespace igi {
 class CausticMap {
  public:
   static constexpr float kNormalCos = 0.9f;
+  static constexpr float kBouncedRadiusScale = 4.0f;
 
   CausticMap(const SceneContext& context, const RenderSettings& settings);
 
@@ -42,7 +50,7 @@ class CausticMap {
 
   uint64_t hash() const { return hash_; }
   uint32_t paths() const { return paths_; }
-  size_t photon_count() const { return grid_.size(); }
+  size_t photon_count() const { return focused_.size() + bounced_.size(); }
   float radius() const { return radius_; }
   // Rays traced by the last build().
   const RayCounts& rays() const { return rays_; }
@@ -52,7 +60,7 @@ class CausticMap {
   RenderSettings settings_;
   float radius_;      // absolute, in scene units
   uint32_t paths_;
-  PhotonGrid grid_;
+  PhotonGrid focused_, bounced_;  // Photon::bounced 0 and 1, radius r and kBouncedRadiusScale r
   uint64_t hash_ = 0;
   RayCounts rays_;
 };

@@ -22,7 +22,7 @@ inline constexpr float kMinCausticRadius = 1e-5f;
 inline constexpr float kMaxCausticRadius = 0.25f;
 inline constexpr int kMaxPhotonsPerPath = 4;
 // A photon, its copy in the grid's order and the grid's per-photon share.
-inline constexpr uint64_t kBytesPerPhoton = 2 * 48 + 16;
+inline constexpr uint64_t kBytesPerPhoton = 2 * 52 + 16;
 
 // "" when the caustic options are usable, else what is wrong, naming the option.
 std::string settings_error(const RenderSettings& s);

@@ -16,6 +16,11 @@ struct Photon {
   glm::vec3 incident{0.0f};  // unit, from the surface back towards the last mirror or glass
   glm::vec3 normal{0.0f};    // geometric normal on the side the light arrived from
   glm::vec3 flux{0.0f};
+  // 1 when the path met a diffuse or glossy surface before its last mirrors
+  // or glass (L (D|G)+ S+ D: light that bounced before it was focused, as
+  // smooth as any indirect light), 0 for light straight from the emitter
+  // (L S+ D: the sharp caustics). caustic_map.h gathers the two apart.
+  uint32_t bounced = 0;
 };
 
 }  // namespace igi

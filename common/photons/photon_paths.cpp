@@ -22,7 +22,7 @@ void trace_path(const SceneContext& ctx, const RenderSettings& settings, uint32_
   const LightPathStart start = start_light_path(ctx.lights, ctx.scene, start_stream);
   Ray ray = start.ray;
   glm::vec3 flux = start.flux;
-  bool after_specular = false;
+  bool after_specular = false, bounced = false;
   int stored = 0;
   const int max_depth = depth_limit(settings.light_depth);
   for (int depth = 0; depth < max_depth; ++depth) {
@@ -34,9 +34,10 @@ void trace_path(const SceneContext& ctx, const RenderSettings& settings, uint32_
     if (!sp.material->is_specular()) {
       if (after_specular && receives_vpls(*sp.material, settings.glossy_threshold)) {
         const glm::vec3 n = glm::dot(wo, sp.geometric_normal) >= 0.0f ? sp.geometric_normal : -sp.geometric_normal;
-        out.push_back(Photon{sp.position, wo, n, flux * inv_paths});
+        out.push_back(Photon{sp.position, wo, n, flux * inv_paths, bounced ? 1u : 0u});
         if (++stored == photons::kMaxPhotonsPerPath) return;
       }
+      bounced = true;
     }
     after_specular = sp.material->is_specular();
     // The lobe and roulette numbers share one 2D point (each 1D draw would
@@ -58,7 +59,7 @@ void trace_path(const SceneContext& ctx, const RenderSettings& settings, uint32_
 
 std::vector<Photon> trace_photon_paths(const SceneContext& context, const RenderSettings& settings, uint32_t seed,
                                        uint32_t paths, int threads, RayCounts& rays) {
-  static_assert(sizeof(Photon) == 48, "caustic_settings.h counts 48 bytes a photon");
+  static_assert(sizeof(Photon) == 52, "caustic_settings.h counts 52 bytes a photon");
   const uint32_t path_seed = hash(seed, 0x70686f74u);  // "phot": independent of the VPL paths
   const float inv_paths = 1.0f / float(paths);
   const uint32_t chunks = (paths + kChunk - 1) / kChunk;
