@@ -21,11 +21,11 @@
 // (L (D|G)+ S+ D: indirect light passed on by a mirror or glass, as smooth as
 // any indirect light, and sparse: at one radius for both it speckles every
 // wall the mirror faces). Each kernel integrates to 1, so the split moves no
-// energy, it only blurs the smooth part more. Only
-// photons on the viewer's side of a surface facing the same way count
-// (normals within kNormalCos), so light does not leak through thin walls or
-// round corners; near such edges the disc is partly empty and the estimate
-// darkens (boundary bias, as any fixed-radius estimate).
+// energy, it only blurs the smooth part more. Only photons on the viewer's
+// side of a surface facing the same way count (normals within kNormalCos),
+// so light does not leak through thin walls or round corners; near such
+// edges the disc is partly empty and the estimate darkens (boundary bias, as
+// any fixed-radius estimate).
 //
 // Thread-safety: build() single caller; radiance() const, any threads.
 #include <cstdint>

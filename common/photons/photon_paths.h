@@ -13,7 +13,8 @@
 // only by an unoccluded shadow ray, and shadow rays stop at glass. Paths
 // through sharp GGX surfaces are not photons: such a surface gets a VPL with
 // a widened lobe (VplShading::vpl_bsdf), which lights what it reflects onto,
-// so counting it here too would count it twice.
+// so counting it here too would count it twice. A photon records whether
+// its path bounced off such a surface before (Photon::bounced).
 //
 // A path stops after kMaxPhotonsPerPath photons (its flux by then has passed
 // four diffuse-after-specular bounces): the map's size is bounded before any
