@@ -40,7 +40,7 @@ namespace igi {
 class CausticMap {
  public:
   static constexpr float kNormalCos = 0.9f;
-  static constexpr float kBouncedRadiusScale = 4.0f;
+  static constexpr float kBouncedRadiusScale = 2.0f;
 
   CausticMap(const SceneContext& context, const RenderSettings& settings);
 

@@ -15,6 +15,9 @@ PhotonGrid::PhotonGrid(const std::vector<Photon>& photons, float radius, glm::ve
     key[i] = bucket(cell(photons[i].position));
     ++begin_[key[i] + 1];
   }
+  occupied_.assign((size_t(buckets) + 63) / 64, 0);
+  for (uint32_t b = 0; b < buckets; ++b)
+    if (begin_[b + 1] > 0) occupied_[b >> 6] |= uint64_t(1) << (b & 63);
   for (uint32_t b = 0; b < buckets; ++b) begin_[b + 1] += begin_[b];
   std::vector<uint32_t> fill(begin_.begin(), begin_.end() - 1);
   photons_.resize(photons.size());

@@ -17,7 +17,9 @@
 // (k: at least twice the photon count). Buckets that several of the eight
 // cells share are visited once, and a photon is accepted by its distance
 // alone, so collisions cost time, never correctness. Photons are stored
-// bucket by bucket in path order: the same photons give the same grid.
+// bucket by bucket in path order: the same photons give the same grid. A
+// bit per bucket says whether it holds any photon: most pixels are far from
+// every photon, and their lookups then touch only that bitset.
 #include <cstdint>
 #include <vector>
 
@@ -49,6 +51,7 @@ class PhotonGrid {
       for (int dy = 0; dy < 2; ++dy)
         for (int dx = 0; dx < 2; ++dx) {
           const uint32_t b = bucket(c0 + glm::ivec3(dx, dy, dz));
+          if (!(occupied_[b >> 6] >> (b & 63) & 1u)) continue;  // most are empty: no load of begin_
           bool again = false;
           for (int i = 0; i < seen_count; ++i) again |= seen[i] == b;
           if (again) continue;
@@ -78,6 +81,7 @@ class PhotonGrid {
   glm::vec3 origin_{0.0f};
   uint32_t mask_ = 0;
   std::vector<uint32_t> begin_;  // mask + 2 offsets into photons_
+  std::vector<uint64_t> occupied_;  // one bit a bucket: any photon in it (small enough for L1)
   std::vector<Photon> photons_;  // grouped by bucket, path order inside each
 };
 

@@ -8,7 +8,9 @@
 // Three parts, every figure from this one run (ratios within it):
 //  1. pass: the photon pass alone (trace the frame's photon paths on T
 //     threads, grid them) per photon count, median of F frames (seeds 1..F),
-//     wall and process CPU time, photons stored, rays -> DIR/pass.csv.
+//     wall and process CPU time, photons stored, rays; and the density
+//     estimate's cost per pixel (one thread, every pixel centre of a
+//     --fps-size frame that sees a diffuse surface) -> DIR/pass.csv.
 //  2. fps: whole frames of igi at --fps-size (640x480) on T threads, 40x40
 //     tiles and --fps-vpl-paths (6: scripts/bench-igi.sh's setting), on the
 //     Cornell box (the baseline), then on the scene without caustics and with
@@ -153,9 +155,13 @@ RenderSettings igi_settings(const Options& o, int photons) {
 
 void bench_pass(const Prepared& p, const Options& o) {
   std::ofstream csv(o.out + "/pass.csv");
-  csv << "scene,photon_paths,threads,ms,cpu_ms,photons_stored,rays,ns_per_path\n";
-  std::printf("photon pass (%s, %d threads, median of %d frames)\n%10s %9s %9s %10s %10s %9s\n", o.scene.c_str(),
-              o.threads, o.frames, "paths", "ms", "cpu ms", "photons", "rays", "ns/path");
+  csv << "scene,photon_paths,threads,ms,cpu_ms,photons_stored,rays,ns_per_path,estimate_ns_per_pixel\n";
+  std::printf("photon pass (%s, %d threads, median of %d frames)\n%10s %9s %9s %10s %10s %9s %12s\n", o.scene.c_str(),
+              o.threads, o.frames, "paths", "ms", "cpu ms", "photons", "rays", "ns/path", "estimate ns");
+  GBuffer gbuffer;
+  RayCounts rays;
+  build_gbuffer(p.accel, p.frame(o.fps_width, o.fps_height, 1), Region{0, 0, o.fps_width, o.fps_height}, 1, 1, 16,
+                gbuffer, rays);
   for (int n : o.photons) {
     CausticMap map(p.context(), igi_settings(o, n));
     std::vector<double> wall, cpu;
@@ -167,12 +173,21 @@ void bench_pass(const Prepared& p, const Options& o) {
       cpu.push_back(d.cpu);
     }
     const double ms = 1e3 * median(wall), cpu_ms = 1e3 * median(cpu);
+    std::vector<double> estimate;
+    glm::vec3 keep(0.0f);  // so the estimates are not optimised away
+    for (int f = 0; f < 3; ++f) {
+      size_t pixels = 0;
+      const Clock start = Clock::now();
+      for (const GSample& g : gbuffer.layers)
+        if (g.valid()) { keep += map.radiance(g); ++pixels; }
+      estimate.push_back(1e9 * (Clock::now() - start).cpu / double(std::max<size_t>(pixels, 1)));
+    }
     char line[256];
-    std::snprintf(line, sizeof line, "%s,%d,%d,%.3f,%.3f,%zu,%llu,%.1f\n", o.scene.c_str(), n, o.threads, ms, cpu_ms,
-                  map.photon_count(), (unsigned long long)map.rays().total(), 1e6 * ms / n);
+    std::snprintf(line, sizeof line, "%s,%d,%d,%.3f,%.3f,%zu,%llu,%.1f,%.1f\n", o.scene.c_str(), n, o.threads, ms, cpu_ms,
+                  map.photon_count(), (unsigned long long)map.rays().total(), 1e6 * ms / n, median(estimate));
     csv << line;
-    std::printf("%10d %9.2f %9.2f %10zu %10llu %9.1f\n", n, ms, cpu_ms, map.photon_count(),
-                (unsigned long long)map.rays().total(), 1e6 * ms / n);
+    std::printf("%10d %9.2f %9.2f %10zu %10llu %9.1f %12.1f%s\n", n, ms, cpu_ms, map.photon_count(),
+                (unsigned long long)map.rays().total(), 1e6 * ms / n, median(estimate), keep.x < 0 ? " " : "");
   }
 }
 
