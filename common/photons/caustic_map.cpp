@@ -36,17 +36,21 @@ void CausticMap::build(uint32_t frame_seed, int threads) {
 glm::vec3 CausticMap::radiance(const GSample& g) const {
   const SurfacePoint& sp = g.surface;
   const glm::vec3 n = glm::dot(g.wo, sp.geometric_normal) >= 0.0f ? sp.geometric_normal : -sp.geometric_normal;
+  // A Lambertian receiver's demodulated BSDF is 1 / pi for every photon that
+  // passes the normal test (it arrived on the viewer's side): summed once.
+  const bool lambert = sp.material->type == MaterialType::Diffuse;
   auto estimate = [&](const PhotonGrid& grid) {
     const float inv_r2 = 1.0f / (grid.radius() * grid.radius());
     glm::vec3 sum(0.0f);
     grid.for_each_within(sp.position, [&](const Photon& p, float d2) {
       if (glm::dot(p.normal, n) < kNormalCos) return;
       const float t = 1.0f - d2 * inv_r2;
-      sum += VplShading::demodulated_bsdf(g, p.incident) * p.flux * (t * t);
+      sum += (lambert ? p.flux : VplShading::demodulated_bsdf(g, p.incident) * p.flux) * (t * t);
     });
     return sum * (3.0f * kInvPi * inv_r2);
   };
-  return estimate(focused_) + estimate(bounced_);
+  const glm::vec3 sum = estimate(focused_) + estimate(bounced_);
+  return lambert ? sum * kInvPi : sum;
 }
 
 }  // namespace igi

@@ -22,6 +22,8 @@ PhotonGrid::PhotonGrid(const std::vector<Photon>& photons, float radius, glm::ve
   std::vector<uint32_t> fill(begin_.begin(), begin_.end() - 1);
   photons_.resize(photons.size());
   for (size_t i = 0; i < photons.size(); ++i) photons_[fill[key[i]]++] = photons[i];
+  positions_.resize(photons_.size());
+  for (size_t i = 0; i < photons_.size(); ++i) positions_[i] = photons_[i].position;
 }
 
 }  // namespace igi

@@ -57,7 +57,7 @@ class PhotonGrid {
           if (again) continue;
           seen[seen_count++] = b;
           for (uint32_t i = begin_[b]; i < begin_[b + 1]; ++i) {
-            const glm::vec3 d = photons_[i].position - p;
+            const glm::vec3 d = positions_[i] - p;
             const float d2 = glm::dot(d, d);
             if (d2 < r2) f(photons_[i], d2);
           }
@@ -83,6 +83,7 @@ class PhotonGrid {
   std::vector<uint32_t> begin_;  // mask + 2 offsets into photons_
   std::vector<uint64_t> occupied_;  // one bit a bucket: any photon in it (small enough for L1)
   std::vector<Photon> photons_;  // grouped by bucket, path order inside each
+  std::vector<glm::vec3> positions_;  // photons_' positions, packed: most candidates fail the distance test
 };
 
 }  // namespace igi
