@@ -10,11 +10,13 @@
 // (bsdf.h: receives_vpls) and was reached straight from a mirror or glass:
 // the light of paths L (D|G)* S+ D whose last segments pass through specular
 // surfaces. That is exactly what the VPL methods miss: a VPL lights a point
-// only by an unoccluded shadow ray, and shadow rays stop at glass. Paths
-// through sharp GGX surfaces are not photons: such a surface gets a VPL with
-// a widened lobe (VplShading::vpl_bsdf), which lights what it reflects onto,
-// so counting it here too would count it twice. A photon records whether
-// its path bounced off such a surface before (Photon::bounced).
+// only by an unoccluded shadow ray, and shadow rays stop at glass. A sharp
+// GGX surface is a bounce, not a mirror: it gets a VPL with a widened lobe
+// (VplShading::vpl_bsdf) that lights what it reflects onto, so no photon
+// follows it directly (that would count L G D twice), and none is stored on
+// it (it gathers its lobe with rays, methods/glossy_gather.h). A photon
+// records whether its path bounced off a non-specular surface before
+// (Photon::bounced).
 //
 // A path stops after kMaxPhotonsPerPath photons (its flux by then has passed
 // four diffuse-after-specular bounces): the map's size is bounded before any
