@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "lightcuts/lightcuts_settings.h"
+#include "photons/caustic_settings.h"
 #include "scene/builtin_scenes.h"
 
 namespace igi {
@@ -52,6 +53,16 @@ void check_lightcuts(const RenderSettings& s) {
   if (!error.empty()) throw std::invalid_argument(error);
 }
 
+// Before any work: a caustic map that could not fit in memory.
+void check_caustics(const RenderSettings& s) {
+  if (!s.caustics) return;
+  if (s.method != MethodKind::InstantRadiosity && s.method != MethodKind::Igi)
+    throw std::invalid_argument("--caustics: only the ir and igi methods add caustic photons (pt finds caustics "
+                                "by itself), got --method " + std::string(method_name(s.method)));
+  const std::string error = photons::memory_error(s, lightcuts::physical_memory_bytes());
+  if (!error.empty()) throw std::invalid_argument(error);
+}
+
 }  // namespace
 
 std::string render_usage(const std::string& program) {
@@ -82,6 +93,12 @@ std::string render_usage(const std::string& program) {
          "  --no-filter           igi: skip the discontinuity buffer\n"
          "  --filter-normal C     igi: neighbours need normal dot above C [0.9]\n"
          "  --filter-depth R      igi: neighbours need relative depth difference below R [0.05]\n"
+         "  --glass-branches B    ir/igi: glass seen from the camera splits into reflection and refraction at its\n"
+         "                        first B - 1 surfaces, each branch filtered on its own; 1 = pick one by Fresnel [3]\n"
+         "  --caustics            ir/igi: add caustics from a photon map (light through mirrors and glass)\n"
+         "  --caustic-photons N   ir/igi: photon paths shot per frame, >= 1; implies --caustics [20000]\n"
+         "  --caustic-radius R    ir/igi: photon gather radius, a fraction of the scene diagonal; implies\n"
+         "                        --caustics [0.01]\n"
          "  --lightcuts-error E   lightcuts (over all --vpl-sets x --vpl-paths VPLs): refine until every cluster's\n"
          "                        error bound is below E x the pixel's total, 0 < E < 1 [0.02]\n"
          "  --lightcuts-max-cut N lightcuts: at most N nodes (shadow rays) in a cut [1000]\n"
@@ -132,6 +149,10 @@ RenderOptions parse_render_options(const std::vector<std::string>& args) {
     else if (a == "--no-filter") s.filter = false;
     else if (a == "--filter-normal") s.filter_normal_cos = to_float(a, value());
     else if (a == "--filter-depth") s.filter_depth_ratio = to_float(a, value());
+    else if (a == "--glass-branches") s.glass_branches = to_int(a, value(), 1);
+    else if (a == "--caustics") s.caustics = true;
+    else if (a == "--caustic-photons") { s.caustic_photons = to_int(a, value(), 0); s.caustics = true; }
+    else if (a == "--caustic-radius") { s.caustic_radius = to_float(a, value()); s.caustics = true; }
     else if (a == "--lightcuts-error") s.lightcuts_error = to_number(a, value());
     else if (a == "--lightcuts-max-cut") s.lightcuts_max_cut = to_int(a, value(), 1);
     else if (a == "--lightcuts-spacing") s.lightcuts_spacing = to_int(a, value(), 0);
@@ -144,6 +165,7 @@ RenderOptions parse_render_options(const std::vector<std::string>& args) {
   }
   if (auto error = settings_error(o.settings)) throw std::invalid_argument(*error);
   check_lightcuts(o.settings);
+  check_caustics(o.settings);
   return o;
 }
 

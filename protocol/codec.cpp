@@ -10,6 +10,7 @@
 
 #include "lightcuts/lightcuts_settings.h"
 #include "methods/subpixel.h"
+#include "photons/caustic_settings.h"
 #include "protocol/wire.h"
 
 namespace igi::protocol {
@@ -106,6 +107,10 @@ void write(Writer& w, const RenderSettings& s) {
   w.i32(s.lightcuts_max_cut);
   w.i32(s.lightcuts_spacing);
   w.i32(s.lightcuts_samples);
+  w.i32(s.glass_branches);
+  w.boolean(s.caustics);
+  w.i32(s.caustic_photons);
+  w.f32(s.caustic_radius);
 }
 
 void read(Reader& r, RenderSettings& s) {
@@ -147,6 +152,13 @@ void read(Reader& r, RenderSettings& s) {
   check_range(r, "settings.lightcuts_spacing", s.lightcuts_spacing, 0, lightcuts::kMaxSpacing);
   s.lightcuts_samples = r.i32("settings.lightcuts_samples");
   check_range(r, "settings.lightcuts_samples", s.lightcuts_samples, 1, lightcuts::kMaxSamples);
+  s.glass_branches = r.i32("settings.glass_branches");
+  check_range(r, "settings.glass_branches", s.glass_branches, 1, kMaxGlassBranches);
+  s.caustics = r.boolean("settings.caustics");
+  s.caustic_photons = r.i32("settings.caustic_photons");
+  check_range(r, "settings.caustic_photons", s.caustic_photons, 1, photons::kMaxCausticPhotons);
+  s.caustic_radius = r.f32("settings.caustic_radius");
+  check_closed(r, "settings.caustic_radius", s.caustic_radius, photons::kMinCausticRadius, photons::kMaxCausticRadius);
   // What else lightcuts refuses (a non-square sample count, spacing with samples).
   if (r.ok() && s.method == MethodKind::Lightcuts && !lightcuts::settings_error(s).empty())
     r.fail("settings.lightcuts", lightcuts::settings_error(s));

@@ -7,12 +7,12 @@
 #   scripts/bench-accuracy.sh [--size WxH] [--ref-spp N] [--scenes a,b] [--quick]
 #
 # Defaults: 160x120, 4096-spp references, all scenes
-# (cornell, corner, rooms, glossy, glossy-rough, large).
+# (cornell, corner, rooms, glossy, glossy-rough, large, glass).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 size=160x120
 ref_spp=4096
-scenes=cornell,corner,rooms,glossy,glossy-rough,large
+scenes=cornell,corner,rooms,glossy,glossy-rough,large,glass
 extra=()
 while [ $# -gt 0 ]; do
   case "$1" in

@@ -84,6 +84,23 @@ TEST(Distributed, AntialiasingGlossyGatherAndExactLightsMatchOneProcess) {
   }
 }
 
+// The caustic photon map is traced by every worker from the frame seed (its
+// hash joins the VPLs'), and glass branches split the G-buffer: workers give
+// the one-process image.
+TEST(Distributed, CausticsAndGlassBranchesMatchOneProcess) {
+  const std::string out = test::output_path("dist-caustics.exr");
+  auto r = test::run(master("--workers 2 --frames 1 --caustic-photons 4000 --glass-branches 3 -o " + out, "glass"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  test::Prepared p(load_scene("glass"));
+  RenderSettings s;
+  s.method = MethodKind::Igi;
+  s.paths_per_set = 8;
+  s.glass_branches = 3;
+  s.caustics = true;
+  s.caustic_photons = 4000;
+  EXPECT_TRUE(test::images_identical("dist-caustics", read_image(out), p.render(s, kWidth, kHeight, 1, 1)));
+}
+
 // Lightcuts' light tree and reconstruction grid through master and workers:
 // settings over the wire, tiles of 16 with the sample grid's cells across them.
 TEST(Distributed, LightcutsWithReconstructionCutsMatchTheSingleProcessRenderBitForBit) {

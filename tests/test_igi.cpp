@@ -50,17 +50,22 @@ struct TileCase {
 
 // Every option that changes how a pixel is shaded, on a scene where it acts:
 // anti-aliasing, the glossy gather (glossy), exact spot light (corner),
-// bias compensation.
+// bias compensation, glass branches and the caustic photon map (glass).
 std::vector<TileCase> tile_cases() {
   RenderSettings all = vpl_settings(MethodKind::Igi, 4, 0.05f, true, 2);
   all.aa_samples = 4;
   RenderSettings ir_all = all;
   ir_all.method = MethodKind::InstantRadiosity;
+  RenderSettings caustics = all;
+  caustics.caustics = true;
+  caustics.caustic_photons = 3000;
+  caustics.caustic_radius = 0.02f;
   return {{"ir", "cornell", vpl_settings(MethodKind::InstantRadiosity, 4, 0.05f)},
           {"igi", "cornell", vpl_settings(MethodKind::Igi, 4, 0.05f)},
           {"igi_aa_glossy_compensation", "glossy", all},
           {"ir_aa_glossy_compensation", "glossy", ir_all},
           {"igi_aa_spot", "corner", all},
+          {"igi_aa_glass_caustics", "glass", caustics},
           {"lightcuts", "cornell", vpl_settings(MethodKind::Lightcuts, 4, 0.05f)}};
 }
 

@@ -38,7 +38,9 @@ bool same(const RenderSettings& a, const RenderSettings& b) {
          a.compensation_samples == b.compensation_samples && a.filter == b.filter &&
          same(a.filter_normal_cos, b.filter_normal_cos) && same(a.filter_depth_ratio, b.filter_depth_ratio) &&
          same(a.lightcuts_error, b.lightcuts_error) && a.lightcuts_max_cut == b.lightcuts_max_cut &&
-         a.lightcuts_spacing == b.lightcuts_spacing && a.lightcuts_samples == b.lightcuts_samples;
+         a.lightcuts_spacing == b.lightcuts_spacing && a.lightcuts_samples == b.lightcuts_samples &&
+         a.glass_branches == b.glass_branches && a.caustics == b.caustics && a.caustic_photons == b.caustic_photons &&
+         same(a.caustic_radius, b.caustic_radius);
 }
 bool same(const Hello& a, const Hello& b) {
   return a.build_id == b.build_id && a.simd == b.simd && a.threads == b.threads;
@@ -96,7 +98,8 @@ TileResult sample_half_tile_result() {
 }
 
 std::vector<Message> samples() {
-  RenderSettings settings{MethodKind::InstantRadiosity, 7, 5, 3, 4, 64, 9, 0.3f, 2, 0.05f, 3, false, 0.8f, 0.1f, 0.03f, 500, 6, 4};
+  RenderSettings settings{MethodKind::InstantRadiosity, 7, 5, 3, 4, 64, 9, 0.3f, 2, 0.05f, 3, false, 0.8f, 0.1f, 0.03f, 500, 6, 4,
+                          5, true, 12345, 0.02f};
   Camera camera{{1, 2, 3}, {0, -0.2f, -1}, {0.1f, 1, 0}, 0.9f};
   std::vector<uint8_t> scene(300);
   for (size_t i = 0; i < scene.size(); ++i) scene[i] = uint8_t(i * 7);
@@ -386,6 +389,13 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {settings_edited([](auto& s) { s.lightcuts_samples = 65; }), "Welcome.settings.lightcuts_samples"},
       {settings_edited([](auto& s) { s.method = MethodKind::Lightcuts; s.lightcuts_samples = 5; }),
        "Welcome.settings.lightcuts: --lightcuts-samples: 5, expected a square number"},
+      {settings_edited([](auto& s) { s.glass_branches = 0; }), "Welcome.settings.glass_branches: 0, expected [1, 8]"},
+      {settings_edited([](auto& s) { s.glass_branches = 9; }), "Welcome.settings.glass_branches"},
+      {settings_edited([](auto& s) { s.caustic_photons = 0; }), "Welcome.settings.caustic_photons: 0, expected [1, "},
+      {settings_edited([](auto& s) { s.caustic_photons = (1 << 26) + 1; }), "Welcome.settings.caustic_photons"},
+      {settings_edited([](auto& s) { s.caustic_radius = 0; }), "Welcome.settings.caustic_radius: 0, expected ["},
+      {settings_edited([](auto& s) { s.caustic_radius = 0.26f; }), "Welcome.settings.caustic_radius"},
+      {settings_edited([](auto& s) { s.caustic_radius = NAN; }), "Welcome.settings.caustic_radius"},
       {edited<SceneData>([](SceneData& m) { m.file_name = "dir/scene.glb"; }), "SceneData.file_name"},
       {edited<SceneData>([](SceneData& m) { m.file_name = ""; }), "SceneData.file_name"},
       {frame_edited([](auto& f) { f.width = 0; }), "FrameSetup.frame.width: 0"},
@@ -442,6 +452,8 @@ TEST(Protocol, LimitsThemselvesAreAccepted) {
         s.lightcuts_samples = 1;
       }),
       settings_edited([](auto& s) { s.lightcuts_samples = 64; s.lightcuts_spacing = 0; s.lightcuts_error = 0.999f; }),
+      settings_edited([](auto& s) { s.glass_branches = 1; s.caustic_photons = 1; s.caustic_radius = 1e-5f; }),
+      settings_edited([](auto& s) { s.glass_branches = 8; s.caustic_photons = 1 << 26; s.caustic_radius = 0.25f; s.caustics = false; }),
       frame_edited([](auto& f) { f.jitter_x = 0; f.jitter_y = 1; }),
       frame_edited([](auto& f) { f.width = kMaxImageSide; f.height = 1; }),
       edited<TileJobMsg>([](TileJobMsg& m) { m.tile = {kMaxImageSide - 1, 0, kMaxTileSide, 1, 64}; }),

@@ -43,7 +43,11 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_LT(glm::length(a.materials[i].base_color - b.materials[i].base_color), 1e-6f);
     EXPECT_LT(glm::length(a.materials[i].emission - b.materials[i].emission), 1e-4f);
     if (a.materials[i].type == MaterialType::Conductor) EXPECT_NEAR(a.materials[i].alpha, b.materials[i].alpha, 1e-6f);
+    if (a.materials[i].type == MaterialType::Glass) EXPECT_NEAR(a.materials[i].ior, b.materials[i].ior, 1e-6f);
   }
+  ASSERT_EQ(a.normals.size(), b.normals.size());
+  for (size_t i = 0; i < a.normals.size(); ++i)
+    ASSERT_LT(glm::length(a.normals[i] - b.normals[i]), 1e-5f) << "normal " << i;
   ASSERT_EQ(a.lights.size(), b.lights.size());
   for (size_t i = 0; i < a.lights.size(); ++i) {
     EXPECT_EQ(a.lights[i].type, b.lights[i].type);
@@ -70,7 +74,7 @@ void expect_round_trip(const std::string& name) {
 }
 
 TEST(SuiteScenes, NamesAreRegistered) {
-  for (const char* name : {"corner", "rooms", "rooms-1", "rooms-7", "rooms-10", "glossy", "large"})
+  for (const char* name : {"corner", "rooms", "rooms-1", "rooms-7", "rooms-10", "glossy", "large", "glass"})
     EXPECT_TRUE(is_builtin_scene(name)) << name;
   for (const char* name : {"rooms-0", "rooms-11", "rooms-", "rooms-x", "roomsy"})
     EXPECT_FALSE(is_builtin_scene(name)) << name;
@@ -116,6 +120,29 @@ TEST(SuiteScenes, GlossyIsTheCornellBoxWithAMetalFloor) {
       for (int k = 0; k < 3; ++k) EXPECT_NEAR(s.positions[s.triangles[t][k]].y, 0.0f, 1e-6f) << "on the floor";
   EXPECT_EQ(emissive_triangles(s), 2u);
   expect_round_trip("glossy");
+}
+
+TEST(SuiteScenes, GlassHasAMirrorBlockAndASmoothGlassSphereClearOfTheFloor) {
+  const Scene s = load_scene("glass");
+  EXPECT_NO_THROW(s.validate());
+  EXPECT_EQ(triangles_of(s, MaterialType::Mirror), 10u) << "the tall block's five faces";
+  EXPECT_EQ(triangles_of(s, MaterialType::Diffuse) + triangles_of(s, MaterialType::Mirror), 22u) << "no short block";
+  EXPECT_GT(triangles_of(s, MaterialType::Glass), 3000u);
+  EXPECT_EQ(emissive_triangles(s), 2u);
+  ASSERT_EQ(s.normals.size(), s.positions.size());
+  for (size_t t = 0; t < s.triangles.size(); ++t) {
+    const Material& m = s.materials[s.triangle_material[t]];
+    if (m.type != MaterialType::Glass) continue;
+    EXPECT_EQ(m.ior, 1.5f);
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 p = s.positions[s.triangles[t][k]];
+      EXPECT_NEAR(glm::length(p - glm::vec3(0.185f, 0.135f, 0.17f)), 0.09f, 1e-5f) << "on the sphere";
+      EXPECT_GT(p.y, 0.04f) << "hung above the floor";
+      // Smooth shading: the vertex normal is the sphere's, not the facet's.
+      EXPECT_GT(glm::dot(s.normals[s.triangles[t][k]], glm::normalize(p - glm::vec3(0.185f, 0.135f, 0.17f))), 0.99999f);
+    }
+  }
+  expect_round_trip("glass");
 }
 
 TEST(SuiteScenes, LargeHasAMillionTriangles) {

@@ -66,17 +66,9 @@ glm::vec3 conductor_eval_local(glm::vec3 wo, glm::vec3 wi, glm::vec3 f0, float a
 glm::vec3 reflect(glm::vec3 wo, glm::vec3 n) { return 2.0f * glm::dot(wo, n) * n - wo; }
 
 std::optional<BsdfSample> sample_glass(const SurfacePoint& sp, glm::vec3 wo, float u_lobe) {
-  glm::vec3 n = sp.shading_normal;
-  float cos_o = glm::dot(wo, n);
-  bool entering = glm::dot(wo, sp.geometric_normal) > 0.0f;
-  float eta = entering ? sp.material->ior : 1.0f / sp.material->ior;  // eta_t / eta_i
-  if (!entering) { n = -n; cos_o = -cos_o; }
-  float f = fresnel_dielectric(cos_o, eta);
-  if (u_lobe < f) return BsdfSample{reflect(wo, n), glm::vec3(1.0f), 1.0f, true};
-  float sin2_t = std::max(0.0f, 1.0f - cos_o * cos_o) / (eta * eta);
-  float cos_t = std::sqrt(std::max(0.0f, 1.0f - sin2_t));
-  glm::vec3 wi = glm::normalize(-wo / eta + (cos_o / eta - cos_t) * n);
-  return BsdfSample{wi, sp.albedo, 1.0f, true};
+  const DielectricBranches b = dielectric_branches(sp, wo);
+  if (u_lobe < b.reflectance) return BsdfSample{b.reflected, glm::vec3(1.0f), 1.0f, true};
+  return BsdfSample{b.refracted, sp.albedo, 1.0f, true};
 }
 
 }  // namespace
@@ -89,6 +81,23 @@ float fresnel_dielectric(float cos_i, float eta) {
   float r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
   float r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
   return 0.5f * (r_parl * r_parl + r_perp * r_perp);
+}
+
+DielectricBranches dielectric_branches(const SurfacePoint& sp, glm::vec3 wo) {
+  glm::vec3 n = sp.shading_normal;
+  float cos_o = glm::dot(wo, n);
+  const bool entering = glm::dot(wo, sp.geometric_normal) > 0.0f;
+  const float eta = entering ? sp.material->ior : 1.0f / sp.material->ior;  // eta_t / eta_i
+  if (!entering) { n = -n; cos_o = -cos_o; }
+  DielectricBranches b;
+  b.reflected = reflect(wo, n);
+  b.reflectance = fresnel_dielectric(cos_o, eta);
+  if (b.reflectance >= 1.0f) return b;
+  const float sin2_t = std::max(0.0f, 1.0f - cos_o * cos_o) / (eta * eta);
+  const float cos_t = std::sqrt(std::max(0.0f, 1.0f - sin2_t));
+  b.refracted = glm::normalize(-wo / eta + (cos_o / eta - cos_t) * n);
+  b.transmittance = (1.0f - b.reflectance) * sp.albedo;
+  return b;
 }
 
 glm::vec3 ggx_reflection(glm::vec3 n, glm::vec3 wo, glm::vec3 wi, glm::vec3 f0, float alpha) {

@@ -35,6 +35,19 @@ glm::vec3 ggx_reflection(glm::vec3 n, glm::vec3 wo, glm::vec3 wi, glm::vec3 f0, 
 // Fresnel reflectance of a smooth dielectric; cos_i may be negative (inside).
 float fresnel_dielectric(float cos_i, float eta);
 
+// Both branches of smooth glass seen from wo, on either side: the mirror
+// direction with the exact Fresnel reflectance F, and the refracted direction
+// with weight (1 - F) x tint. Under total internal reflection F = 1 and there
+// is no refracted branch. bsdf_sample picks one with probability F (weight 1
+// or tint); following both with these weights gives the same mean, noiselessly.
+struct DielectricBranches {
+  glm::vec3 reflected{0.0f};
+  float reflectance = 1.0f;          // F
+  glm::vec3 refracted{0.0f};         // valid when reflectance < 1
+  glm::vec3 transmittance{0.0f};     // (1 - F) x tint
+};
+DielectricBranches dielectric_branches(const SurfacePoint& sp, glm::vec3 wo);
+
 // How the VPL methods treat a material (RenderSettings::glossy_threshold):
 // a GGX lobe sharper than the threshold is gathered with BSDF-sampled rays;
 // VPLs neither sit on nor shade it, nor mirrors and glass.

@@ -16,17 +16,19 @@ void BiasCompensation::add(const GBuffer& gbuffer, uint32_t frame_seed, std::vec
                            RayCounts& rays) const {
   if (!enabled()) return;
   const Region& region = gbuffer.region;
-  for (int k = 0; k < gbuffer.samples; ++k)
+  for (int l = 0; l < gbuffer.layer_count(); ++l)
     for (int j = 0; j < region.height; ++j)
       for (int i = 0; i < region.width; ++i) {
-        const size_t index = size_t(k) * region.pixels() + size_t(j) * region.width + i;
+        const size_t index = size_t(l) * region.pixels() + size_t(j) * region.width + i;
         if (gbuffer.layers[index].valid())
-          irradiance[index] += at_sample(gbuffer.layers[index], region.x0 + i, region.y0 + j, k, frame_seed, rays);
+          irradiance[index] += at_sample(gbuffer.layers[index], region.x0 + i, region.y0 + j, l,
+                                         gbuffer.subsample_of_layer(l), frame_seed, rays);
       }
 }
 
-// Demodulated compensation at sub-sample k of pixel (x, y) (global coordinates).
-glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int k, uint32_t frame_seed,
+// Demodulated compensation at layer l (sub-sample k) of pixel (x, y) (global
+// coordinates). Layers of glass branch 0 (l = k) keep the sub-sample's numbers.
+glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int l, int k, uint32_t frame_seed,
                                       RayCounts& rays) const {
   const SurfacePoint& sp = g.surface;
   // GGX receivers would need f cos / pdf from their lobe, not the albedo:
@@ -38,9 +40,10 @@ glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int k, uin
   const glm::vec3 ng = front ? sp.geometric_normal : -sp.geometric_normal;
   const Frame frame(n);
   // The pixel's n rays are one stratified sequence shared out over its S
-  // sub-samples (at least one each): sub-sample k takes indices [k r, (k+1) r).
+  // sub-samples (at least one each): sub-sample k takes indices [k r, (k+1) r);
+  // each glass branch b = l / S of the pixel has a sequence of its own.
   const int per_sample = std::max(1, samples_ / vpls_.groups);
-  const uint32_t seed = hash(uint32_t(x), uint32_t(y), frame_seed);
+  const uint32_t seed = hash(hash(uint32_t(x), uint32_t(y), frame_seed), uint32_t(l / vpls_.groups));
   const int set = interleaved_ ? vpls_.set_of_pixel(x, y) : -1;
   const int group = group_of_subsample(x, y, k, vpls_.groups);
   glm::vec3 sum(0.0f);

@@ -29,8 +29,9 @@
 // (never clamped, methods/direct_lights.h) light y too: their light reflected
 // over the short hop is what the clamp cut from the VPLs their paths left on y.
 //
-// Random numbers: sample_2d(k n / S + i, 0, hash(x, y, frame seed)) in GLOBAL
-// pixel coordinates (x, y), sub-sample k, so a pixel's compensation is the
+// Random numbers: sample_2d(k n / S + i, 0, hash(hash(x, y, frame seed), b))
+// in GLOBAL pixel coordinates (x, y), sub-sample k, glass branch b of G-buffer
+// layer l = b S + k (methods/gbuffer.h), so a pixel's compensation is the
 // same in whatever tile, thread or process renders it. All methods are const
 // and thread-safe.
 #include <span>
@@ -59,12 +60,13 @@ class BiasCompensation {
   bool enabled() const { return samples_ > 0 && bound_ < INFINITY && !vpls_.vpls.empty(); }
 
   // Adds the compensation to `irradiance`, one demodulated entry per
-  // sub-sample of the G-buffer, indexed like its layers (border pixels
-  // included: the filter reads them).
+  // layer sample of the G-buffer (sub-samples and glass branches), indexed
+  // like its layers (border pixels included: the filter reads them).
   void add(const GBuffer& gbuffer, uint32_t frame_seed, std::vector<glm::vec3>& irradiance, RayCounts& rays) const;
 
  private:
-  glm::vec3 at_sample(const GSample& g, int x, int y, int k, uint32_t frame_seed, RayCounts& rays) const;
+  glm::vec3 at_sample(const GSample& g, int x, int y, int layer, int subsample, uint32_t frame_seed,
+                      RayCounts& rays) const;
   glm::vec3 radiance_towards(const GSample& y, int set, int group, RayCounts& rays) const;
 
   const Accel& accel_;

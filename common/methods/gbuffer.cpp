@@ -18,36 +18,90 @@ Region tile_region(const TileJob& job, int image_width, int image_height) {
   return r;
 }
 
+namespace {
+
+// One path through mirrors and glass, from a hit not yet shaded.
+struct Branch {
+  Ray ray;
+  Hit hit;
+  bool traced = true;   // hit is known (else the ray is traced first)
+  glm::vec3 throughput{1.0f};
+  float travelled = 0.0f;
+  int depth = 0;        // specular surfaces met so far
+  int index = 0;        // which output it fills
+};
+
+// Glass's random choice on branch b: branch 0 with follow_specular_chain's numbers.
+float lobe_number(uint32_t seed, int branch, int depth) {
+  const uint32_t branch_seed = branch == 0 ? seed : hash(seed, 0x62726e63u /* "brnc" */, uint32_t(branch));
+  return float(hash(branch_seed, uint32_t(depth)) >> 8) * 0x1p-24f;
+}
+
+}  // namespace
+
+int follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, int specular_depth, int branches,
+                         GSample* const* out, RayCounts& rays) {
+  const Scene& scene = accel.scene();
+  Branch pending[kMaxGlassBranches];
+  int pending_count = 0, used = 1;
+  pending[pending_count++] = Branch{ray, hit};
+  while (pending_count > 0) {
+    Branch b = pending[--pending_count];
+    GSample& g = *out[b.index];
+    g = GSample{};
+    g.throughput = b.throughput;
+    if (!b.traced) {
+      ++rays.secondary;
+      if (!accel.intersect(b.ray, b.hit)) continue;
+    }
+    for (;; ++b.depth) {
+      const SurfacePoint sp = surface_at(scene, b.hit, b.ray.direction);
+      b.travelled += b.hit.t;
+      g.emitted += g.throughput * sp.emitted();
+      if (!sp.material->is_specular()) {
+        g.surface = sp;
+        g.wo = -b.ray.direction;
+        g.depth = b.travelled;
+        break;
+      }
+      if (b.depth + 1 >= specular_depth) break;
+      const glm::vec3 wo = -b.ray.direction;
+      glm::vec3 wi;
+      if (sp.material->type == MaterialType::Glass && used < branches &&
+          dielectric_branches(sp, wo).reflectance < 1.0f) {
+        // Split: the reflection waits as a branch of its own.
+        const DielectricBranches split = dielectric_branches(sp, wo);
+        Branch reflected{Ray{offset_origin(sp, split.reflected), split.reflected, 0.0f, 1e30f, b.ray.mask}, Hit{}, false,
+                         g.throughput * split.reflectance, b.travelled, b.depth + 1, used++};
+        pending[pending_count++] = reflected;
+        g.throughput *= split.transmittance;
+        wi = split.refracted;
+      } else {
+        auto bs = bsdf_sample(sp, wo, glm::vec2(0.5f), lobe_number(seed, b.index, b.depth));
+        if (!bs) break;
+        g.throughput *= bs->weight;
+        wi = bs->wi;
+      }
+      b.ray = Ray{offset_origin(sp, wi), wi, 0.0f, 1e30f, b.ray.mask};
+      ++rays.secondary;
+      if (!accel.intersect(b.ray, b.hit)) break;
+    }
+  }
+  return used;
+}
+
 void follow_specular_chain(const Accel& accel, Ray ray, Hit hit, uint32_t seed, int specular_depth, GSample& g,
                            RayCounts& rays) {
-  const Scene& scene = accel.scene();
-  float travelled = 0.0f;
-  for (int depth = 0;; ++depth) {
-    SurfacePoint sp = surface_at(scene, hit, ray.direction);
-    travelled += hit.t;
-    g.emitted += g.throughput * sp.emitted();
-    if (!sp.material->is_specular()) {
-      g.surface = sp;
-      g.wo = -ray.direction;
-      g.depth = travelled;
-      return;
-    }
-    if (depth + 1 >= specular_depth) return;
-    const float u_lobe = float(hash(seed, uint32_t(depth)) >> 8) * 0x1p-24f;
-    auto bs = bsdf_sample(sp, -ray.direction, glm::vec2(0.5f), u_lobe);
-    if (!bs) return;
-    g.throughput *= bs->weight;
-    ray = Ray{offset_origin(sp, bs->wi), bs->wi, 0.0f, 1e30f, ray.mask};
-    ++rays.secondary;
-    if (!accel.intersect(ray, hit)) return;
-  }
+  GSample* out[1] = {&g};
+  follow_specular_tree(accel, ray, hit, seed, specular_depth, 1, out, rays);
 }
 
 namespace {
 
 // One 4x4 block of one layer as a 16-wide packet.
 void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis& camera, glm::vec2 offset,
-                 int bx, int by, int k, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log) {
+                 int bx, int by, int k, int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays,
+                 RayLog* log) {
   const Region& region = out.region;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -72,6 +126,7 @@ void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis&
     log->primary.back().rays = packet;
   }
   rtcIntersect16(valid, accel.handle(), &context, &packet);
+  GSample more[kMaxGlassBranches];  // reset by follow_specular_tree as it uses them
   for (int i = 0; i < 16; ++i) {
     const int x = bx + (i & 3), y = by + (i >> 2);
     if (!valid[i] || packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
@@ -79,24 +134,39 @@ void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis&
     Hit hit{packet.ray.tfar[i], accel.triangle_index(packet.hit.geomID[i], packet.hit.primID[i]),
             {packet.hit.u[i], packet.hit.v[i]}};
     const uint32_t seed = hash(hash(uint32_t(region.x0 + x), uint32_t(region.y0 + y), frame.seed), uint32_t(k));
-    follow_specular_chain(accel, ray, hit, seed, specular_depth, out.at(k, size_t(y) * region.width + x), rays);
+    // Branch 0 into its layer; further branches on the stack, then into
+    // layers of their own, which the region gets when a pixel first needs one.
+    const size_t pixel = size_t(y) * region.width + x;
+    GSample* branches[kMaxGlassBranches] = {&out.at(k, pixel)};
+    for (int b = 1; b < glass_branches; ++b) branches[b] = &more[b];
+    const int used = follow_specular_tree(accel, ray, hit, seed, specular_depth, glass_branches, branches, rays);
+    for (int b = 1; b < used; ++b) {
+      for (; out.branches <= b; ++out.branches)
+        std::fill_n(out.layers.begin() + ptrdiff_t(size_t(out.branches) * out.samples * region.pixels()),
+                    size_t(out.samples) * region.pixels(), GSample{});
+      out.at(b * out.samples + k, pixel) = more[b];
+    }
   }
 }
 
 }  // namespace
 
 void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& region, int samples,
-                   int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log) {
+                   int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log) {
   out.region = region;
   out.samples = samples;
-  out.layers.assign(size_t(samples) * region.pixels(), GSample{});
+  out.branches = 1;
+  // Room for every branch (kept between tiles); only branch 0's layers are reset here.
+  const size_t layer_pixels = size_t(samples) * region.pixels();
+  if (out.layers.size() < size_t(glass_branches) * layer_pixels) out.layers.resize(size_t(glass_branches) * layer_pixels);
+  std::fill_n(out.layers.begin(), layer_pixels, GSample{});
   const CameraBasis camera(frame.camera, frame.width, frame.height);
   const int side = subpixel_side(samples);
   for (int k = 0; k < samples; ++k) {
     const glm::vec2 offset = subpixel_offset(k, side, frame.jitter_x, frame.jitter_y);
     for (int by = 0; by < region.height; by += 4)
       for (int bx = 0; bx < region.width; bx += 4)
-        trace_block(accel, frame, camera, offset, bx, by, k, specular_depth, out, rays, log);
+        trace_block(accel, frame, camera, offset, bx, by, k, glass_branches, specular_depth, out, rays, log);
   }
 }
 

@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include "methods/ray_log.h"
+#include "methods/settings.h"
 #include "render/frame.h"
 #include "scene/accel.h"
 #include "scene/surface.h"
@@ -30,23 +31,37 @@ struct Region {
 // The tile plus its border, clipped to the image.
 Region tile_region(const TileJob& job, int image_width, int image_height);
 
-// S layers of the region, one per sub-sample position (methods/subpixel.h):
-// layer k holds sub-sample k of every pixel, row-major, so each layer reads
-// like a one-sample G-buffer of the region.
+// The region's layers: S sub-sample positions (methods/subpixel.h) times the
+// glass branches. Layer l = b S + k holds branch b of sub-sample k of every
+// pixel, row-major, so each layer reads like a one-sample G-buffer of the
+// region and the discontinuity buffer filters it on its own. Branch 0 is
+// where the camera ray's chain ends (refracted at glass, or reflected under
+// total internal reflection); branch b > 0 is the b-th reflection split off a
+// glass surface along the way (see follow_specular_tree), invalid where
+// there was none. Only the branches some pixel of the region reached are
+// present (`branches` <= the setting): a tile without glass has S layers and
+// costs what it did before glass branches existed.
 struct GBuffer {
   Region region;
-  int samples = 1;
-  std::vector<GSample> layers;  // samples * region.pixels()
+  int samples = 1;   // S
+  int branches = 1;  // branches present in this region, 1 <= branches <= --glass-branches
+  std::vector<GSample> layers;  // at least S branches region.pixels(); the rest is scratch
 
-  GSample& at(int k, size_t pixel) { return layers[size_t(k) * region.pixels() + pixel]; }
-  const GSample& at(int k, size_t pixel) const { return layers[size_t(k) * region.pixels() + pixel]; }
+  int layer_count() const { return samples * branches; }
+  // Shading points in the present layers (layers.size() may hold more: scratch).
+  size_t points() const { return size_t(layer_count()) * region.pixels(); }
+  // The sub-sample a layer belongs to (its VPL group, its position).
+  int subsample_of_layer(int layer) const { return layer % samples; }
+  GSample& at(int layer, size_t pixel) { return layers[size_t(layer) * region.pixels() + pixel]; }
+  const GSample& at(int layer, size_t pixel) const { return layers[size_t(layer) * region.pixels() + pixel]; }
 };
 
-// Primary rays in 16-wide packets (4x4 pixels of one layer), then specular
-// chains (mirror, glass) followed one ray at a time. Camera rays skip the
-// back of single-sided faces (scene/accel.h).
+// Primary rays in 16-wide packets (4x4 pixels of one sub-sample position),
+// then mirrors and glass followed one ray at a time, each sub-sample into
+// `glass_branches` layers (follow_specular_tree). Camera rays skip the back
+// of single-sided faces (scene/accel.h).
 void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& region, int samples,
-                   int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log = nullptr);
+                   int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log = nullptr);
 
 // Follows mirrors and glass from `hit` (found along `ray`) to the first
 // non-specular surface, at most `specular_depth` surfaces in all, filling
@@ -55,5 +70,18 @@ void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& re
 // rays pass kCameraRayMask, which the chain keeps.
 void follow_specular_chain(const Accel& accel, Ray ray, Hit hit, uint32_t seed, int specular_depth, GSample& g,
                            RayCounts& rays);
+
+// As follow_specular_chain, but the first B - 1 glass surfaces where both
+// reflection and refraction are possible split the path instead of picking:
+// the refracted part continues in the same branch with weight (1 - F) tint,
+// the reflected part becomes branch `used` (the next free one) with weight
+// F, followed after the current branch ends (depth first). Past the budget,
+// glass picks by Fresnel as follow_specular_chain does (branch 0 with the
+// same numbers). Every branch is an unbiased estimate of its part, and their
+// sum is the pixel's: the split changes the noise, never the mean.
+// `out[b]` receives branch b, reset first, for the b < returned count that
+// were created; the others are not touched.
+int follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, int specular_depth, int branches,
+                         GSample* const* out, RayCounts& rays);
 
 }  // namespace igi

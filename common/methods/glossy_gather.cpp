@@ -35,14 +35,15 @@ void trace_glossy_gather(const Accel& accel, const GBuffer& gbuffer, const Rende
                          uint32_t frame_seed, GlossyHits& out, RayCounts& rays) {
   out.clear();
   const Region& r = gbuffer.region;
-  for (int k = 0; k < gbuffer.samples; ++k)
+  // Layer l (sub-sample l mod S, glass branch l div S): layers of branch 0 keep the sub-sample's numbers.
+  for (int l = 0; l < gbuffer.layer_count(); ++l)
     for (int j = 0; j < r.height; ++j)
       for (int i = 0; i < r.width; ++i) {
         const size_t pixel = size_t(j) * r.width + i;
-        const GSample& g = gbuffer.at(k, pixel);
+        const GSample& g = gbuffer.at(l, pixel);
         if (!g.valid() || !is_gathered_glossy(*g.surface.material, settings.glossy_threshold)) continue;
-        const uint32_t seed = hash(hash(uint32_t(r.x0 + i), uint32_t(r.y0 + j), frame_seed), uint32_t(k), 0x676c6f73u);
-        gather_at(accel, g, uint32_t(size_t(k) * r.pixels() + pixel), seed, settings, out, rays);
+        const uint32_t seed = hash(hash(uint32_t(r.x0 + i), uint32_t(r.y0 + j), frame_seed), uint32_t(l), 0x676c6f73u);
+        gather_at(accel, g, uint32_t(size_t(l) * r.pixels() + pixel), seed, settings, out, rays);
       }
 }
 

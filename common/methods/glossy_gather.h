@@ -32,7 +32,7 @@ namespace igi {
 
 struct GlossyHits {
   std::vector<GSample> points;   // where each ray's chain ended (maybe invalid: escaped)
-  std::vector<uint32_t> owner;   // the sub-sample it was traced from: k * region pixels + pixel
+  std::vector<uint32_t> owner;   // the layer sample it was traced from: layer * region pixels + pixel
   std::vector<glm::vec3> weight; // demodulated f cos / pdf, divided by the ray count
 
   void clear() { points.clear(); owner.clear(); weight.clear(); }

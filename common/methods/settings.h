@@ -23,6 +23,7 @@ inline constexpr int kMaxPathsPerSet = 1 << 20;
 inline constexpr int kMaxCompensationSamples = 256;
 inline constexpr int kMaxAntialiasSamples = 64;  // 8 x 8 sub-samples
 inline constexpr int kMaxGlossyRays = 64;
+inline constexpr int kMaxGlassBranches = 8;
 
 // The defaults of anti-aliasing, clamp and compensation are the best trade-off
 // measured at interactive frame times (README, "Defaults").
@@ -61,6 +62,15 @@ struct RenderSettings {
   int lightcuts_max_cut = 1000;   // and stop at this many nodes in a cut
   int lightcuts_spacing = 0;      // reconstruction cuts: full cuts every S pixels only; 0 = off
   int lightcuts_samples = 1;      // multidimensional lightcuts: K = s x s gather points per pixel
+  // ir/igi: glass seen from the camera splits into reflection and refraction
+  // at its first B - 1 surfaces, each branch a G-buffer layer of its own
+  // (methods/gbuffer.h); past them glass picks one by Fresnel. 1 = always pick.
+  int glass_branches = 3;
+  // ir/igi: caustic photon map (common/photons/): light that reached a
+  // diffuse surface through mirrors or glass, added after the filter.
+  bool caustics = false;
+  int caustic_photons = 20000;    // photon paths shot per frame (photons/caustic_settings.h)
+  float caustic_radius = 0.01f;   // density-estimation radius, a fraction of the scene diagonal
 };
 
 // What is wrong with the settings, named as igi-render's option (e.g.

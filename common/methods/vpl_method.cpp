@@ -14,16 +14,17 @@
 namespace igi {
 
 // Per-thread buffers: tiles come by the thousand, allocations would dominate.
-// Shading points are numbered k * P + p for sub-sample k of region pixel p
-// (P pixels), then S P + h for gather hit h.
+// Shading points are numbered l * P + p for G-buffer layer l (sub-sample k =
+// l mod S, glass branch l div S) of region pixel p (P pixels), then L P + h
+// for gather hit h (L = S B layers).
 struct VplMethod::Scratch {
   GBuffer gbuffer;
   GlossyHits hits;
   std::vector<std::vector<uint32_t>> hits_by_group;  // per (set, group): gather hits
   PixelBatch batch;
   std::vector<glm::vec3> sums;      // VPL sums per shading point
-  std::vector<glm::vec3> direct;    // exact lights per shading point (inner sub-samples, hits)
-  std::vector<glm::vec3> value;     // demodulated irradiance per sub-sample: the filter's input
+  std::vector<glm::vec3> direct;    // exact lights per shading point (inner pixels' layers, hits)
+  std::vector<glm::vec3> value;     // demodulated irradiance per layer sample: the filter's input
   std::vector<glm::vec3> filtered;  // per layer, the tile's own pixels
   FilterInput filter_input;
 };
@@ -31,6 +32,7 @@ struct VplMethod::Scratch {
 VplMethod::VplMethod(const SceneContext& context, const RenderSettings& settings)
     : context_(context), settings_(settings), exact_(exact_lights(context.scene)) {
   if (auto error = settings_error(settings)) throw std::invalid_argument(*error);
+  if (settings.caustics) caustics_.emplace(context, settings);
   if (settings.clamp > 0.0f) {
     float d = settings.clamp * context.scene.bounds().diagonal();
     clamp_bound_ = 1.0f / (d * d);
@@ -40,6 +42,7 @@ VplMethod::VplMethod(const SceneContext& context, const RenderSettings& settings
 void VplMethod::begin_frame(const FrameSetup& frame) {
   frame_ = frame;
   vpls_ = generate_vpls(context_, settings_, frame.seed);
+  if (caustics_) caustics_->build(frame.seed);
   // A typical demodulated irradiance: one set's flux spread over the scene.
   double flux = 0.0;
   for (const Vpl& v : vpls_.vpls) flux += (v.flux.x + v.flux.y + v.flux.z) / 3.0;
@@ -47,9 +50,15 @@ void VplMethod::begin_frame(const FrameSetup& frame) {
   fixed_scale_ = filter_fixed_scale(flux / std::max(1, vpls_.set_count()) / (diagonal * diagonal));
 }
 
+uint64_t VplMethod::frame_state_hash() const {
+  if (!caustics_) return vpls_.hash;
+  const uint64_t h = vpls_.hash;
+  return h ^ (caustics_->hash() + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2));
+}
+
 // The valid sub-samples of set s (all pixels for ir) that connect to `group`,
-// in 4 x 4 blocks of the set's own pixel grid so a packet's rays start close
-// together (coherent).
+// every glass branch of each, in 4 x 4 blocks of the set's own pixel grid so
+// a packet's rays start close together (coherent).
 void VplMethod::collect_set_samples(const GBuffer& gbuffer, int s, int group, PixelBatch& batch) const {
   const Region& region = gbuffer.region;
   const int n = interleaved() ? vpls_.interleave : 1;
@@ -65,9 +74,11 @@ void VplMethod::collect_set_samples(const GBuffer& gbuffer, int s, int group, Pi
         for (int i = bx; i < std::min(bx + 4, nx); ++i) {
           const int x = x_first + n * i, y = y_first + n * j;
           const int k = subsample_of_group(x, y, group, gbuffer.samples);
-          const size_t id = size_t(k) * region.pixels() + region.index(x, y);
-          const GSample& g = gbuffer.layers[id];
-          if (g.valid() && receives_vpls(*g.surface.material, settings_.glossy_threshold)) batch.add(uint32_t(id), g);
+          for (int b = 0; b < gbuffer.branches; ++b) {
+            const size_t id = size_t(b * gbuffer.samples + k) * region.pixels() + region.index(x, y);
+            const GSample& g = gbuffer.layers[id];
+            if (g.valid() && receives_vpls(*g.surface.material, settings_.glossy_threshold)) batch.add(uint32_t(id), g);
+          }
         }
 }
 
@@ -75,7 +86,7 @@ void VplMethod::collect_set_samples(const GBuffer& gbuffer, int s, int group, Pi
 // each (set, group), then the gather hits traced from them.
 void VplMethod::shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch, RayCounts& rays) const {
   const Region& region = gbuffer.region;
-  const size_t camera_points = gbuffer.layers.size();
+  const size_t camera_points = gbuffer.points();
   const int sets = interleaved() ? vpls_.set_count() : 1;
   const int groups = vpls_.groups;
   scratch.sums.assign(camera_points + hits.points.size(), glm::vec3(0.0f));
@@ -84,7 +95,7 @@ void VplMethod::shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scrat
   for (uint32_t h = 0; h < hits.points.size(); ++h) {
     const GSample& y = hits.points[h];
     if (!y.valid() || !receives_vpls(*y.surface.material, settings_.glossy_threshold)) continue;
-    const int k = int(hits.owner[h] / region.pixels());
+    const int k = gbuffer.subsample_of_layer(int(hits.owner[h] / region.pixels()));
     const size_t pixel = hits.owner[h] % region.pixels();
     const int x = region.x0 + int(pixel % region.width), yy = region.y0 + int(pixel / region.width);
     const int set = interleaved() ? vpls_.set_of_pixel(x, yy) : 0;
@@ -111,22 +122,22 @@ void VplMethod::shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scrat
     }
 }
 
-// Exact lights at the sub-samples of the tile's own pixels (never filtered,
-// so the border needs none) and at every gather hit.
+// Exact lights at every layer sample of the tile's own pixels (never
+// filtered, so the border needs none) and at every gather hit.
 void VplMethod::shade_exact(const GBuffer& gbuffer, const TileJob& job, const GlossyHits& hits, Scratch& scratch,
                             RayCounts& rays) const {
   const Region& region = gbuffer.region;
-  const size_t camera_points = gbuffer.layers.size();
+  const size_t camera_points = gbuffer.points();
   scratch.direct.assign(camera_points + hits.points.size(), glm::vec3(0.0f));
   if (exact_.empty()) return;
   PixelBatch& batch = scratch.batch;
   batch.clear();
-  for (int k = 0; k < gbuffer.samples; ++k)
+  for (int l = 0; l < gbuffer.layer_count(); ++l)
     for (int by = 0; by < job.h; by += 4)
       for (int bx = 0; bx < job.w; bx += 4)
         for (int y = job.y + by; y < job.y + std::min(by + 4, job.h); ++y)
           for (int x = job.x + bx; x < job.x + std::min(bx + 4, job.w); ++x) {
-            const size_t id = size_t(k) * region.pixels() + region.index(x, y);
+            const size_t id = size_t(l) * region.pixels() + region.index(x, y);
             if (gbuffer.layers[id].valid()) batch.add(uint32_t(id), gbuffer.layers[id]);
           }
   for (uint32_t h = 0; h < hits.points.size(); ++h)
@@ -138,10 +149,11 @@ void VplMethod::shade_exact(const GBuffer& gbuffer, const TileJob& job, const Gl
     scratch.direct[batch.index[i]] = glm::vec3(batch.sum_r[i], batch.sum_g[i], batch.sum_b[i]);
 }
 
-// Demodulated irradiance per sub-sample: its group's VPL sum scaled to a
-// whole set's estimate, plus what its gather rays brought back.
+// Demodulated irradiance per layer sample: its group's VPL sum scaled to a
+// whole set's estimate, plus what its gather rays brought back (a gather
+// ray that lands on a diffuse surface brings its caustic too).
 void VplMethod::combine(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch) const {
-  const size_t camera_points = gbuffer.layers.size();
+  const size_t camera_points = gbuffer.points();
   // Each set alone estimates the full light (ir averages all of them); each group 1 / G of it.
   const float scale = float(vpls_.groups) / (interleaved() ? 1.0f : float(vpls_.set_count()));
   scratch.value.resize(camera_points);
@@ -150,24 +162,33 @@ void VplMethod::combine(const GBuffer& gbuffer, const GlossyHits& hits, Scratch&
     const GSample& y = hits.points[h];
     glm::vec3 radiance = y.emitted;
     if (y.valid())
-      radiance += y.throughput * y.surface.albedo * (scale * scratch.sums[camera_points + h] + scratch.direct[camera_points + h]);
+      radiance += y.throughput * y.surface.albedo *
+                  (scale * scratch.sums[camera_points + h] + scratch.direct[camera_points + h] + caustic(y));
     scratch.value[hits.owner[h]] += hits.weight[h] * radiance;
   }
 }
 
-// Layer k's demodulated irradiance of the tile's own pixels: through the
+// Layer l's demodulated irradiance of the tile's own pixels: through the
 // discontinuity buffer (igi), or cropped from the region as it is (ir, or
 // filter off). Each layer is filtered on its own: a sub-sample is averaged
 // with the same sub-sample of its neighbours where they lie on its surface,
 // so edges stay sharp per sub-sample. The rotation of groups
 // (methods/subpixel.h) gives the neighbours other groups, and over the S
 // layers a pixel on an open surface averages every (set, group) once: all the
-// frame's VPLs, as with S = 1.
-void VplMethod::filter_layer(const GBuffer& gbuffer, int k, const TileJob& job, Scratch& scratch) const {
+// frame's VPLs, as with S = 1. A glass branch's layer holds what neighbouring
+// pixels see through the same branch (the refracted room, the reflection),
+// which is as smooth as any surface's light and filters alike. A layer with
+// no valid sample in the tile (no glass there) is skipped: resolve reads
+// only valid samples.
+void VplMethod::filter_layer(const GBuffer& gbuffer, int l, const TileJob& job, Scratch& scratch) const {
   const Region& region = gbuffer.region;
   const size_t inner = size_t(job.w) * job.h;
-  const auto layer_value = scratch.value.begin() + ptrdiff_t(size_t(k) * region.pixels());
-  glm::vec3* out = scratch.filtered.data() + size_t(k) * inner;
+  const auto layer_value = scratch.value.begin() + ptrdiff_t(size_t(l) * region.pixels());
+  glm::vec3* out = scratch.filtered.data() + size_t(l) * inner;
+  bool any_valid = false;
+  for (int y = job.y; y < job.y + job.h && !any_valid; ++y)
+    for (int x = job.x; x < job.x + job.w && !any_valid; ++x) any_valid = gbuffer.at(l, region.index(x, y)).valid();
+  if (!any_valid) return;
   if (interleaved() && settings_.filter) {
     FilterInput& in = scratch.filter_input;
     in.x0 = region.x0; in.y0 = region.y0; in.width = region.width; in.height = region.height;
@@ -175,7 +196,7 @@ void VplMethod::filter_layer(const GBuffer& gbuffer, int k, const TileJob& job, 
     in.depth.clear();
     in.normal.clear();
     for (size_t p = 0; p < region.pixels(); ++p) {
-      const GSample& g = gbuffer.at(k, p);
+      const GSample& g = gbuffer.at(l, p);
       in.depth.push_back(g.depth);
       in.normal.push_back(g.valid() ? g.surface.shading_normal : glm::vec3(0.0f));
     }
@@ -191,11 +212,38 @@ void VplMethod::filter_layer(const GBuffer& gbuffer, int k, const TileJob& job, 
     for (int x = 0; x < job.w; ++x) out[size_t(y) * job.w + x] = layer_value[ptrdiff_t(region.index(job.x + x, job.y + y))];
 }
 
+// A pixel is the mean over its sub-samples of the sum over their glass
+// branches of the radiance each layer sample sends along its chain:
+// emission seen on the way, plus the chain's throughput x albedo x (filtered
+// VPL light + exact lights + caustic). The caustic is unfiltered, like the
+// exact lights: its density estimate is already smooth at the photon
+// radius, and through the filter the sharp edge of a focused caustic would
+// spill onto the neighbours the filter accepts.
+void VplMethod::resolve(const GBuffer& gbuffer, const TileJob& job, const Scratch& scratch,
+                        std::span<glm::vec3> out) const {
+  const size_t inner = size_t(job.w) * job.h;
+  const float inv_samples = 1.0f / float(gbuffer.samples);
+  for (int y = 0; y < job.h; ++y)
+    for (int x = 0; x < job.w; ++x) {
+      const size_t pixel = gbuffer.region.index(job.x + x, job.y + y);
+      glm::vec3 c(0.0f);
+      for (int l = 0; l < gbuffer.layer_count(); ++l) {
+        const GSample& g = gbuffer.at(l, pixel);
+        c += g.emitted;
+        if (g.valid())
+          c += g.throughput * g.surface.albedo *
+               (scratch.filtered[size_t(l) * inner + size_t(y) * job.w + x] +
+                scratch.direct[size_t(l) * gbuffer.region.pixels() + pixel] + caustic(g));
+      }
+      out[size_t(y) * job.w + x] = c * inv_samples;
+    }
+}
+
 void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const {
   thread_local Scratch scratch;
   GBuffer& gbuffer = scratch.gbuffer;
   build_gbuffer(context_.accel, frame_, tile_region(job, frame_.width, frame_.height), settings_.aa_samples,
-                depth_limit(settings_.specular_depth), gbuffer, rays, log_);
+                settings_.glass_branches, depth_limit(settings_.specular_depth), gbuffer, rays, log_);
   trace_glossy_gather(context_.accel, gbuffer, settings_, frame_.seed, scratch.hits, rays);
   shade_vpls(gbuffer, scratch.hits, scratch, rays);
   shade_exact(gbuffer, job, scratch.hits, scratch, rays);
@@ -212,24 +260,9 @@ void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCou
   const BiasCompensation compensation(context_.accel, shading, vpls_, exact_, interleaved(),
                                       settings_.compensation_samples);
   compensation.add(gbuffer, frame_.seed, scratch.value, rays);
-  const size_t inner = size_t(job.w) * job.h;
-  scratch.filtered.resize(inner * gbuffer.samples);
-  for (int k = 0; k < gbuffer.samples; ++k) filter_layer(gbuffer, k, job, scratch);
-  // A pixel is the mean of its sub-samples' radiance.
-  const float inv_samples = 1.0f / float(gbuffer.samples);
-  for (int y = 0; y < job.h; ++y)
-    for (int x = 0; x < job.w; ++x) {
-      const size_t pixel = gbuffer.region.index(job.x + x, job.y + y);
-      glm::vec3 c(0.0f);
-      for (int k = 0; k < gbuffer.samples; ++k) {
-        const GSample& g = gbuffer.at(k, pixel);
-        c += g.emitted;
-        if (g.valid())
-          c += g.throughput * g.surface.albedo *
-               (scratch.filtered[size_t(k) * inner + size_t(y) * job.w + x] + scratch.direct[size_t(k) * gbuffer.region.pixels() + pixel]);
-      }
-      out[size_t(y) * job.w + x] = c * inv_samples;
-    }
+  scratch.filtered.resize(size_t(job.w) * job.h * gbuffer.layer_count());
+  for (int l = 0; l < gbuffer.layer_count(); ++l) filter_layer(gbuffer, l, job, scratch);
+  resolve(gbuffer, job, scratch, out);
 }
 
 }  // namespace igi

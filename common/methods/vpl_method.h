@@ -12,13 +12,21 @@
 //  - exact point, spot and directional lights, once per sub-sample, added
 //    after the filter (methods/direct_lights.h);
 //  - with a clamp, optional bias compensation (methods/bias_compensation.h)
-//    adds back the clamped light before the filter.
+//    adds back the clamped light before the filter;
+//  - glass seen from the camera splits into reflection and refraction
+//    layers (methods/gbuffer.h), each filtered on its own;
+//  - with --caustics, the caustic photon map (photons/caustic_map.h): light
+//    that reached a diffuse surface through mirrors or glass, which no
+//    shadow ray can carry, added after the filter like the exact lights.
 // Shadow rays go out in 16-wide packets that share one VPL (coherent).
+#include <optional>
+
 #include "methods/method.h"
 #include "methods/ray_log.h"
 #include "methods/shadow_batch.h"
 #include "methods/gbuffer.h"
 #include "methods/glossy_gather.h"
+#include "photons/caustic_map.h"
 #include "vpl/vpl.h"
 
 namespace igi {
@@ -29,8 +37,10 @@ class VplMethod final : public Method {
   VplMethod(const SceneContext& context, const RenderSettings& settings);
   void begin_frame(const FrameSetup& frame) override;
   void render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const override;
-  uint64_t frame_state_hash() const override { return vpls_.hash; }
+  // The VPL sets' hash, and the caustic map's folded in when there is one.
+  uint64_t frame_state_hash() const override;
   const VplSets& vpls() const { return vpls_; }
+  const CausticMap* caustics() const { return caustics_ ? &*caustics_ : nullptr; }
   // Benchmarks only: record every packet traced from now on (one thread only).
   void record_rays(RayLog* log) { log_ = log; }
 
@@ -42,13 +52,16 @@ class VplMethod final : public Method {
   void shade_exact(const GBuffer& gbuffer, const TileJob& job, const GlossyHits& hits, Scratch& scratch,
                    RayCounts& rays) const;
   void combine(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch) const;
-  void filter_layer(const GBuffer& gbuffer, int k, const TileJob& job, Scratch& scratch) const;
+  void filter_layer(const GBuffer& gbuffer, int layer, const TileJob& job, Scratch& scratch) const;
+  void resolve(const GBuffer& gbuffer, const TileJob& job, const Scratch& scratch, std::span<glm::vec3> out) const;
+  glm::vec3 caustic(const GSample& g) const { return caustics_ ? caustics_->radiance(g) : glm::vec3(0.0f); }
 
   SceneContext context_;
   RenderSettings settings_;
   FrameSetup frame_;
   VplSets vpls_;
   std::vector<Vpl> exact_;  // point, spot and directional lights (methods/direct_lights.h)
+  std::optional<CausticMap> caustics_;
   float clamp_bound_ = INFINITY;
   double fixed_scale_ = 0x1p32;
   RayLog* log_ = nullptr;

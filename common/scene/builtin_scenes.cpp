@@ -137,7 +137,7 @@ Scene make_cornell_blob(int triangles) {
 
 // "rooms-N" takes any N in 1..kMaxRooms; the list names the largest as an example.
 std::vector<std::string> builtin_scene_names() {
-  return {"cornell", "cornell-blob", "furnace", "corner", "rooms", "rooms-10", "glossy", "glossy-rough", "large"};
+  return {"cornell", "cornell-blob", "furnace", "corner", "rooms", "rooms-10", "glossy", "glossy-rough", "large", "glass"};
 }
 
 bool is_builtin_scene(const std::string& name) {
@@ -156,6 +156,7 @@ Scene make_builtin_scene(const std::string& name) {
   if (name == "glossy") return make_glossy_cornell();
   if (name == "glossy-rough") return make_glossy_cornell(0.3f, "glossy-rough");
   if (name == "large") return make_large_scene();
+  if (name == "glass") return make_glass_cornell();
   std::string known;
   for (const std::string& n : builtin_scene_names()) known += (known.empty() ? "" : ", ") + n;
   known += " (rooms-N for N = 1.." + std::to_string(kMaxRooms) + ")";

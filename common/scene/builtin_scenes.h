@@ -19,7 +19,7 @@ Scene make_furnace(float albedo, float radiance);
 // sphere of about `triangles` triangles (for throughput measurements).
 Scene make_cornell_blob(int triangles);
 
-// Also the accuracy suite of scene/suite_scenes.h: corner, rooms, rooms-N, glossy, large.
+// Also the accuracy suite of scene/suite_scenes.h: corner, rooms, rooms-N, glossy, large, glass.
 std::vector<std::string> builtin_scene_names();
 bool is_builtin_scene(const std::string& name);
 // Throws SceneError for an unknown name.

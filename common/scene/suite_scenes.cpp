@@ -175,6 +175,58 @@ Scene make_large_scene(int triangles) {
   return s;
 }
 
+namespace {
+
+// Per-vertex normals for a scene built of flat quads: each quad has vertices
+// of its own, so a vertex takes its triangle's face normal.
+void add_face_normals(Scene& s) {
+  s.normals.assign(s.positions.size(), glm::vec3(0.0f));
+  for (const glm::uvec3& t : s.triangles) {
+    const glm::vec3 n = glm::normalize(glm::cross(s.positions[t[1]] - s.positions[t[0]], s.positions[t[2]] - s.positions[t[0]]));
+    for (int k = 0; k < 3; ++k) s.normals[t[k]] = n;
+  }
+}
+
+// A UV sphere of `rings` rings and 2 x rings segments, outward-facing, with
+// its exact normals at the vertices (smooth shading: a ball lens, not facets).
+void add_smooth_sphere(Scene& s, glm::vec3 center, float radius, int rings, uint32_t material) {
+  const uint32_t first_vertex = uint32_t(s.positions.size());
+  add_bumpy_sphere(s, center, radius, rings, [](float, float) { return 1.0f; }, material);
+  s.normals.resize(s.positions.size());
+  for (uint32_t v = first_vertex; v < s.positions.size(); ++v) s.normals[v] = glm::normalize(s.positions[v] - center);
+}
+
+}  // namespace
+
+Scene make_glass_cornell() {
+  Scene s = make_cornell_box();
+  s.name = "glass";
+  // Triangles 12-21 are the short block, 22-31 the tall block (builtin_scenes.cpp).
+  s.triangles.erase(s.triangles.begin() + 12, s.triangles.begin() + 22);
+  s.triangle_material.erase(s.triangle_material.begin() + 12, s.triangle_material.begin() + 22);
+  Material mirror;
+  mirror.name = "mirror";
+  mirror.type = MaterialType::Mirror;
+  mirror.base_color = glm::vec3(0.95f);
+  const uint32_t mirror_id = add_material(s, mirror);
+  for (size_t t = 12; t < s.triangles.size(); ++t) s.triangle_material[t] = mirror_id;
+  add_face_normals(s);
+  Material glass;
+  glass.name = "glass";
+  glass.type = MaterialType::Glass;
+  glass.base_color = glm::vec3(1.0f);
+  glass.ior = 1.5f;
+  const uint32_t glass_id = add_material(s, glass);
+  // A ball lens focuses 1.5 radii from its centre: hung at that height, the
+  // ceiling light's image falls on the floor, a little towards the camera
+  // (the light is behind and to the right of the ball), where no part of
+  // the ball hides it.
+  const float radius = 0.09f;
+  add_smooth_sphere(s, {0.185f, 1.5f * radius, 0.17f}, radius, 32, glass_id);
+  group_by_material(s);
+  return s;
+}
+
 int parse_rooms_name(const std::string& name) {
   if (name == "rooms") return 4;
   const std::string prefix = "rooms-";

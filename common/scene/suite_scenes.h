@@ -16,6 +16,10 @@
 //           spikes; glossy-rough: alpha 0.3, where they blur.
 //   large   the Cornell box without its blocks and a 3 x 3 grid of bumpy
 //           spheres, about 1.05 M triangles.
+//   glass   the Cornell box with a mirror tall block and, for the short one, a
+//           glass sphere hung so its caustic focuses on the floor in view:
+//           light that reaches a diffuse surface through mirrors and glass
+//           (caustics, common/photons/), and glass seen from the camera.
 #include <string>
 
 #include "scene/scene.h"
@@ -31,6 +35,12 @@ Scene make_rooms_scene(int n);
 Scene make_glossy_cornell(float alpha = 0.04f, const std::string& name = "glossy");
 // At least `triangles` triangles in the spheres (the box adds 20).
 Scene make_large_scene(int triangles = 1'050'000);
+// The Cornell box with a mirror tall block and a glass sphere (ior 1.5) of
+// radius 9 cm in place of the short block, at 1.5 radii above the floor:
+// the ball lens focuses the ceiling light onto the floor, where the camera
+// sees the caustic past the sphere. About 4,000 triangles, with
+// smooth shading normals on the sphere (and face normals elsewhere).
+Scene make_glass_cornell();
 
 // The room count named by "rooms" (4) or "rooms-N"; 0 when `name` is neither
 // or N is outside 1..kMaxRooms.

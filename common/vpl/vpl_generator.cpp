@@ -7,71 +7,26 @@
 #include "sampling/sobol.h"
 #include "sampling/warp.h"
 #include "scene/surface.h"
+#include "vpl/light_path.h"
 
 namespace igi {
 namespace {
 
-// Dimensions of a light path: 6 for its start, then 8 per bounce (SampleStream
-// gives every draw a pair of dimensions).
-constexpr uint32_t kStartDims = 6;
-constexpr uint32_t kDimsPerBounce = 8;
-
-struct PathStart {
-  Ray ray;
-  glm::vec3 flux;  // carried along the ray, per path
-};
-
-// The first ray leaving a light, and for an area light the VPL on the light
-// itself. Point, spot and directional lights leave no VPL: the methods
-// evaluate their light exactly (vpl/vpl.h); their paths still carry it on.
-PathStart start_path(const LightSet& lights, const Scene& scene, SampleStream& u,
-                     float inv_paths, std::vector<Vpl>& out) {
-  const float u_select = u.next_1d();
-  const glm::vec2 u_point = u.next_2d();
-  const glm::vec2 u_dir = u.next_2d();
-  EmissionSample e = lights.sample_emission(u_select, u_point);
-  PathStart start;
-  switch (e.kind) {
-    case LightKind::Area: {
-      Vpl v;
-      v.kind = VplKind::Area;
-      v.position = e.position;
-      v.normal = e.normal;
-      v.flux = e.power * inv_paths;
-      out.push_back(v);
-      Frame frame(e.normal);
-      glm::vec3 d = frame.to_world(cosine_hemisphere(u_dir));
-      start.ray = Ray{e.position + 1e-5f * lights.scene_radius() * e.normal, d};
-      start.flux = e.power * kPi;  // Le A cos / (pdf = cos / pi)
-      break;
-    }
-    case LightKind::Directional:
-      start.ray = Ray{e.position, e.normal};
-      start.flux = e.power;
-      break;
-    default: {
-      const PunctualLight& pl = scene.lights[lights.lights()[e.light].index];
-      glm::vec3 d;
-      if (e.kind == LightKind::Spot) {
-        float cos_max = std::cos(pl.outer_cone);
-        d = Frame(glm::normalize(pl.direction)).to_world(uniform_cone(u_dir, cos_max));
-        float pdf = 1.0f / (2.0f * kPi * (1.0f - cos_max));
-        start.flux = e.power * (spot_attenuation(pl, d) / pdf);
-      } else {
-        float z = 1.0f - 2.0f * u_dir.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-        d = glm::vec3(r * std::cos(2.0f * kPi * u_dir.y), r * std::sin(2.0f * kPi * u_dir.y), z);
-        start.flux = e.power * (4.0f * kPi);
-      }
-      start.ray = Ray{e.position, d};
-    }
-  }
-  return start;
-}
-
 void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, uint32_t path,
                       uint32_t seed, float inv_paths, std::vector<Vpl>& out) {
   SampleStream start_stream(path, seed, 0);
-  PathStart start = start_path(ctx.lights, ctx.scene, start_stream, inv_paths, out);
+  const LightPathStart start = start_light_path(ctx.lights, ctx.scene, start_stream);
+  // An area light leaves a VPL on itself. Point, spot and directional lights
+  // leave none: the methods evaluate their light exactly (vpl/vpl.h); their
+  // paths still carry it on.
+  if (start.on_area_light) {
+    Vpl v;
+    v.kind = VplKind::Area;
+    v.position = start.position;
+    v.normal = start.normal;
+    v.flux = start.power * inv_paths;
+    out.push_back(v);
+  }
   Ray ray = start.ray;
   glm::vec3 flux = start.flux;
   const int max_depth = depth_limit(settings.light_depth);

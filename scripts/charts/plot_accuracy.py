@@ -5,7 +5,8 @@
 
 Writes into the output folder:
   <scene>.png   relMSE and mean FLIP against render time, log-log, one series
-                per method variant (pt; ir per clamp; igi per filter and clamp),
+                per method variant (pt; ir per clamp; igi per filter and clamp;
+                igi+caustics per photon count),
                 with the Pareto front of each method (pt, ir, igi) drawn over them
   pareto.csv    the points on each method's front
   headline.md   time to reach each target error, per method and scene, and how
@@ -22,8 +23,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-METHOD_COLOURS = {"pt": "black", "ir": "tab:blue", "igi": "tab:red", "lightcuts": "tab:green"}
-METHODS = ("pt", "ir", "igi", "lightcuts")
+METHOD_COLOURS = {"pt": "black", "ir": "tab:blue", "igi": "tab:red", "lightcuts": "tab:green",
+                  "igi+caustics": "tab:orange"}
+METHODS = ("pt", "ir", "igi", "lightcuts", "igi+caustics")
 
 
 def read_rows(path):
@@ -44,10 +46,12 @@ def variant(row):
     if row["method"] == "pt":
         return "pt"
     label = f"{row['method']} clamp {p.get('clamp', '0')}"
-    if row["method"] == "igi":
+    if row["method"].startswith("igi"):
         label += f" filter {p.get('filter', 'on')}"
     if p.get("aa", "1") != "1":
         label += f" aa {p['aa']}"
+    if "photons" in p:
+        label += f" {p['photons']} photon paths"
     if p.get("bc", "off") != "off":
         label += " bc"
     return label

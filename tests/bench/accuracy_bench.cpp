@@ -13,11 +13,15 @@
 // Sweeps: pt over samples per pixel; ir and igi over VPL paths per set M and
 // progressive passes, the clamp, (igi) the discontinuity filter, and, for
 // clamped points, bias compensation with kCompensationSamples ("bc=on");
-// lightcuts (default 2 % error) over M, unclamped and at clamp 0.02.
+// lightcuts (default 2 % error) over M, unclamped and at clamp 0.02; on
+// scenes with mirrors or glass, igi with the caustic photon map
+// ("igi+caustics", kCausticPhotons photon paths a frame, default radius and
+// glass branches, filtered, unclamped and at clamp 0.02) over igi's budgets.
 // Unclamped VPL errors have infinite variance: a single seed is one draw of
 // a heavy-tailed figure, so each VPL point is the median over three seeds,
 // with the median seed's time.
 #include <algorithm>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -37,9 +41,10 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr int kCompensationSamples = 4;  // eye samples per pixel when bc=on
+const std::vector<int> kCausticPhotons = {20000, 100000};  // photon paths per frame of the igi+caustics series
 
 struct Options {
-  std::vector<std::string> scenes = {"cornell", "corner", "rooms", "glossy", "glossy-rough", "large"};
+  std::vector<std::string> scenes = {"cornell", "corner", "rooms", "glossy", "glossy-rough", "large", "glass"};
   int width = 128, height = 96;
   int ref_spp = 4096;
   std::string refs = "results/refs";
@@ -157,7 +162,7 @@ Point median_point(const Prepared& p, const RenderSettings& s, const Options& o,
   return points[1];
 }
 
-// One VPL series: every budget at one (method, filter, clamp, compensation, anti-aliasing).
+// One VPL series: every budget at one (method, filter, clamp, compensation, anti-aliasing, caustics).
 void sweep_budgets(const Prepared& p, const std::string& name, const Options& o, const Image& ref,
                    RenderSettings s, std::ofstream& csv) {
   // (paths per set M, progressive passes): VPL budget up, then passes up.
@@ -172,7 +177,13 @@ void sweep_budgets(const Prepared& p, const std::string& name, const Options& o,
     char params[160];
     std::snprintf(params, sizeof params, "M=%d;passes=%d;clamp=%g;filter=%s;bc=%s;aa=%d", m, passes, s.clamp,
                   !ir && s.filter ? "on" : "off", s.compensation_samples > 0 ? "on" : "off", s.aa_samples);
-    write_row(csv, name, method_name(s.method), params, median_point(p, s, o, passes, ref));
+    std::string method = method_name(s.method);
+    if (s.caustics) {
+      method += "+caustics";
+      std::snprintf(params + std::strlen(params), sizeof params - std::strlen(params), ";photons=%d",
+                    s.caustic_photons);
+    }
+    write_row(csv, name, method.c_str(), params, median_point(p, s, o, passes, ref));
   }
 }
 
@@ -199,6 +210,19 @@ void sweep_vpl(const Prepared& p, const std::string& name, const Options& o, con
   series(MethodKind::Igi, false, 0.05f, 0, 1);
   series(MethodKind::InstantRadiosity, true, 0.0f, 0, 1);
   series(MethodKind::InstantRadiosity, true, 0.05f, 0, 1);
+  // The caustic photon map where there are mirrors or glass to make caustics.
+  const bool specular = std::any_of(p.scene.materials.begin(), p.scene.materials.end(),
+                                    [](const Material& m) { return m.is_specular(); });
+  if (!specular) return;
+  for (int photons : o.quick ? std::vector<int>{kCausticPhotons.front()} : kCausticPhotons)
+    for (float clamp : {0.0f, 0.02f}) {
+      RenderSettings s;
+      s.method = MethodKind::Igi;
+      s.clamp = clamp;
+      s.caustics = true;
+      s.caustic_photons = photons;
+      sweep_budgets(p, name, o, ref, s, csv);
+    }
 }
 
 // Lightcuts' cost grows slowly with the VPL count, so its budgets go further than ir's.

@@ -21,6 +21,10 @@ RenderSettings settings() {
   s.compensation_samples = 4;
   s.lightcuts_error = 0.05f;
   s.lightcuts_spacing = 8;
+  s.glass_branches = 2;
+  s.caustics = true;
+  s.caustic_photons = 5000;
+  s.caustic_radius = 0.02f;
   return s;
 }
 

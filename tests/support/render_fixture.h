@@ -49,7 +49,7 @@ struct Prepared {
   std::vector<GSample> visible_points(int width, int height) const {
     GBuffer gbuffer;
     RayCounts rays;
-    build_gbuffer(*accel, frame(width, height), Region{0, 0, width, height}, 1, 16, gbuffer, rays);
+    build_gbuffer(*accel, frame(width, height), Region{0, 0, width, height}, 1, 1, 16, gbuffer, rays);
     return std::move(gbuffer.layers);
   }
 

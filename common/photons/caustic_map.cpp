@@ -1,0 +1,56 @@
+#include "photons/caustic_map.h"
+
+#include <algorithm>
+#include <thread>
+
+#include "methods/vpl_contribution.h"
+#include "photons/photon_paths.h"
+#include "sampling/hash.h"
+#include "sampling/warp.h"
+
+namespace igi {
+
+uint64_t hash_photons(const std::vector<Photon>& photons) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (const Photon& p : photons) h = fnv1a64(&p, sizeof p, h);  // four vec3 and a uint32: no padding
+  return h;
+}
+
+CausticMap::CausticMap(const SceneContext& context, const RenderSettings& settings)
+    : context_(context), settings_(settings),
+      radius_(settings.caustic_radius * context.scene.bounds().diagonal()),
+      paths_(uint32_t(settings.caustic_photons)) {}
+
+void CausticMap::build(uint32_t frame_seed, int threads) {
+  if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  rays_ = RayCounts{};
+  const std::vector<Photon> photons = trace_photon_paths(context_, settings_, frame_seed, paths_, threads, rays_);
+  hash_ = hash_photons(photons);
+  std::vector<Photon> focused, bounced;
+  for (const Photon& p : photons) (p.bounced ? bounced : focused).push_back(p);
+  const glm::vec3 origin = context_.scene.bounds().lower;
+  focused_ = PhotonGrid(focused, radius_, origin);
+  bounced_ = PhotonGrid(bounced, kBouncedRadiusScale * radius_, origin);
+}
+
+glm::vec3 CausticMap::radiance(const GSample& g) const {
+  const SurfacePoint& sp = g.surface;
+  const glm::vec3 n = glm::dot(g.wo, sp.geometric_normal) >= 0.0f ? sp.geometric_normal : -sp.geometric_normal;
+  // A Lambertian receiver's demodulated BSDF is 1 / pi for every photon that
+  // passes the normal test (it arrived on the viewer's side): summed once.
+  const bool lambert = sp.material->type == MaterialType::Diffuse;
+  auto estimate = [&](const PhotonGrid& grid) {
+    const float inv_r2 = 1.0f / (grid.radius() * grid.radius());
+    glm::vec3 sum(0.0f);
+    grid.for_each_within(sp.position, [&](const Photon& p, float d2) {
+      if (glm::dot(p.normal, n) < kNormalCos) return;
+      const float t = 1.0f - d2 * inv_r2;
+      sum += (lambert ? p.flux : VplShading::demodulated_bsdf(g, p.incident) * p.flux) * (t * t);
+    });
+    return sum * (3.0f * kInvPi * inv_r2);
+  };
+  const glm::vec3 sum = estimate(focused_) + estimate(bounced_);
+  return lambert ? sum * kInvPi : sum;
+}
+
+}  // namespace igi

@@ -1,0 +1,70 @@
+#pragma once
+// The caustic photon map of one frame, and its density estimate.
+//
+// build() traces the frame's photon paths (photon_paths.h) and grids them
+// (photon_grid.h); it is a pure function of scene, settings and seed, and
+// its content hash joins the VPL sets' in the method's frame_state_hash, so
+// the master sees a worker whose map differs. Replicated, not partitioned:
+// every worker traces all the paths (no communication, no barrier; the
+// cost is paid once per worker, which is why the path count is modest and
+// progressive passes add fresh photons instead).
+//
+// radiance() is the demodulated estimate at a G-buffer sample (the BSDF
+// with albedo 1, as the VPL sums), towards the viewer:
+//   L(x, wo) = sum_p f(x, wo, wi_p) flux_p K(|x - x_p|),
+//   K(d) = 3 / (pi r^2) (1 - d^2 / r^2)^2,
+// the Silverman-type kernel of pbrt-v2's photon map (it integrates to 1
+// over the disc of radius r and falls smoothly to 0 at its edge), with two
+// radii: r (--caustic-radius) for photons straight from an emitter through
+// mirrors and glass (L S+ D, the focused caustics), and kBouncedRadiusScale
+// x r for photons whose path bounced off a diffuse or glossy surface first
+// (L (D|G)+ S+ D: indirect light passed on by a mirror or glass, as smooth as
+// any indirect light, and sparse: at one radius for both it speckles every
+// wall the mirror faces). Each kernel integrates to 1, so the split moves no
+// energy, it only blurs the smooth part more. Only photons on the viewer's
+// side of a surface facing the same way count (normals within kNormalCos),
+// so light does not leak through thin walls or round corners; near such
+// edges the disc is partly empty and the estimate darkens (boundary bias, as
+// any fixed-radius estimate).
+//
+// Thread-safety: build() single caller; radiance() const, any threads.
+#include <cstdint>
+#include <vector>
+
+#include "methods/gbuffer.h"
+#include "methods/method.h"
+#include "photons/photon_grid.h"
+
+namespace igi {
+
+class CausticMap {
+ public:
+  static constexpr float kNormalCos = 0.9f;
+  static constexpr float kBouncedRadiusScale = 2.0f;
+
+  CausticMap(const SceneContext& context, const RenderSettings& settings);
+
+  // `threads` trace the paths (0: all hardware threads); the map does not depend on it.
+  void build(uint32_t frame_seed, int threads = 0);
+  glm::vec3 radiance(const GSample& g) const;
+
+  uint64_t hash() const { return hash_; }
+  uint32_t paths() const { return paths_; }
+  size_t photon_count() const { return focused_.size() + bounced_.size(); }
+  float radius() const { return radius_; }
+  // Rays traced by the last build().
+  const RayCounts& rays() const { return rays_; }
+
+ private:
+  SceneContext context_;
+  RenderSettings settings_;
+  float radius_;      // absolute, in scene units
+  uint32_t paths_;
+  PhotonGrid focused_, bounced_;  // Photon::bounced 0 and 1, radius r and kBouncedRadiusScale r
+  uint64_t hash_ = 0;
+  RayCounts rays_;
+};
+
+uint64_t hash_photons(const std::vector<Photon>& photons);
+
+}  // namespace igi

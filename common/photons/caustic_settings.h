@@ -1,0 +1,33 @@
+#pragma once
+// The caustic options of RenderSettings, their limits and their checks,
+// shared by the command lines and the wire format.
+//
+//   caustics         on/off (--caustics, or any --caustic-* option)
+//   caustic_photons  photon PATHS shot per frame, >= 1 (--caustic-photons)
+//   caustic_radius   density-estimation radius as a fraction of the scene's
+//                    diagonal, in [kMinCausticRadius, kMaxCausticRadius]
+//                    (--caustic-radius); scale-free like --clamp
+//
+// Memory: a path keeps at most kMaxPhotonsPerPath photons (photon_paths.h),
+// so a frame's map needs at most paths x that x kBytesPerPhoton.
+#include <cstdint>
+#include <string>
+
+#include "methods/settings.h"
+
+namespace igi::photons {
+
+inline constexpr int kMaxCausticPhotons = 1 << 26;
+inline constexpr float kMinCausticRadius = 1e-5f;
+inline constexpr float kMaxCausticRadius = 0.25f;
+inline constexpr int kMaxPhotonsPerPath = 4;
+// A photon, its copy in the grid's order and the grid's per-photon share.
+inline constexpr uint64_t kBytesPerPhoton = 2 * 52 + 16;
+
+// "" when the caustic options are usable, else what is wrong, naming the option.
+std::string settings_error(const RenderSettings& s);
+// "" when the largest possible map fits in half of `memory_bytes` (or caustics
+// are off, or the memory is unknown: 0), else why not, naming the option.
+std::string memory_error(const RenderSettings& s, uint64_t memory_bytes);
+
+}  // namespace igi::photons

@@ -1,0 +1,90 @@
+#include "photons/photon_paths.h"
+
+#include <algorithm>
+#include <atomic>
+#include <thread>
+
+#include "material/bsdf.h"
+#include "photons/caustic_settings.h"
+#include "sampling/hash.h"
+#include "sampling/warp.h"
+#include "scene/surface.h"
+#include "vpl/light_path.h"
+
+namespace igi {
+namespace {
+
+constexpr uint32_t kChunk = 1024;  // paths per unit of work: fixed, so the order is too
+
+void trace_path(const SceneContext& ctx, const RenderSettings& settings, uint32_t path, uint32_t seed,
+                float inv_paths, std::vector<Photon>& out, RayCounts& rays) {
+  SampleStream start_stream(path, seed, 0);
+  const LightPathStart start = start_light_path(ctx.lights, ctx.scene, start_stream);
+  Ray ray = start.ray;
+  glm::vec3 flux = start.flux;
+  bool after_specular = false, bounced = false;
+  int stored = 0;
+  const int max_depth = depth_limit(settings.light_depth);
+  for (int depth = 0; depth < max_depth; ++depth) {
+    Hit hit;
+    ++rays.secondary;
+    if (!ctx.accel.intersect(ray, hit)) return;
+    const SurfacePoint sp = surface_at(ctx.scene, hit, ray.direction);
+    const glm::vec3 wo = -ray.direction;
+    if (!sp.material->is_specular()) {
+      if (after_specular && receives_vpls(*sp.material, settings.glossy_threshold)) {
+        const glm::vec3 n = glm::dot(wo, sp.geometric_normal) >= 0.0f ? sp.geometric_normal : -sp.geometric_normal;
+        out.push_back(Photon{sp.position, wo, n, flux * inv_paths, bounced ? 1u : 0u});
+        if (++stored == photons::kMaxPhotonsPerPath) return;
+      }
+      bounced = true;
+    }
+    after_specular = sp.material->is_specular();
+    // The lobe and roulette numbers share one 2D point (each 1D draw would
+    // cost a whole 2D Sobol point: a third of the pass's sampling).
+    SampleStream u(path, seed, kStartDims + kDimsPerBounce * uint32_t(depth));
+    const glm::vec2 u_dir = u.next_2d();
+    const glm::vec2 u_lobe_roulette = u.next_2d();
+    auto bs = bsdf_sample(sp, wo, u_dir, u_lobe_roulette.x);
+    if (!bs) return;
+    // Russian roulette by albedo, as VPL paths: survivors carry the lost share.
+    const float q = std::min(1.0f, max_component(bs->weight));
+    if (!(u_lobe_roulette.y < q)) return;
+    flux *= bs->weight / q;
+    ray = Ray{offset_origin(sp, bs->wi), bs->wi};
+  }
+}
+
+}  // namespace
+
+std::vector<Photon> trace_photon_paths(const SceneContext& context, const RenderSettings& settings, uint32_t seed,
+                                       uint32_t paths, int threads, RayCounts& rays) {
+  static_assert(sizeof(Photon) == 52, "caustic_settings.h counts 52 bytes a photon");
+  const uint32_t path_seed = hash(seed, 0x70686f74u);  // "phot": independent of the VPL paths
+  const float inv_paths = 1.0f / float(paths);
+  const uint32_t chunks = (paths + kChunk - 1) / kChunk;
+  std::vector<std::vector<Photon>> per_chunk(chunks);
+  std::vector<RayCounts> per_worker(size_t(std::max(1, threads)));
+  std::atomic<uint32_t> next{0};
+  // Every chunk on a thread of our own with flush-to-zero set, whatever the
+  // caller's floating-point mode: the photons cannot depend on who calls.
+  auto work = [&](RayCounts& counts) {
+    enable_flush_to_zero();
+    for (uint32_t c; (c = next.fetch_add(1)) < chunks;)
+      for (uint32_t i = c * kChunk; i < std::min(paths, (c + 1) * kChunk); ++i)
+        trace_path(context, settings, i, path_seed, inv_paths, per_chunk[c], counts);
+  };
+  const int workers = std::clamp(int(chunks), 1, std::max(1, threads));
+  std::vector<std::thread> pool;
+  for (int t = 0; t < workers; ++t) pool.emplace_back(work, std::ref(per_worker[size_t(t)]));
+  for (std::thread& t : pool) t.join();
+  for (const RayCounts& c : per_worker) rays += c;
+  size_t total = 0;
+  for (const auto& c : per_chunk) total += c.size();
+  std::vector<Photon> photons;
+  photons.reserve(total);
+  for (const auto& c : per_chunk) photons.insert(photons.end(), c.begin(), c.end());
+  return photons;
+}
+
+}  // namespace igi

@@ -1,0 +1,50 @@
+#include "vpl/light_path.h"
+
+#include <cmath>
+
+#include "sampling/warp.h"
+
+namespace igi {
+
+LightPathStart start_light_path(const LightSet& lights, const Scene& scene, SampleStream& u) {
+  const float u_select = u.next_1d();
+  const glm::vec2 u_point = u.next_2d();
+  const glm::vec2 u_dir = u.next_2d();
+  EmissionSample e = lights.sample_emission(u_select, u_point);
+  LightPathStart start;
+  switch (e.kind) {
+    case LightKind::Area: {
+      start.on_area_light = true;
+      start.position = e.position;
+      start.normal = e.normal;
+      start.power = e.power;
+      Frame frame(e.normal);
+      glm::vec3 d = frame.to_world(cosine_hemisphere(u_dir));
+      start.ray = Ray{e.position + 1e-5f * lights.scene_radius() * e.normal, d};
+      start.flux = e.power * kPi;  // Le A cos / (pdf = cos / pi)
+      break;
+    }
+    case LightKind::Directional:
+      start.ray = Ray{e.position, e.normal};
+      start.flux = e.power;
+      break;
+    default: {
+      const PunctualLight& pl = scene.lights[lights.lights()[e.light].index];
+      glm::vec3 d;
+      if (e.kind == LightKind::Spot) {
+        float cos_max = std::cos(pl.outer_cone);
+        d = Frame(glm::normalize(pl.direction)).to_world(uniform_cone(u_dir, cos_max));
+        float pdf = 1.0f / (2.0f * kPi * (1.0f - cos_max));
+        start.flux = e.power * (spot_attenuation(pl, d) / pdf);
+      } else {
+        float z = 1.0f - 2.0f * u_dir.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        d = glm::vec3(r * std::cos(2.0f * kPi * u_dir.y), r * std::sin(2.0f * kPi * u_dir.y), z);
+        start.flux = e.power * (4.0f * kPi);
+      }
+      start.ray = Ray{e.position, d};
+    }
+  }
+  return start;
+}
+
+}  // namespace igi
