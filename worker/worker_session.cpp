@@ -92,7 +92,11 @@ WorkerSession::Outcome WorkerSession::serve(zmq::context_t& context) {
   auto last_heard = Clock::now();
   for (;;) {
     wait_for_work(socket);
-    if (auto outcome = check_connection(monitor)) return *outcome;
+    // The connection's events are taken before the messages are read: a master
+    // that says Bye and exits is seen to disconnect, but its Bye, queued before
+    // the disconnect, must still be read (the worker would otherwise reconnect
+    // to a master that is gone, and retry until --give-up).
+    const auto connection = check_connection(monitor);
     while (auto received = protocol::receive(socket, 0, false)) {
       last_heard = Clock::now();
       if (!received->message) {
@@ -101,6 +105,7 @@ WorkerSession::Outcome WorkerSession::serve(zmq::context_t& context) {
         return *outcome;
       }
     }
+    if (connection) return *connection;
     if (auto outcome = poll_loading(socket)) return *outcome;
     send_results(socket);
     const auto heartbeat = std::chrono::milliseconds(welcome_ ? welcome_->heartbeat_ms : 500);
