@@ -28,7 +28,8 @@
 namespace igi::protocol {
 
 inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
-inline constexpr uint16_t kVersion = 3;  // 3: split path lengths, anti-aliasing, glossy gather, lightcuts
+inline constexpr uint16_t kVersion = 5;  // 3: split path lengths, anti-aliasing, glossy gather, lightcuts;
+                                         // 5: light importance and bidirectional IR (4: issue 12)
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;

@@ -23,6 +23,9 @@ inline constexpr int kMaxPathsPerSet = 1 << 20;
 inline constexpr int kMaxCompensationSamples = 256;
 inline constexpr int kMaxAntialiasSamples = 64;  // 8 x 8 sub-samples
 inline constexpr int kMaxGlossyRays = 64;
+inline constexpr int kMaxImportancePaths = 1 << 20;  // camera paths of the light-importance estimate
+inline constexpr int kMaxBidirPaths = 4096;          // bidirectional: light and camera paths per set
+inline constexpr int kMaxBidirVpls = 1 << 16;        // bidirectional: VPLs kept per set
 
 // The defaults of anti-aliasing, clamp and compensation are the best trade-off
 // measured at interactive frame times (README, "Defaults").
@@ -61,11 +64,23 @@ struct RenderSettings {
   int lightcuts_max_cut = 1000;   // and stop at this many nodes in a cut
   int lightcuts_spacing = 0;      // reconstruction cuts: full cuts every S pixels only; 0 = off
   int lightcuts_samples = 1;      // multidimensional lightcuts: K = s x s gather points per pixel
+  // Light importance for the current view (ir/igi; common/importance/light_importance.h):
+  // VPL light paths start at lights in proportion to an estimate of what each
+  // adds to the image, from this many camera paths. 0 = lights by power.
+  int importance_paths = 0;
+  float importance_floor = 0.2f;  // share of the light paths still started by power (no light starved)
+  // Bidirectional instant radiosity (ir/igi; common/importance/bidirectional.h):
+  // each set's M light paths and R camera paths give candidate VPLs, of which
+  // this many are kept by their estimated contribution to the image. 0 = off.
+  int bidir_vpls = 0;
+  int bidir_camera_paths = 0;     // R; 0 = as many as light paths (M)
 };
 
 // What is wrong with the settings, named as igi-render's option (e.g.
 // "--aa: ..."), or nothing when every field is in range and they fit together.
 std::optional<std::string> settings_error(const RenderSettings& settings);
+// The part of settings_error() about --importance and --bidir (the wire format checks it too).
+std::optional<std::string> importance_settings_error(const RenderSettings& settings);
 
 }  // namespace igi
 

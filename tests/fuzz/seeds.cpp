@@ -21,6 +21,8 @@ RenderSettings settings() {
   s.compensation_samples = 4;
   s.lightcuts_error = 0.05f;
   s.lightcuts_spacing = 8;
+  s.importance_paths = 256;
+  s.bidir_vpls = 32;
   return s;
 }
 
