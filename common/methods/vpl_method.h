@@ -31,6 +31,8 @@ class VplMethod final : public Method {
   void render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const override;
   uint64_t frame_state_hash() const override { return vpls_.hash; }
   const VplSets& vpls() const { return vpls_; }
+  // Rays begin_frame() traced for light importance and bidirectional IR (not the light paths).
+  const RayCounts& setup_rays() const { return setup_rays_; }
   // Benchmarks only: record every packet traced from now on (one thread only).
   void record_rays(RayLog* log) { log_ = log; }
 
@@ -48,6 +50,7 @@ class VplMethod final : public Method {
   RenderSettings settings_;
   FrameSetup frame_;
   VplSets vpls_;
+  RayCounts setup_rays_;
   std::vector<Vpl> exact_;  // point, spot and directional lights (methods/direct_lights.h)
   float clamp_bound_ = INFINITY;
   double fixed_scale_ = 0x1p32;
