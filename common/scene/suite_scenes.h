@@ -12,6 +12,10 @@
 //           darkens it).
 //   rooms-N N x N rooms of 4 x 4 x 2.5 m joined by doorways, one ceiling
 //           light each; the camera sees a few rooms, most light is occluded.
+//   corridor  a 4 x 4 m room (the camera's) joined by a corridor with a bend
+//           to a second room with the only light: no light can be seen from
+//           the camera's room, whose light has bounced at least once in the
+//           corridor (light paths seldom get there).
 //   glossy  the Cornell box with a GGX metal floor (alpha 0.04): VPLs show as
 //           spikes; glossy-rough: alpha 0.3, where they blur.
 //   large   the Cornell box without its blocks and a 3 x 3 grid of bumpy
@@ -27,6 +31,8 @@ inline constexpr int kMaxRooms = 10;
 Scene make_corner_scene();
 // 1 <= n <= kMaxRooms; throws SceneError otherwise.
 Scene make_rooms_scene(int n);
+inline constexpr float kCorridorLamp = 100.0f;  // the lamp's radiance (red channel), W/(m^2 sr)
+Scene make_corridor_scene();
 // alpha: GGX roughness parameter of the floor (roughness^2).
 Scene make_glossy_cornell(float alpha = 0.04f, const std::string& name = "glossy");
 // At least `triangles` triangles in the spheres (the box adds 20).
