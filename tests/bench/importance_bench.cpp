@@ -1,0 +1,192 @@
+// igi-importance: light importance and bidirectional IR against plain ir/igi,
+// all variants measured in one run on one machine. Per variant (igi-render
+// options), over several seeds: wall and CPU time, relMSE, LDR-FLIP and mean
+// ratio against a reference, VPLs per set, the rays begin_frame() traced,
+// and the share of VPLs that see what the camera sees.
+//
+//   igi-importance --scene S --size WxH --ref REF.exr [--seeds N] [--passes P] [--no-flip]
+//                  --variant "OPTIONS" [--variant "OPTIONS" ...]
+//
+// Visible share: of the first pass's VPLs (all sets), those with an unoccluded
+// line to at least one of the points seen through a 32 x 32 grid of pixel
+// centres, on the side the VPL lights: in a building of rooms, the VPLs that
+// landed in rooms the camera can see.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <sstream>
+
+#include "image/flip.h"
+#include "image/metrics.h"
+#include "methods/vpl_method.h"
+#include "render/accumulator.h"
+#include "render/frame_renderer.h"
+#include "render_options.h"
+#include "sampling/sobol.h"
+#include "sampling/warp.h"
+#include "scene/camera_rays.h"
+#include "scene/load_scene.h"
+#include "scene/surface.h"
+
+namespace igi {
+namespace {
+
+struct Options {
+  std::string scene = "rooms";
+  int width = 128, height = 96;
+  std::string reference;
+  int seeds = 3, passes = 1;
+  bool flip = true;
+  std::vector<std::string> variants;
+};
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(a + ": expected a value");
+      return argv[++i];
+    };
+    if (a == "--scene") o.scene = value();
+    else if (a == "--size") {
+      const std::string v = value();
+      if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2) throw std::invalid_argument("--size: WxH");
+    } else if (a == "--ref") o.reference = value();
+    else if (a == "--seeds") o.seeds = std::stoi(value());
+    else if (a == "--passes") o.passes = std::stoi(value());
+    else if (a == "--no-flip") o.flip = false;
+    else if (a == "--variant") o.variants.push_back(value());
+    else throw std::invalid_argument("unknown option '" + a + "' (see tests/bench/importance_bench.cpp)");
+  }
+  if (o.reference.empty() || o.variants.empty()) throw std::invalid_argument("need --ref and at least one --variant");
+  return o;
+}
+
+RenderSettings variant_settings(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::string> args;
+  for (std::string a; in >> a;) args.push_back(a);
+  return parse_render_options(args).settings;
+}
+
+double cpu_seconds() {
+  timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+// Share of VPLs with a line of sight to a point the camera sees.
+double visible_share(const SceneContext& context, const FrameSetup& frame, const VplSets& sets) {
+  const CameraBasis camera(frame.camera, frame.width, frame.height);
+  std::vector<SurfacePoint> seen;
+  for (int j = 0; j < 32; ++j)
+    for (int i = 0; i < 32; ++i) {
+      Ray ray = camera.ray((float(i) + 0.5f) * float(frame.width) / 32.0f, (float(j) + 0.5f) * float(frame.height) / 32.0f);
+      ray.mask = kCameraRayMask;
+      Hit hit;
+      if (context.accel.intersect(ray, hit)) seen.push_back(surface_at(context.scene, hit, ray.direction));
+    }
+  size_t visible = 0;
+  for (const Vpl& v : sets.vpls)
+    for (const SurfacePoint& p : seen) {
+      const glm::vec3 d = p.position - v.position;
+      const float dist = glm::length(d);
+      if (!(dist > 0.0f) || glm::dot(d, v.normal) <= 0.0f) continue;
+      const glm::vec3 w = -d / dist;
+      Ray shadow{offset_origin(p, w), w, 0.0f, dist * (1.0f - kShadowEpsilon)};
+      if (!context.accel.occluded(shadow)) { ++visible; break; }
+    }
+  return sets.vpls.empty() ? 0.0 : double(visible) / double(sets.vpls.size());
+}
+
+struct Run {
+  double wall, cpu, relmse, flip, mean_ratio, vpls_per_set, setup_rays_per_pass, visible;
+};
+
+Run render(const SceneContext& context, const RenderSettings& settings, const Options& o, uint32_t seed,
+           const Image& reference) {
+  auto method = make_method(context, settings);
+  auto* vpl = dynamic_cast<VplMethod*>(method.get());
+  FrameSetup base;
+  base.camera = context.scene.camera_or_auto();
+  base.width = o.width;
+  base.height = o.height;
+  base.seed = seed;
+  Accumulator accumulator(o.width, o.height);
+  RayCounts rays;
+  Run run{};
+  const double cpu0 = cpu_seconds();
+  const auto wall0 = std::chrono::steady_clock::now();
+  for (int pass = 0; pass < o.passes; ++pass) {
+    FrameSetup frame = base;
+    if (o.passes > 1) {  // as render_offline
+      frame.seed = base.seed + uint32_t(pass);
+      const glm::vec2 jitter = sample_2d(uint32_t(pass), 0, base.seed);
+      frame.jitter_x = jitter.x;
+      frame.jitter_y = jitter.y;
+    }
+    method->begin_frame(frame);
+    if (vpl) {
+      run.setup_rays_per_pass += double(vpl->setup_rays().total()) / o.passes;
+      run.vpls_per_set += double(vpl->vpls().vpls.size()) / vpl->vpls().set_count() / o.passes;
+    }
+    accumulator.add(render_frame(*method, frame, tile_border(settings), FrameOptions{}, rays), 1.0);
+  }
+  run.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  run.cpu = cpu_seconds() - cpu0;
+  const Image image = accumulator.resolve();
+  run.relmse = rel_mse(image, reference);
+  run.flip = o.flip ? mean_flip(image, reference) : 0.0;
+  run.mean_ratio = luminance(image.mean()) / luminance(reference.mean());
+  if (vpl) {
+    method->begin_frame(base);
+    run.visible = visible_share(context, base, vpl->vpls());
+  }
+  return run;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+int run(const Options& o) {
+  const Scene scene = load_scene(o.scene);
+  const Accel accel(scene);
+  const LightSet lights(scene);
+  const SceneContext context{scene, accel, lights};
+  const Image reference = read_image(o.reference);
+  if (reference.width != o.width || reference.height != o.height) throw std::invalid_argument("--ref: size differs from --size");
+  std::printf("%-48s %7s %7s %9s %9s %7s %6s %7s %9s %6s\n", "variant", "wall_s", "cpu_s", "relMSE", "mean_rel", "FLIP",
+              "mean", "vpls", "setup_ray", "seen");
+  for (const std::string& text : o.variants) {
+    const RenderSettings settings = variant_settings(text);
+    std::vector<double> wall, cpu, relmse, flip, mean, vpls, setup, seen;
+    for (int s = 0; s < o.seeds; ++s) {
+      const Run r = render(context, settings, o, 1u + 1000u * uint32_t(s), reference);
+      wall.push_back(r.wall); cpu.push_back(r.cpu); relmse.push_back(r.relmse); flip.push_back(r.flip);
+      mean.push_back(r.mean_ratio); vpls.push_back(r.vpls_per_set); setup.push_back(r.setup_rays_per_pass);
+      seen.push_back(r.visible);
+    }
+    double mean_relmse = 0.0;
+    for (double e : relmse) mean_relmse += e / double(relmse.size());
+    std::printf("%-48s %7.3f %7.3f %9.5f %9.5f %7.4f %6.3f %7.1f %9.0f %6.3f\n", text.c_str(), median(wall), median(cpu),
+                median(relmse), mean_relmse, median(flip), median(mean), median(vpls), median(setup), median(seen));
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace igi
+
+int main(int argc, char** argv) {
+  try {
+    return igi::run(igi::parse(argc, argv));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "igi-importance: %s\n", e.what());
+    return 1;
+  }
+}
