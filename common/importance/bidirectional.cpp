@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "importance/camera_points.h"
+#include "importance/parallel.h"
 #include "importance/resample.h"
 #include "material/bsdf.h"
 #include "methods/direct_lights.h"
@@ -99,21 +100,22 @@ class Builder {
     options.selection = selection_;
     options.vertices = &vertices_;
     standard_ = generate_vpls(context_, paths, frame_.seed, options);
+    // Sets are independent: built on threads, joined in set order.
+    std::vector<SetResult> results(static_cast<size_t>(standard_.set_count()));
+    parallel_tasks(standard_.set_count(), [&](int k) { results[size_t(k)] = build_set(k); });
     VplSets out;
     out.interleave = settings_.interleave;
     out.groups = settings_.aa_samples;
     out.set_begin.push_back(0);
-    for (int k = 0; k < standard_.set_count(); ++k) {
-      std::vector<CameraPoint> points = camera_points(k);
-      std::vector<Candidate> candidates = standard_candidates(k);
-      const size_t standard_count = candidates.size();
-      add_reverse_candidates(k, points, candidates);
-      for (Candidate& c : candidates) measure(c, points);
-      for (size_t c = standard_count; c < candidates.size(); ++c)
-        gather(candidates[c], std::span<const Candidate>(candidates.data(), standard_count));
-      for (size_t c = 0; c < standard_count; ++c) weigh_standard(candidates[c], candidates, standard_.set_begin[size_t(k)]);
-      resample(k, candidates, out);
+    for (const SetResult& r : results) {
+      uint32_t group = uint32_t(out.vpls.size());
+      for (uint32_t size : r.group_sizes) {
+        out.group_begin.push_back(group);
+        group += size;
+      }
+      out.vpls.insert(out.vpls.end(), r.vpls.begin(), r.vpls.end());
       out.set_begin.push_back(uint32_t(out.vpls.size()));
+      rays_ += r.rays;
     }
     out.group_begin.push_back(uint32_t(out.vpls.size()));
     out.hash = hash_vpls(out.vpls);
@@ -131,18 +133,38 @@ class Builder {
     return selection_ ? selection_->probability(light) : context_.lights.selection_probability(light);
   }
 
-  bool occluded(const ShadowQuery& q) const {
-    ++rays_.shadow;
+  bool occluded(const ShadowQuery& q, RayCounts& rays) const {
+    ++rays.shadow;
     return context_.accel.occluded(Ray{q.origin, q.direction, 0.0f, q.tfar});
   }
 
+  struct SetResult {
+    std::vector<Vpl> vpls;              // the set's groups, one after the other
+    std::vector<uint32_t> group_sizes;  // G entries
+    RayCounts rays;
+  };
+
+  SetResult build_set(int k) const {
+    SetResult r;
+    std::vector<CameraPoint> points = camera_points(k, r.rays);
+    std::vector<Candidate> candidates = standard_candidates(k);
+    const size_t standard_count = candidates.size();
+    add_reverse_candidates(k, points, candidates, r.rays);
+    for (Candidate& c : candidates) measure(c, points, r.rays);
+    for (size_t c = standard_count; c < candidates.size(); ++c)
+      gather(candidates[c], std::span<const Candidate>(candidates.data(), standard_count), r.rays);
+    for (size_t c = 0; c < standard_count; ++c) weigh_standard(candidates[c], candidates, standard_.set_begin[size_t(k)]);
+    resample(k, candidates, r);
+    return r;
+  }
+
   // Camera path i of set k: its first non-specular point.
-  std::vector<CameraPoint> camera_points(int k) const {
+  std::vector<CameraPoint> camera_points(int k, RayCounts& rays) const {
     std::vector<CameraPoint> points(static_cast<size_t>(camera_paths_));
     for (int i = 0; i < camera_paths_; ++i) {
       CameraPoint& p = points[size_t(i)];
       p.x = trace_camera_point(context_.accel, camera_, frame_, uint32_t(k * camera_paths_ + i), camera_seed_,
-                               depth_limit(settings_.specular_depth), rays_);
+                               depth_limit(settings_.specular_depth), rays);
       if (!p.x.valid()) continue;
       const SurfacePoint& s = p.x.surface;
       p.facing = glm::dot(p.x.wo, s.geometric_normal) >= 0.0f ? s.shading_normal : -s.shading_normal;
@@ -164,14 +186,15 @@ class Builder {
 
   // Each camera point turns by a cosine-distributed direction; a diffuse
   // surface there becomes a reverse candidate (flux gathered later).
-  void add_reverse_candidates(int k, const std::vector<CameraPoint>& points, std::vector<Candidate>& out) const {
+  void add_reverse_candidates(int k, const std::vector<CameraPoint>& points, std::vector<Candidate>& out,
+                              RayCounts& rays) const {
     for (int i = 0; i < camera_paths_; ++i) {
       const CameraPoint& p = points[size_t(i)];
       if (!p.x.valid()) continue;
       const glm::vec2 u = sample_2d(uint32_t(k * camera_paths_ + i), 2, camera_seed_);
       const glm::vec3 w = Frame(p.facing).to_world(cosine_hemisphere(u));
       Ray ray{offset_origin(p.x.surface, w), w};
-      ++rays_.secondary;
+      ++rays.secondary;
       Hit hit;
       if (!context_.accel.intersect(ray, hit)) continue;
       const SurfacePoint y = surface_at(context_.scene, hit, w);
@@ -194,7 +217,7 @@ class Builder {
 
   // p_R and the image response at the set's camera points: one shadow ray per
   // point that the VPL could light or that could have found it.
-  void measure(Candidate& c, const std::vector<CameraPoint>& points) const {
+  void measure(Candidate& c, const std::vector<CameraPoint>& points, RayCounts& rays) const {
     Vpl unit = c.vpl;
     unit.flux = glm::vec3(1.0f);
     const bool diffuse_vpl =
@@ -217,7 +240,7 @@ class Builder {
       if (!(density > 0.0f) && !lights) continue;
       if (!lights) q = ShadowQuery{offset_origin(p.x.surface, w), w, dist * (1.0f - kShadowEpsilon)};
       // The camera path that found the VPL saw it: no ray needed (nor a miss by rounding).
-      if (i != c.own && occluded(q)) continue;
+      if (i != c.own && occluded(q, rays)) continue;
       c.density += density;
       c.response += p.x.throughput * p.x.surface.albedo * light;
     }
@@ -239,19 +262,19 @@ class Builder {
   // like a light path's own step from z to y: the weight p_R / (p_R + p_L)
   // falls as p_L grows with 1 / r^2, so the product stays bounded near z,
   // and the reverse way adds no clamping bias of its own.
-  void gather(Candidate& y, std::span<const Candidate> standard) const {
+  void gather(Candidate& y, std::span<const Candidate> standard, RayCounts& rays) const {
     glm::vec3 irradiance(0.0f);
     const glm::vec3 p = y.vpl.position, n = y.vpl.normal;
     for (const Candidate& z : standard) {
       ShadowQuery q;
       const glm::vec3 light = gathering_.contribution(y.receiver, z.vpl, q);
-      if (!(light.x + light.y + light.z > 0.0f) || occluded(q)) continue;
+      if (!(light.x + light.y + light.z > 0.0f) || occluded(q, rays)) continue;
       irradiance += light * reverse_weight(y.density, continuation_density(context_.scene, z.vpl, z.from, p, n, max_depth_));
     }
     for (uint32_t i = 0; i < exact_.size(); ++i) {
       ShadowQuery q;
       const glm::vec3 light = gathering_.contribution(y.receiver, exact_[i], q);
-      if (!(light.x + light.y + light.z > 0.0f) || occluded(q)) continue;
+      if (!(light.x + light.y + light.z > 0.0f) || occluded(q, rays)) continue;
       irradiance += light * reverse_weight(y.density, punctual_standard_density(i, p, n));
     }
     // contribution() is demodulated: a Lambertian receiver's 1 / pi.
@@ -281,7 +304,7 @@ class Builder {
   }
 
   // K draws by estimated contribution, cut into the set's G groups.
-  void resample(int k, const std::vector<Candidate>& candidates, VplSets& out) const {
+  void resample(int k, const std::vector<Candidate>& candidates, SetResult& out) const {
     std::vector<double> weights(candidates.size());
     double estimated = 0.0;
     for (size_t c = 0; c < candidates.size(); ++c)
@@ -297,7 +320,7 @@ class Builder {
     const double u = double(hash(frame_.seed, uint32_t(k), kResampleTag) >> 8) * 0x1p-24;
     std::vector<int> counts;
     for (int g = 0; g < groups; ++g) {
-      out.group_begin.push_back(uint32_t(out.vpls.size()));
+      const size_t group_first = out.vpls.size();
       const int draws = (g + 1) * keep / groups - g * keep / groups;
       systematic_counts(weights, draws, group_offset(u, g, groups), counts);
       for (size_t c = 0; c < candidates.size(); ++c) {
@@ -306,6 +329,7 @@ class Builder {
         v.flux *= float(double(counts[c]) * total / (double(draws) * weights[c] * double(groups)));
         out.vpls.push_back(v);
       }
+      out.group_sizes.push_back(uint32_t(out.vpls.size() - group_first));
     }
   }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "importance/camera_points.h"
+#include "importance/parallel.h"
 #include "material/bsdf.h"
 #include "sampling/hash.h"
 #include "sampling/sobol.h"
@@ -197,9 +198,31 @@ LightSelection estimate_light_importance(const SceneContext& context, const Rend
   const uint32_t seed = hash(frame.seed, 0x6c677469u /* "lgti" */);
   const CameraBasis camera(frame.camera, frame.width, frame.height);
   const size_t lights = context.lights.lights().size();
+  // Chunks of a fixed number of paths, summed in chunk order: the sums do not
+  // depend on how many threads ran them.
+  constexpr int kChunk = 256;
+  const int paths = settings.importance_paths, chunks = (paths + kChunk - 1) / kChunk;
+  struct Chunk {
+    std::vector<double> credit;
+    size_t credited = 0;
+    RayCounts rays;
+  };
+  std::vector<Chunk> parts(static_cast<size_t>(chunks));
+  parallel_tasks(chunks, [&](int c) {
+    Chunk& part = parts[size_t(c)];
+    part.credit.assign(lights, 0.0);
+    Estimator estimator(context, settings, seed);
+    for (int i = c * kChunk; i < std::min(paths, (c + 1) * kChunk); ++i)
+      estimator.trace(camera, frame, uint32_t(i), part.credit, part.rays);
+    part.credited = estimator.credited();
+  });
   std::vector<double> credit(lights, 0.0);
-  Estimator estimator(context, settings, seed);
-  for (uint32_t i = 0; i < uint32_t(settings.importance_paths); ++i) estimator.trace(camera, frame, i, credit, rays);
+  size_t credited = 0;
+  for (const Chunk& part : parts) {
+    for (size_t l = 0; l < lights; ++l) credit[l] += part.credit[l];
+    credited += part.credited;
+    rays += part.rays;
+  }
   LightSelection out;
   std::vector<float> power(lights);
   for (uint32_t l = 0; l < lights; ++l) {
@@ -208,7 +231,7 @@ LightSelection estimate_light_importance(const SceneContext& context, const Rend
   }
   // With fewer samples than lights most lights' estimates are 0 or one
   // sample, by chance: trust the estimate less (the floor rises towards power).
-  const float floor = std::max(settings.importance_floor, float(lights) / float(lights + estimator.credited()));
+  const float floor = std::max(settings.importance_floor, float(lights) / float(lights + credited));
   const std::vector<float> weights = selection_weights(out.contribution, power, floor);
   out.distribution = Distribution1D(weights);
   out.hash = fnv1a64(weights.data(), weights.size() * sizeof(float));

@@ -238,6 +238,15 @@ Scene make_large_scene(int triangles) {
   return s;
 }
 
+int suite_room(const std::string& name, glm::vec3 p) {
+  if (const int n = parse_rooms_name(name)) {
+    const int i = std::clamp(int(std::floor(p.x / 4.0f)), 0, n - 1), j = std::clamp(int(std::floor(p.z / 4.0f)), 0, n - 1);
+    return i * n + j;
+  }
+  if (name == "corridor") return p.z < 5.0f ? 0 : p.x < 8.0f ? 1 : 2;  // the plan of make_corridor_scene()
+  return 0;
+}
+
 int parse_rooms_name(const std::string& name) {
   if (name == "rooms") return 4;
   const std::string prefix = "rooms-";
