@@ -100,8 +100,13 @@ class Builder {
     options.selection = selection_;
     options.vertices = &vertices_;
     standard_ = generate_vpls(context_, paths, frame_.seed, options);
+    const int sets = standard_.set_count();
+    points_.resize(size_t(sets));
+    std::vector<RayCounts> point_rays(static_cast<size_t>(sets));
+    parallel_tasks(sets, [&](int k) { points_[size_t(k)] = camera_points(k, point_rays[size_t(k)]); });
+    for (const RayCounts& r : point_rays) rays_ += r;
     // Sets are independent: built on threads, joined in set order.
-    std::vector<SetResult> results(static_cast<size_t>(standard_.set_count()));
+    std::vector<SetResult> results(static_cast<size_t>(sets));
     parallel_tasks(standard_.set_count(), [&](int k) { results[size_t(k)] = build_set(k); });
     VplSets out;
     out.interleave = settings_.interleave;
@@ -146,7 +151,7 @@ class Builder {
 
   SetResult build_set(int k) const {
     SetResult r;
-    std::vector<CameraPoint> points = camera_points(k, r.rays);
+    const std::vector<CameraPoint>& points = points_[size_t(k)];
     std::vector<Candidate> candidates = standard_candidates(k);
     const size_t standard_count = candidates.size();
     add_reverse_candidates(k, points, candidates, r.rays);
@@ -303,7 +308,8 @@ class Builder {
     c.vpl.flux *= 1.0f - reverse_weight(c.density, p_standard);
   }
 
-  // K draws by estimated contribution, cut into the set's G groups.
+  // K draws (on average) by estimated contribution, cut into the set's G
+  // groups, each candidate rounded by its own number (importance/resample.h).
   void resample(int k, const std::vector<Candidate>& candidates, SetResult& out) const {
     std::vector<double> weights(candidates.size());
     double estimated = 0.0;
@@ -316,17 +322,25 @@ class Builder {
       weights[c] = flux.x + flux.y + flux.z > 0.0f ? weights[c] + floor : 0.0;  // nothing to carry: never drawn
       total += weights[c];
     }
+    if (!(total > 0.0)) {
+      out.group_sizes.assign(size_t(settings_.aa_samples), 0u);
+      return;
+    }
     const int groups = settings_.aa_samples, keep = settings_.bidir_vpls;
-    const double u = double(hash(frame_.seed, uint32_t(k), kResampleTag) >> 8) * 0x1p-24;
-    std::vector<int> counts;
     for (int g = 0; g < groups; ++g) {
       const size_t group_first = out.vpls.size();
-      const int draws = (g + 1) * keep / groups - g * keep / groups;
-      systematic_counts(weights, draws, group_offset(u, g, groups), counts);
+      const double draws = double((g + 1) * keep / groups - g * keep / groups);
       for (size_t c = 0; c < candidates.size(); ++c) {
-        if (counts[c] == 0) continue;
+        if (!(weights[c] > 0.0)) continue;
+        // A candidate's number follows it from frame to frame: its light path
+        // (standard) or camera path (reverse) within the set.
+        const uint32_t id = candidates[c].reverse ? 0x80000000u | uint32_t(candidates[c].own) : uint32_t(c);
+        const double u = double(hash(frame_.seed, uint32_t(k), hash(id, kResampleTag)) >> 8) * 0x1p-24;
+        const double expected = draws * weights[c] / total;
+        const int count = rounded_draws(expected, group_offset(u, g, groups));
+        if (count == 0) continue;
         Vpl v = candidates[c].vpl;
-        v.flux *= float(double(counts[c]) * total / (double(draws) * weights[c] * double(groups)));
+        v.flux *= float(double(count) / (expected * double(groups)));
         out.vpls.push_back(v);
       }
       out.group_sizes.push_back(uint32_t(out.vpls.size() - group_first));
@@ -348,6 +362,7 @@ class Builder {
   const int max_depth_;
   VplSets standard_;
   std::vector<LightVertex> vertices_;
+  std::vector<std::vector<CameraPoint>> points_;  // per set
 };
 
 }  // namespace

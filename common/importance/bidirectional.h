@@ -31,15 +31,16 @@
 //  3. Resampling: each candidate c's contribution to the image is estimated
 //     at the set's R camera points x_i (one shadow ray each, the same rays
 //     that give p_R): w_c = estimate + a floor (kResampleFloor of the mean, so
-//     no candidate is impossible). K draws (--bidir K) are made by
-//     systematic resampling; a candidate drawn n times is one VPL of flux
-//     n W / (K w_c) times its own: each kept VPL's power divided by its
+//     no candidate is impossible). K draws (--bidir K) are expected: c is
+//     drawn about e_c = K w_c / W times, rounded up or down by a number of
+//     its own (importance/resample.h), and a candidate drawn n times is one
+//     VPL of flux n / e_c times its own: each kept VPL's power divided by its
 //     expected number of draws, so the kept set is still unbiased.
-//  4. Anti-aliasing groups: group g of G takes K_g of the K draws with its
-//     own offset frac(u + g / G) (importance/resample.h), so each group alone
-//     is an unbiased resampling of the whole set's candidates (its flux is
-//     divided by G, as a group of light paths holds 1 / G of the set), and
-//     the groups together are one systematic resampling.
+//  4. Anti-aliasing groups: group g of G expects K_g of the K draws and
+//     rounds with the candidate's number shifted by g / G, so each group
+//     alone is an unbiased resampling of the whole set's candidates (its
+//     flux divided by G, as a group of light paths holds 1 / G of the set),
+//     and over the groups a candidate's draws are stratified.
 // Each set uses only its own light and camera paths, so the sets stay
 // independent estimates, as the interleaving and the filter assume.
 // Everything is a pure function of scene, settings, camera, image size and
@@ -47,7 +48,8 @@
 //
 // Cost: per set (C + R) R shadow rays for the estimates and densities and
 // R (C + punctual lights) for the gathers, C being the standard candidates
-// (about 3 M), on the calling thread in begin_frame.
+// (about 3 M), in begin_frame, one task per set on threads of its own
+// (importance/parallel.h).
 #include "methods/method.h"
 #include "render/frame.h"
 #include "vpl/vpl.h"

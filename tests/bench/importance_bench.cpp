@@ -6,6 +6,13 @@
 //
 //   igi-importance --scene S --size WxH --ref REF.exr [--seeds N] [--passes P] [--no-flip]
 //                  --variant "OPTIONS" [--variant "OPTIONS" ...]
+//   igi-importance --scene S --size WxH --flicker STEP [--frames F] --variant ...
+//
+// --flicker: no reference; F frames (6) with the camera sliding STEP metres a
+// frame to its right, the same seed every frame, and per variant the
+// flicker: the mean absolute luminance change between consecutive frames
+// over their mean luminance (test_stability.cpp's measure, over the whole
+// image), averaged over --seeds runs of seeds 1, 1001, ...
 //
 // Visible share: of the first pass's VPLs (all sets), those with an unoccluded
 // line to at least one of the points seen through a 32 x 32 grid of pixel
@@ -13,6 +20,7 @@
 // landed in rooms the camera can see.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <sstream>
@@ -38,6 +46,8 @@ struct Options {
   std::string reference;
   int seeds = 3, passes = 1;
   bool flip = true;
+  float flicker_step = 0.0f;  // > 0: measure flicker instead
+  int frames = 6;
   std::vector<std::string> variants;
 };
 
@@ -57,10 +67,13 @@ Options parse(int argc, char** argv) {
     else if (a == "--seeds") o.seeds = std::stoi(value());
     else if (a == "--passes") o.passes = std::stoi(value());
     else if (a == "--no-flip") o.flip = false;
+    else if (a == "--flicker") o.flicker_step = std::stof(value());
+    else if (a == "--frames") o.frames = std::stoi(value());
     else if (a == "--variant") o.variants.push_back(value());
     else throw std::invalid_argument("unknown option '" + a + "' (see tests/bench/importance_bench.cpp)");
   }
-  if (o.reference.empty() || o.variants.empty()) throw std::invalid_argument("need --ref and at least one --variant");
+  if ((o.reference.empty() && o.flicker_step <= 0.0f) || o.variants.empty())
+    throw std::invalid_argument("need --ref (or --flicker) and at least one --variant");
   return o;
 }
 
@@ -147,6 +160,51 @@ Run render(const SceneContext& context, const RenderSettings& settings, const Op
   return run;
 }
 
+// Mean |L(f) - L(f - 1)| over mean L along the sliding camera, with the CPU time per frame.
+void flicker(const SceneContext& context, const RenderSettings& settings, const Options& o, uint32_t seed,
+             double& value, double& cpu_per_frame) {
+  auto method = make_method(context, settings);
+  Image previous;
+  double change = 0.0, level = 0.0;
+  const double cpu0 = cpu_seconds();
+  for (int f = 0; f < o.frames; ++f) {
+    FrameSetup frame;
+    frame.camera = context.scene.camera_or_auto();
+    const glm::vec3 right = glm::normalize(glm::cross(frame.camera.forward, frame.camera.up));
+    frame.camera.position += right * (o.flicker_step * float(f));
+    frame.width = o.width;
+    frame.height = o.height;
+    frame.seed = seed;
+    method->begin_frame(frame);
+    RayCounts rays;
+    const Image image = render_frame(*method, frame, tile_border(settings), FrameOptions{}, rays);
+    if (f > 0)
+      for (size_t i = 0; i < image.pixels.size(); ++i) {
+        change += std::abs(luminance(image.pixels[i]) - luminance(previous.pixels[i]));
+        level += luminance(image.pixels[i]);
+      }
+    previous = image;
+  }
+  cpu_per_frame = (cpu_seconds() - cpu0) / o.frames;
+  value = change / level;
+}
+
+int run_flicker(const Options& o, const SceneContext& context) {
+  std::printf("%-48s %9s %9s\n", "variant", "flicker", "cpu_s/fr");
+  for (const std::string& text : o.variants) {
+    double value = 0.0, cpu = 0.0;
+    for (int s = 0; s < o.seeds; ++s) {
+      double v = 0.0, c = 0.0;
+      flicker(context, variant_settings(text), o, 1u + 1000u * uint32_t(s), v, c);
+      value += v / o.seeds;
+      cpu += c / o.seeds;
+    }
+    std::printf("%-48s %9.5f %9.3f\n", text.c_str(), value, cpu);
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
@@ -157,6 +215,7 @@ int run(const Options& o) {
   const Accel accel(scene);
   const LightSet lights(scene);
   const SceneContext context{scene, accel, lights};
+  if (o.flicker_step > 0.0f) return run_flicker(o, context);
   const Image reference = read_image(o.reference);
   if (reference.width != o.width || reference.height != o.height) throw std::invalid_argument("--ref: size differs from --size");
   std::printf("%-48s %7s %7s %9s %9s %7s %6s %7s %9s %6s\n", "variant", "wall_s", "cpu_s", "relMSE", "mean_rel", "FLIP",
