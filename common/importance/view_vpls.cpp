@@ -2,10 +2,9 @@
 
 #include <optional>
 
-#include "sampling/hash.h"
-
 #include "importance/bidirectional.h"
 #include "importance/light_importance.h"
+#include "sampling/hash.h"
 #include "vpl/vpl_generator.h"
 
 namespace igi::importance {
@@ -14,7 +13,8 @@ VplSets generate_view_vpls(const SceneContext& context, const RenderSettings& se
                            RayCounts& rays) {
   std::optional<LightSelection> selection;
   LightPathOptions options;
-  if (settings.importance_paths > 0) {
+  // With one light there is nothing to choose: its probability is 1 either way.
+  if (settings.importance_paths > 0 && context.lights.lights().size() > 1) {
     selection = estimate_light_importance(context, settings, frame, rays);
     options.selection = &selection->distribution;
   }
