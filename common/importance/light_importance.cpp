@@ -125,20 +125,21 @@ class Estimator {
     if (n <= kMaxLocalLights)
       for (size_t l = 0; l < n; ++l) local_total += (local_[l] = local_weight(proxies_[l], sp.position, normal));
     const float local_share = local_total > 0.0f ? 1.0f - kPowerShare : 0.0f;
+    auto choice = [&](size_t l) {
+      return (local_share > 0.0f ? local_share * local_[l] / local_total : 0.0f) +
+             (1.0f - local_share) * power_[l] / power_total_;
+    };
     float cumulative = 0.0f;
+    size_t last = 0;  // the last light that can be chosen, for u rounded past every boundary
     for (size_t l = 0; l < n; ++l) {
-      probability = local_share * (local_share > 0.0f ? local_[l] / local_total : 0.0f) +
-                    (1.0f - local_share) * power_[l] / power_total_;
+      probability = choice(l);
+      if (!(probability > 0.0f)) continue;
       cumulative += probability;
-      if (u < cumulative && probability > 0.0f) return uint32_t(l);
+      last = l;
+      if (u < cumulative) return uint32_t(l);
     }
-    // Rounding left u past the last boundary: the last light that can be chosen.
-    for (size_t l = n; l-- > 0;) {
-      probability = local_share * (local_share > 0.0f ? local_[l] / local_total : 0.0f) +
-                    (1.0f - local_share) * power_[l] / power_total_;
-      if (probability > 0.0f) return uint32_t(l);
-    }
-    return 0;
+    probability = choice(last);
+    return uint32_t(last);
   }
 
   void next_event(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 throughput, int vertex, float u_light,
