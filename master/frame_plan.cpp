@@ -16,12 +16,15 @@ FrameSetup plan_frame(const RenderOptions& render, const std::string& camera_pat
   f.seed = render.seed;
   const bool pt = render.settings.method == MethodKind::PathTracer;
   f.sample_count = pt ? uint32_t(render.samples) : 1;
-  if (progressive && i > 0) {  // a new estimate each frame: new seed, new sub-pixel position
-    f.seed += uint32_t(i);
-    f.sample_begin = pt ? uint32_t(i * render.samples) : 0;
-    const glm::vec2 j = sample_2d(uint32_t(i), 0, render.seed);
-    f.jitter_x = j.x;
-    f.jitter_y = j.y;
+  if (progressive) {
+    if (pt) {  // the pass continues the sample sequence: same seed, the next samples
+      f.sample_begin = uint32_t(i * render.samples);
+    } else {   // a new estimate: new VPLs, and the next point of one 2D sample set for the sub-pixel position
+      f.seed += uint32_t(i);
+      const glm::vec2 j = sample_2d(uint32_t(i), 0, render.seed);
+      f.jitter_x = j.x;
+      f.jitter_y = j.y;
+    }
   }
   if (camera_path == "orbit") {  // turn about the vertical axis through the scene's centre
     const glm::vec3 c = scene.bounds().center();

@@ -11,8 +11,11 @@
 namespace igi {
 
 // camera_path: "" (the scene's camera) or "orbit" (a turn of 0.02 rad a frame
-// about the vertical axis through the scene's centre). progressive: frame i > 0
-// is a new estimate (seed + i, a new jitter; pt continues the sample sequence).
+// about the vertical axis through the scene's centre). progressive: frame i is
+// pass i of one estimate, exactly as igi-render's passes: ir/igi take seed + i
+// and sub-pixel position sample_2d(i, 0, seed) (pass 0 included, so the
+// positions are one stratified set); pt keeps the seed and takes samples
+// [i x spp, (i + 1) x spp) of its sequence.
 FrameSetup plan_frame(const RenderOptions& render, const std::string& camera_path, const Scene& scene, int i,
                       bool progressive);
 

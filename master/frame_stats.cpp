@@ -11,7 +11,9 @@ static void write_frame(std::ofstream& out, const FrameRecord& f) {
   out << "    {\"frame\": " << f.frame_id << ", \"seconds\": " << f.seconds << ", \"tiles\": " << f.tiles
       << ", \"rays\": " << f.rays.total() << ", \"mrays_per_s\": " << (f.seconds > 0 ? f.rays.total() * 1e-6 / f.seconds : 0.0)
       << ", \"reissued_total\": " << f.reissued << ", \"duplicated_total\": " << f.duplicated
-      << ", \"late_dropped_total\": " << f.late_dropped << ",\n     \"workers\": {";
+      << ", \"late_dropped_total\": " << f.late_dropped << ", \"verified_total\": " << f.verified
+      << ", \"failed_results_total\": " << f.failed_results << ", \"quarantined_total\": " << f.quarantined
+      << ", \"nonfinite_pixels\": " << f.nonfinite_pixels << ",\n     \"workers\": {";
   bool first = true;
   for (const auto& [name, w] : f.workers) {
     out << (first ? "" : ", ") << "\"" << name << "\": {\"tiles\": " << w.tiles << ", \"busy_seconds\": " << w.busy_seconds
@@ -19,6 +21,17 @@ static void write_frame(std::ofstream& out, const FrameRecord& f) {
     first = false;
   }
   out << "}}";
+}
+
+// A JSON string of plain text (our own messages: escapes quotes, backslashes and control bytes).
+static std::string quoted(const std::string& text) {
+  std::string q = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') q += '\\', q += c;
+    else if (static_cast<unsigned char>(c) < 0x20) q += ' ';
+    else q += c;
+  }
+  return q + "\"";
 }
 
 double process_cpu_seconds() {
@@ -35,7 +48,12 @@ void write_stats_json(const std::string& path, const std::vector<FrameRecord>& f
   for (const FrameRecord& f : frames) tiles += f.tiles;
   out << "{\n  \"complete\": " << (totals.complete ? "true" : "false") << ",\n  \"bad_messages\": " << totals.bad_messages
       << ",\n  \"refused_keys\": " << totals.refused_keys
-      << ",\n  \"failed_handshakes\": " << totals.failed_handshakes << ",\n  \"master_cpu_seconds\": " << totals.master_cpu_seconds
+      << ",\n  \"failed_handshakes\": " << totals.failed_handshakes << ",\n  \"nonfinite_pixels\": " << totals.nonfinite_pixels
+      << ",\n  \"quarantined\": [";
+  for (size_t i = 0; i < totals.quarantined.size(); ++i) out << (i ? ", " : "") << quoted(totals.quarantined[i]);
+  out << "],\n  \"pixel_format\": \"" << totals.pixel_format << "\",\n  \"io_threads\": " << totals.io_threads
+      << ",\n  \"master_cpu_seconds\": " << totals.master_cpu_seconds
+      << ",\n  \"session_cpu_seconds\": " << totals.session_cpu_seconds
       << ",\n  \"wall_seconds\": " << totals.wall_seconds << ",\n  \"tiles\": " << tiles
       << ",\n  \"master_cpu_us_per_tile\": " << (tiles ? 1e6 * totals.master_cpu_seconds / double(tiles) : 0.0)
       << ",\n  \"frames\": [\n";

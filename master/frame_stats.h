@@ -11,14 +11,19 @@ struct RunTotals {
   uint64_t bad_messages = 0;       // frames that did not decode, dropped
   uint64_t refused_keys = 0;       // CURVE: worker keys the ZAP handler refused
   uint64_t failed_handshakes = 0;  // CURVE: peers without CURVE or the right master key
-  double master_cpu_seconds = 0.0;  // process CPU during the session loop (includes image writing unless --no-write)
+  uint64_t nonfinite_pixels = 0;   // pixels workers rendered NaN or infinite and sent as black
+  std::vector<std::string> quarantined;  // "worker-N: why"
+  double master_cpu_seconds = 0.0;   // process CPU (every thread) during the session loop
+  double session_cpu_seconds = 0.0;  // the session thread's own CPU
   double wall_seconds = 0.0;
-  bool complete = false;           // false while the run goes on (the file is rewritten once a second)
+  std::string pixel_format;        // on the wire: float or half
+  int io_threads = 0;
+  bool complete = false;           // false while the run goes on (the file is rewritten now and then)
 };
 
 // Replaces `path` atomically (a reader never sees half a file).
 void write_stats_json(const std::string& path, const std::vector<FrameRecord>& frames, const RunTotals& totals);
-// CPU time this process has used (user + system).
+// CPU time this process has used (user + system), all threads.
 double process_cpu_seconds();
 
 }  // namespace igi

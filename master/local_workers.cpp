@@ -1,6 +1,8 @@
 #include "local_workers.h"
 
+#include <chrono>
 #include <csignal>
+#include <thread>
 #include <fcntl.h>
 #include <filesystem>
 #include <stdexcept>
@@ -69,12 +71,25 @@ void LocalWorkers::kill_one(size_t index, int signal) {
   if (index < pids_.size() && pids_[index] > 0) kill(pids_[index], signal);
 }
 
-void LocalWorkers::stop_all() {
+// SIGTERM, and SIGCONT so that a stopped worker can act on it; whatever has
+// not ended within the grace period gets SIGKILL, which ends even a stopped one.
+void LocalWorkers::stop_all(std::chrono::milliseconds grace) {
+  std::vector<pid_t> running;
   for (pid_t pid : pids_)
-    if (pid > 0) kill(pid, SIGTERM);
-  for (pid_t pid : pids_)
-    if (pid > 0) waitpid(pid, nullptr, 0);
+    if (pid > 0 && kill(pid, SIGTERM) == 0) {
+      kill(pid, SIGCONT);
+      running.push_back(pid);
+    }
   pids_.clear();
+  const auto deadline = std::chrono::steady_clock::now() + grace;
+  while (!running.empty() && std::chrono::steady_clock::now() < deadline) {
+    std::erase_if(running, [](pid_t pid) { return waitpid(pid, nullptr, WNOHANG) != 0; });
+    if (!running.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  for (pid_t pid : running) {
+    kill(pid, SIGKILL);
+    waitpid(pid, nullptr, 0);
+  }
 }
 
 }  // namespace igi

@@ -5,6 +5,7 @@
 //
 // With CURVE, each worker reads its keys from a pipe inherited as fd 3
 // (--curve-fd 3): never on a command line, where `ps` shows it to every user.
+#include <chrono>
 #include <string>
 #include <sys/types.h>
 #include <vector>
@@ -25,7 +26,8 @@ class LocalWorkers {
   void start(int count, const std::string& endpoint, int threads_each, const std::vector<std::string>& extra_args,
              const protocol::CurveClientKeys* curve = nullptr);
   void kill_one(size_t index, int signal);
-  void stop_all();
+  // Asks every worker to end and waits at most `grace` (a stopped one too), then kills what is left.
+  void stop_all(std::chrono::milliseconds grace = std::chrono::milliseconds(2000));
   const std::vector<pid_t>& pids() const { return pids_; }
 
  private:

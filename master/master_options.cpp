@@ -1,5 +1,7 @@
 #include "master_options.h"
 
+#include <algorithm>
+#include <cctype>
 #include <stdexcept>
 
 #include "protocol/curve.h"
@@ -32,6 +34,9 @@ std::string master_usage(const std::string& program) {
          "  while the camera is still, frames accumulate (new seed and sub-pixel position each)\n"
          "  --credits K           jobs a worker holds at once [2]\n"
          "  --heartbeat-ms MS     [250]   --timeout-ms MS  silent worker declared dead [1500]\n"
+         "  --pixels F            pixels on the wire: float, half (6 bytes a pixel, display frames) or auto:\n"
+         "                        float when -o is a float file (.exr, .hdr, .pfm, .tif), else half [auto]\n"
+         "  --io-threads N        ZeroMQ I/O threads [1]: more pay only past ~100,000 tiles a second\n"
          "render options (as igi-render):\n" + render_usage(program);
 }
 
@@ -58,6 +63,16 @@ static void check_security(MasterOptions& o) {
     throw std::invalid_argument("CURVE needs the workers' public keys: --authorized-keys DIR (their .pub files)");
   if (!o.authorized_keys.empty() && !o.curve)
     throw std::invalid_argument("--authorized-keys needs --key MASTER.key: without CURVE every peer is let in");
+}
+
+PixelFormat session_pixel_format(const MasterOptions& o) {
+  if (o.pixels == "float") return PixelFormat::Float32;
+  if (o.pixels == "half") return PixelFormat::Float16;
+  if (o.frames == 0) return PixelFormat::Float16;  // the window
+  std::string ext = o.render.output.substr(o.render.output.find_last_of('.') + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const bool float_file = ext == "exr" || ext == "hdr" || ext == "pfm" || ext == "tif" || ext == "tiff";
+  return float_file ? PixelFormat::Float32 : PixelFormat::Float16;
 }
 
 MasterOptions parse_master_options(const std::vector<std::string>& args) {
@@ -89,10 +104,16 @@ MasterOptions parse_master_options(const std::vector<std::string>& args) {
     else if (a == "--timeout-ms") o.timeout_ms = std::max(50, to_int(a, value()));
     else if (a == "--test-kill-worker-after") o.kill_worker_after = to_int(a, value());
     else if (a == "--test-force-duplicates") o.force_duplicates = to_int(a, value());
+    else if (a == "--test-stop-worker-after") o.stop_worker_after = to_int(a, value());
+    else if (a == "--test-send-hwm") o.send_hwm = to_int(a, value());
+    else if (a == "--pixels") o.pixels = value();
+    else if (a == "--io-threads") o.io_threads = std::clamp(to_int(a, value()), 1, 64);
     else render_args.push_back(a);
   }
   o.render = parse_render_options(render_args);
   if (!o.render.help) check_security(o);
+  if (o.pixels != "auto" && o.pixels != "float" && o.pixels != "half")
+    throw std::invalid_argument("--pixels: expected auto, float or half, got '" + o.pixels + "'");
   if (o.camera_path != "" && o.camera_path != "orbit")
     throw std::invalid_argument("--camera-path: expected 'orbit', got '" + o.camera_path + "'");
   return o;

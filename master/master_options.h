@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "image/frame_buffer.h"
 #include "render_options.h"
 
 namespace igi {
@@ -28,11 +29,19 @@ struct MasterOptions {
   int credits = 2;                // jobs a worker holds at once
   int heartbeat_ms = 250;
   int timeout_ms = 1500;          // a silent worker is dead after this
+  std::string pixels = "auto";    // pixel format on the wire: auto (float for float files, else half), float, half
+  int io_threads = 1;             // ZeroMQ I/O threads (receive and send off the session thread)
   int screenshot_after = 4;       // window: save --screenshot after this many accumulated frames
   // Test hooks.
-  int kill_worker_after = 0;      // SIGKILL local worker 0 after this many results
+  int kill_worker_after = 0;      // SIGKILL local worker 0 after this many results (once all have joined)
   int force_duplicates = 0;       // hand this many jobs to two workers on purpose
+  int stop_worker_after = 0;      // SIGSTOP local worker 0 after this many results (and never resume it)
+  int send_hwm = 0;               // the master's ZMQ_SNDHWM per peer; 0: ZeroMQ's default (1000)
 };
+
+// The pixel format of the session: --pixels, or for "auto" float when the
+// output is a float file (.exr, .hdr, .pfm, .tif) and half otherwise (PNG, the window).
+PixelFormat session_pixel_format(const MasterOptions& options);
 
 MasterOptions parse_master_options(const std::vector<std::string>& args);
 std::string master_usage(const std::string& program);

@@ -3,23 +3,71 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <utility>
 
 #include "build_info.h"
-#include "protocol/codec.h"
+#include "protocol/pixels.h"
 #include "protocol/socket.h"
 #include "render/frame_renderer.h"
+#include "scene/builtin_scenes.h"
+#include "scene/scene_file.h"
 
 namespace igi {
+namespace {
+
+constexpr int kBatch = 512;              // messages received per wake-up before timers run again
+constexpr int kMaxFailedResults = 3;     // a peer whose results fail validation this often is quarantined
+constexpr size_t kMaxQuarantinedNames = 1000;
+constexpr uint64_t kLogFirst = 5;        // repeated conditions are logged this often, then counted
+
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+std::string describe(const TileJob& t) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%d, %d, %d x %d, border %d)", t.x, t.y, t.w, t.h, t.border);
+  return text;
+}
+
+// The encoded bytes handed to ZeroMQ without a copy; zmq drops the reference when sent.
+zmq::message_t shared_frame(const std::shared_ptr<const std::vector<uint8_t>>& bytes) {
+  auto* keep = new std::shared_ptr<const std::vector<uint8_t>>(bytes);
+  auto release = [](void*, void* hint) { delete static_cast<std::shared_ptr<const std::vector<uint8_t>>*>(hint); };
+  return zmq::message_t(const_cast<uint8_t*>(bytes->data()), bytes->size(), release, keep);
+}
+
+}  // namespace
+
+SceneSource make_scene_source(const std::string& scene) {
+  if (is_builtin_scene(scene)) return {scene, 0, 0, nullptr};
+  std::optional<std::vector<uint8_t>> bytes = read_file_bytes(scene);
+  if (!bytes) throw std::runtime_error(scene + ": cannot read the scene file");
+  SceneSource source;
+  source.name = std::filesystem::path(scene).filename().string();
+  source.hash = content_hash(*bytes);
+  source.size = bytes->size();
+  protocol::SceneData data{source.hash, source.name, std::move(*bytes)};
+  source.message = std::make_shared<const std::vector<uint8_t>>(protocol::encode(data));
+  return source;
+}
 
 MasterSession::MasterSession(const MasterOptions& options, SceneSource scene, zmq::context_t& context,
                              const protocol::CurveServerKeys* curve)
     : options_(options),
       scene_(std::move(scene)),
+      pixel_format_(session_pixel_format(options)),
+      detailed_stats_(!options.stats.empty()),
       router_(context, zmq::socket_type::router),
-      scheduler_(options.credits, 2),
+      scheduler_(SchedulerConfig{options.credits, 2}),
       session_id_(uint64_t(Clock::now().time_since_epoch().count())) {
   protocol::configure(router_, protocol::kMaxWorkerMessageBytes);
   router_.set(zmq::sockopt::router_mandatory, 1);  // a send to a vanished peer fails instead of vanishing
+  if (options.send_hwm > 0) router_.set(zmq::sockopt::sndhwm, options.send_hwm);
   // A peer that has not finished the ZMTP handshake in 5 s (a port scanner,
   // non-ZMTP bytes) is disconnected, rather than holding a descriptor for
   // libzmq's default 30 s.
@@ -33,67 +81,129 @@ MasterSession::MasterSession(const MasterOptions& options, SceneSource scene, zm
   router_.bind(options.listen);
   endpoint_ = router_.get(zmq::sockopt::last_endpoint);
   scheduler_.force_duplicates(options.force_duplicates);
+  next_sweep_ = Clock::now();
 }
 
 void MasterSession::log(const std::string& text) const {
   if (!options_.render.quiet) std::fprintf(stderr, "igi-master: %s\n", text.c_str());
 }
 
-void MasterSession::send(const std::string& identity, const protocol::Message& message) {
-  const std::vector<uint8_t> bytes = protocol::encode(message);
+// ---- Sending: never blocks.
+
+size_t MasterSession::send_frame(const std::string& identity, zmq::message_t&& payload) {
+  const size_t bytes = payload.size();
   try {
-    router_.send(zmq::buffer(identity), zmq::send_flags::sndmore);
-    router_.send(zmq::buffer(bytes), zmq::send_flags::none);
+    if (!router_.send(zmq::buffer(identity), zmq::send_flags::sndmore | zmq::send_flags::dontwait)) {
+      congested_.push_back(identity);  // its queue is full: it stopped reading
+      return 0;
+    }
+    router_.send(payload, zmq::send_flags::dontwait);  // the rest of a message is never refused
   } catch (const zmq::error_t&) {
-    return;  // the peer is gone; liveness will notice
+    return 0;  // the peer is gone; liveness will notice
   }
   auto it = peers_.find(identity);
-  if (it == peers_.end()) return;
-  it->second.last_sent = Clock::now();
-  if (auto* r = std::get_if<protocol::TileJobMsg>(&message)) {
-    auto f = frames_.find(r->frame_id);
-    if (f != frames_.end()) f->second.record.workers[it->second.name].bytes_out += bytes.size();
-  }
+  if (it != peers_.end()) it->second.last_sent = Clock::now();
+  return bytes;
 }
+
+size_t MasterSession::send(const std::string& identity, const protocol::Message& message) {
+  std::vector<uint8_t> bytes = protocol::encode(message);
+  zmq::message_t payload(bytes.data(), bytes.size());
+  return send_frame(identity, std::move(payload));
+}
+
+// ---- The loop.
 
 void MasterSession::add_frame(const FrameSetup& frame) {
   OpenFrame open;
   open.setup = frame;
-  open.image = Image(frame.width, frame.height);
+  open.pixels = pool_.acquire(frame.width, frame.height, pixel_format_);
   open.record.frame_id = frame.frame_id;
   frames_[frame.frame_id] = std::move(open);
-  const int border = tile_border(options_.render.settings);
-  const int tile = options_.render.tile_size;
-  scheduler_.add_frame(frame.frame_id, make_tiles(frame.width, frame.height, tile, tile, border));
+  if (tiles_.empty() || tiles_size_ != std::pair{frame.width, frame.height}) {  // cut once per size
+    const int border = tile_border(options_.render.settings);
+    const int tile = options_.render.tile_size;
+    tiles_ = make_tiles(frame.width, frame.height, tile, tile, border);
+    tiles_size_ = {frame.width, frame.height};
+  }
+  scheduler_.add_frame(frame.frame_id, tiles_);
 }
 
 std::vector<CompletedFrame> MasterSession::pump(int timeout_ms) {
-  const auto end = Clock::now() + std::chrono::milliseconds(timeout_ms);
+  const double cpu_start = thread_cpu_seconds();
+  const auto end = Clock::now() + std::chrono::milliseconds(std::max(timeout_ms, 0));
   std::vector<CompletedFrame> done;
-  do {
-    wait_for_traffic(1);
-    serve_security();
-    if (auto received = protocol::receive(router_, 0, true)) {
-      if (received->message) handle(received->identity, *received->message, received->bytes);
-      else on_bad_message(received->identity, received->error);
+  for (;;) {
+    step(Clock::now(), done);
+    if (!fatal_.empty()) {
+      session_cpu_ += thread_cpu_seconds() - cpu_start;
+      throw SessionError(fatal_);
     }
-    check_liveness();
-    assign_jobs();
-    send_heartbeats();
-    for (CompletedFrame& f : take_completed()) done.push_back(std::move(f));
-  } while (Clock::now() < end && done.empty());
+    if (!done.empty() || Clock::now() >= end) break;
+    Clock::time_point until = std::min(end, next_sweep_);
+    if (auto late = scheduler_.next_straggler_time()) until = std::min(until, *late);
+    wait_for_traffic(until);
+    serve_security();
+    receive_batch();
+  }
+  session_cpu_ += thread_cpu_seconds() - cpu_start;
   return done;
 }
 
-void MasterSession::wait_for_traffic(int timeout_ms) {
+// Everything but receiving: timers, jobs for free credit, completed frames.
+void MasterSession::step(Clock::time_point now, std::vector<CompletedFrame>& done) {
+  if (now >= next_sweep_) sweep(now);
+  dispatch(scheduler_.assign(now));
+  take_quarantined();
+  for (const std::string& identity : std::exchange(congested_, {}))
+    drop_peer(identity, "stopped reading (its queue is full): declared dead, its jobs go to others");
+  for (CompletedFrame& f : take_completed()) done.push_back(std::move(f));
+  report_stall();
+}
+
+void MasterSession::wait_for_traffic(Clock::time_point until) {
+  const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(until - Clock::now());
   std::vector<zmq::pollitem_t> items{{router_.handle(), 0, ZMQ_POLLIN, 0}};
   if (zap_) items.push_back({zap_->socket().handle(), 0, ZMQ_POLLIN, 0});
   try {
-    zmq::poll(items, std::chrono::milliseconds(timeout_ms));
+    // Round up: a wake a millisecond early would only poll again.
+    zmq::poll(items, std::chrono::milliseconds(std::max<int64_t>(0, wait.count() + 1)));
   } catch (const zmq::error_t& e) {
     if (e.num() != EINTR) throw;  // a signal: the caller's loop decides
   }
 }
+
+// Every message waiting, up to a batch: [identity, payload]; anything else is a bad message.
+void MasterSession::receive_batch() {
+  for (int n = 0; n < kBatch; ++n) {
+    zmq::message_t identity, payload;
+    if (!router_.recv(identity, zmq::recv_flags::dontwait)) return;
+    size_t parts = 1;
+    bool more = identity.more();
+    while (more) {
+      zmq::message_t part;
+      if (!router_.recv(part, zmq::recv_flags::dontwait)) break;  // parts of a message arrive together
+      more = part.more();
+      if (parts++ == 1) payload = std::move(part);
+    }
+    const std::string id = identity.to_string();
+    if (parts != 2) {
+      on_bad_message(id, std::to_string(parts - 1) + " frames, expected 1 message frame after the identity");
+      continue;
+    }
+    on_frame(id, {payload.data<uint8_t>(), payload.size()});
+  }
+}
+
+void MasterSession::on_frame(const std::string& identity, std::span<const uint8_t> payload) {
+  if (quarantined_ids_.count(identity)) return;  // told to leave; its last messages do not matter
+  if (protocol::is_tile_result(payload)) return on_result(identity, payload);
+  protocol::DecodeResult decoded = protocol::decode(payload);
+  if (!decoded.message) return on_bad_message(identity, decoded.error);
+  handle(identity, *decoded.message);
+}
+
+// ---- Security.
 
 // Handshakes wait for these answers; a peer is only a peer once they pass.
 void MasterSession::serve_security() {
@@ -102,7 +212,7 @@ void MasterSession::serve_security() {
   if (!monitor_) return;
   for (size_t n = monitor_->take_events().size(); n > 0; --n) {
     // A flood of these is an attack or a misconfigured farm: log the first few, count all.
-    if (++failed_handshakes_ <= 5)
+    if (++failed_handshakes_ <= kLogFirst)
       log("a peer failed the CURVE handshake (it does not use CURVE, or has another master public key)");
   }
 }
@@ -118,21 +228,19 @@ void MasterSession::on_zap_decision(const protocol::ZapDecision& d) {
                  static_cast<unsigned long long>(refused_keys_));
 }
 
-void MasterSession::handle(const std::string& identity, const protocol::Message& message, size_t bytes) {
+// ---- Messages.
+
+void MasterSession::handle(const std::string& identity, const protocol::Message& message) {
   auto peer = peers_.find(identity);
   if (peer != peers_.end()) peer->second.last_heard = Clock::now();
   if (auto* hello = std::get_if<protocol::Hello>(&message)) return on_hello(identity, *hello);
   if (peer == peers_.end()) return on_bad_message(identity, "message from a peer that never said hello");
-  if (auto* result = std::get_if<protocol::TileResult>(&message)) {
-    auto f = frames_.find(result->frame_id);
-    if (f != frames_.end()) f->second.record.workers[peer->second.name].bytes_in += bytes;
-    on_result(identity, *const_cast<protocol::TileResult*>(result));
-  } else if (auto* request = std::get_if<protocol::SceneRequest>(&message)) {
-    if (request->scene_hash != scene_.hash || scene_.bytes.empty()) return drop_peer(identity, "asked for an unknown scene");
-    log(peer->second.name + " has no copy of " + scene_.name + ": sending " + std::to_string(scene_.bytes.size()) + " bytes");
-    send(identity, protocol::SceneData{scene_.hash, scene_.name, scene_.bytes});
+  if (auto* request = std::get_if<protocol::SceneRequest>(&message)) {
+    if (request->scene_hash != scene_.hash || !scene_.message) return drop_peer(identity, "asked for an unknown scene");
+    log(peer->second.name + " has no copy of " + scene_.name + ": sending " + std::to_string(scene_.size) + " bytes");
+    send_frame(identity, shared_frame(scene_.message));
   } else if (auto* bye = std::get_if<protocol::Bye>(&message)) {
-    drop_peer(identity, "left: " + bye->reason);
+    drop_peer(identity, bye->kind == protocol::ByeKind::Failed ? "failed: " + bye->reason : "left: " + bye->reason);
   } else if (!std::holds_alternative<protocol::Heartbeat>(message)) {
     on_bad_message(identity, std::string("unexpected ") + protocol::message_name(protocol::type_of(message)));
   }
@@ -143,62 +251,119 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
     const std::string reason = "build '" + hello.build_id + "' differs from the master's '" + kBuildId +
                                "': tiles would not match bit for bit";
     log("refused a worker: " + reason);
+    scheduler_.remove_worker(identity);
     peers_.erase(identity);
-    return send(identity, protocol::Refuse{reason});
+    send(identity, protocol::Refuse{reason});
+    return;
   }
   Peer& peer = peers_[identity];
   peer.name = "worker-" + std::to_string(next_peer_++);
   peer.last_heard = peer.last_sent = Clock::now();
   peer.frames_sent.clear();
+  peer.failed_results = 0;
   scheduler_.remove_worker(identity);  // a reconnect: its old jobs go back first
   // Enough jobs to keep every thread busy while results travel.
-  const int credits = std::max<int>(options_.credits, 2 * int(std::min<uint32_t>(hello.threads, 32)));
+  const int credits = std::min(64, std::max<int>(options_.credits, 2 * int(std::min<uint32_t>(hello.threads, 32))));
   scheduler_.add_worker(identity, credits);
   log(peer.name + " joined (" + std::to_string(hello.threads) + " threads)");
   protocol::Welcome w;
   w.session = session_id_;
   w.scene_name = scene_.name;
   w.scene_hash = scene_.hash;
-  w.scene_size = scene_.bytes.size();
+  w.scene_size = scene_.size;
   w.settings = options_.render.settings;
-  w.credits = uint32_t(std::min(credits, 64));
+  w.credits = uint32_t(credits);
   w.heartbeat_ms = uint32_t(options_.heartbeat_ms);
+  w.timeout_ms = uint32_t(options_.timeout_ms);
+  w.pixel_format = pixel_format_;
   send(identity, w);
 }
 
-void MasterSession::on_result(const std::string& identity, protocol::TileResult& result) {
-  const Peer& peer = peers_.at(identity);
-  const ResultVerdict verdict = scheduler_.on_result(identity, result.job_id, result.frame_state_hash);
-  if (verdict == ResultVerdict::HashMismatch) {
-    log(peer.name + " computed different VPL sets (hash " + std::to_string(result.frame_state_hash) +
-        "): reported and given no more work");
-    send(identity, protocol::Bye{"VPL-set hash differs from the other workers'"});
-    peers_.erase(identity);
-    return;
+void MasterSession::on_result(const std::string& identity, std::span<const uint8_t> bytes) {
+  auto peer = peers_.find(identity);
+  if (peer == peers_.end()) return on_bad_message(identity, "message from a peer that never said hello");
+  peer->second.last_heard = Clock::now();
+  std::string error;
+  std::optional<protocol::TileResultView> view = protocol::decode_tile_result(bytes, error);
+  if (!view) {
+    const std::optional<uint64_t> job_id = protocol::tile_result_job_id(bytes);
+    if (job_id && scheduler_.holds(identity, *job_id)) return on_bad_result(identity, *job_id, error);
+    return on_bad_message(identity, error);
   }
-  if (verdict != ResultVerdict::Accepted) return;
-  auto f = frames_.find(result.frame_id);
-  if (f == frames_.end()) return;
-  OpenFrame& frame = f->second;
-  const TileJob& t = result.tile;
-  if (t.x + t.w > frame.image.width || t.y + t.h > frame.image.height) return on_bad_message(identity, "tile outside the image");
-  for (int y = 0; y < t.h; ++y)
-    std::copy_n(result.pixels.begin() + size_t(y) * t.w, t.w, frame.image.pixels.begin() + size_t(t.y + y) * frame.image.width + t.x);
-  PeerStats& stats = frame.record.workers[peer.name];
-  ++stats.tiles;
-  stats.busy_seconds += result.render_seconds;
-  frame.record.rays += result.rays;
+  const protocol::TileResult& r = view->fields;
+  switch (scheduler_.check_result(identity, r.job_id, r.frame_id, r.tile)) {
+    case ResultCheck::Unknown:
+      return scheduler_.drop_result(identity, r.job_id);  // from before a reconnect, or a frame long done
+    case ResultCheck::WrongTile:
+      return on_bad_result(identity, r.job_id,
+                           "frame " + std::to_string(r.frame_id) + ", tile " + describe(r.tile) +
+                               " is not what job " + std::to_string(r.job_id) + " asked for");
+    case ResultCheck::NotNeeded:
+      scheduler_.on_result(identity, r.job_id, r.frame_state_hash, Clock::now());  // its hash still votes
+      return;
+    case ResultCheck::Wanted:
+      return use_result(identity, peer->second, *view, bytes.size());
+  }
+}
+
+// The job's first result: its pixels go straight into the frame, then the
+// scheduler decides whether they count (or are held for the frame's hash).
+void MasterSession::use_result(const std::string& identity, Peer& peer, const protocol::TileResultView& view,
+                               size_t bytes) {
+  const protocol::TileResult& r = view.fields;
+  OpenFrame& frame = frames_.at(r.frame_id);  // the scheduler knows the job, so its frame is open
+  if (r.pixel_format != pixel_format_)
+    return on_bad_result(identity, r.job_id, std::string("pixels as ") + pixel_format_name(r.pixel_format) +
+                                                 ", the session asked for " + pixel_format_name(pixel_format_));
+  FrameBuffer& pixels = *frame.pixels;
+  const std::string error = protocol::copy_tile_pixels(view, pixels.pixel(r.tile.x, r.tile.y), pixels.row_bytes());
+  if (!error.empty()) return on_bad_result(identity, r.job_id, error);
+  scheduler_.on_result(identity, r.job_id, r.frame_state_hash, Clock::now());
   ++frame.record.tiles;
+  frame.record.rays += r.rays;
+  if (r.nonfinite_pixels > 0) {
+    nonfinite_pixels_ += r.nonfinite_pixels;
+    frame.record.nonfinite_pixels += r.nonfinite_pixels;
+    if (++nonfinite_logged_ <= kLogFirst)
+      log(peer.name + " rendered " + std::to_string(r.nonfinite_pixels) + " non-finite pixels in frame " +
+          std::to_string(r.frame_id) + ", tile " + describe(r.tile) + ", and sent them as black");
+  }
+  if (detailed_stats_) {
+    PeerStats& stats = frame.record.workers[peer.name];
+    ++stats.tiles;
+    stats.busy_seconds += r.render_seconds;
+    stats.bytes_in += bytes;
+  }
   ++accepted_;
   if (on_accepted) on_accepted(accepted_);
 }
 
+// The job goes to another worker. A job that fails on every worker alike can
+// never complete its frame: the run ends with the reason rather than hang.
+void MasterSession::on_bad_result(const std::string& identity, uint64_t job_id, const std::string& error) {
+  Peer& peer = peers_.at(identity);
+  if (++failures_logged_ <= kLogFirst)
+    log(peer.name + " sent a result that fails validation (" + error + "): its job goes to another worker");
+  if (scheduler_.on_bad_result(identity, job_id) && fatal_.empty())
+    fatal_ = "job " + std::to_string(job_id) + " failed validation on every worker that rendered it (last: " +
+             peer.name + ": " + error + "): its frame can never complete";
+  if (++peer.failed_results >= kMaxFailedResults)
+    quarantine_peer(identity, std::to_string(peer.failed_results) + " of its results failed validation");
+}
+
 void MasterSession::on_bad_message(const std::string& identity, const std::string& error) {
   ++bad_messages_;
-  log("dropped a bad message: " + error);
+  if (bad_messages_ <= 100 || bad_messages_ % 1000 == 0)
+    log("dropped a bad message (" + std::to_string(bad_messages_) + " so far): " + error);
   // A peer that speaks another protocol version is told why, in our version.
   if (error.find("version") != std::string::npos) send(identity, protocol::Refuse{error});
+  // A worker of this build never sends what does not decode: one that keeps doing so is broken.
+  auto peer = peers_.find(identity);
+  if (peer != peers_.end() && ++peer->second.failed_results >= kMaxFailedResults)
+    quarantine_peer(identity, std::to_string(peer->second.failed_results) + " of its messages failed to decode");
 }
+
+// ---- Peers.
 
 void MasterSession::drop_peer(const std::string& identity, const std::string& why) {
   auto it = peers_.find(identity);
@@ -208,31 +373,75 @@ void MasterSession::drop_peer(const std::string& identity, const std::string& wh
   peers_.erase(it);
 }
 
-void MasterSession::check_liveness() {
-  const auto now = Clock::now();
-  std::vector<std::string> dead;
-  for (const auto& [identity, peer] : peers_)
-    if (now - peer.last_heard > std::chrono::milliseconds(options_.timeout_ms)) dead.push_back(identity);
-  for (const std::string& identity : dead)
-    drop_peer(identity, "silent for " + std::to_string(options_.timeout_ms) + " ms: declared dead, its jobs go to others");
+// Told why, so it exits with its own status; its later messages are ignored.
+void MasterSession::quarantine_peer(const std::string& identity, const std::string& why) {
+  auto it = peers_.find(identity);
+  if (it == peers_.end()) return;
+  const std::string name = it->second.name;
+  std::fprintf(stderr, "igi-master: %s quarantined: %s; it gets no more work\n", name.c_str(), why.c_str());
+  send(identity, protocol::Bye{"quarantined by the master: " + why, protocol::ByeKind::Quarantined});
+  scheduler_.remove_worker(identity);
+  peers_.erase(it);
+  quarantined_ids_.insert(identity);
+  if (quarantined_names_.size() < kMaxQuarantinedNames) quarantined_names_.push_back(name + ": " + why);
 }
 
-void MasterSession::assign_jobs() {
+void MasterSession::take_quarantined() {
+  for (const WorkerId& id : scheduler_.take_quarantined())
+    quarantine_peer(id, "its VPL-set hash differs from the one its frame's other workers agreed on "
+                        "(another build, CPU or a fault)");
+}
+
+// Liveness and heartbeats, a few times per heartbeat interval: O(peers), not per message.
+void MasterSession::sweep(Clock::time_point now) {
+  const auto timeout = std::chrono::milliseconds(options_.timeout_ms);
+  const auto heartbeat = std::chrono::milliseconds(options_.heartbeat_ms);
+  std::vector<std::string> dead;
   for (auto& [identity, peer] : peers_) {
-    while (auto job = scheduler_.next_job(identity)) {
-      auto f = frames_.find(job->frame_id);
-      if (f == frames_.end()) continue;
-      if (!f->second.started) f->second.started = Clock::now();
-      if (peer.frames_sent.insert(job->frame_id).second) send(identity, protocol::FrameSetupMsg{f->second.setup});
-      send(identity, protocol::TileJobMsg{job->frame_id, job->job_id, job->tile});
-    }
+    if (now - peer.last_heard > timeout) dead.push_back(identity);
+    else if (now - peer.last_sent > heartbeat) send(identity, protocol::Heartbeat{});
+  }
+  for (const std::string& identity : dead)
+    drop_peer(identity, "silent for " + std::to_string(options_.timeout_ms) + " ms: declared dead, its jobs go to others");
+  next_sweep_ = now + std::clamp(heartbeat / 4, std::chrono::milliseconds(5), std::chrono::milliseconds(100));
+}
+
+void MasterSession::dispatch(const std::vector<JobAssignment>& jobs) {
+  for (const JobAssignment& job : jobs) {
+    auto peer = peers_.find(job.worker);
+    auto f = frames_.find(job.frame_id);
+    if (peer == peers_.end() || f == frames_.end()) continue;
+    if (!f->second.started) f->second.started = Clock::now();
+    size_t bytes = 0;
+    if (peer->second.frames_sent.insert(job.frame_id).second)
+      bytes += send(job.worker, protocol::FrameSetupMsg{f->second.setup});
+    bytes += send(job.worker, protocol::TileJobMsg{job.frame_id, job.job_id, job.tile});
+    if (detailed_stats_) f->second.record.workers[peer->second.name].bytes_out += bytes;
   }
 }
 
-void MasterSession::send_heartbeats() {
-  const auto now = Clock::now();
-  for (auto& [identity, peer] : peers_)
-    if (now - peer.last_sent > std::chrono::milliseconds(options_.heartbeat_ms)) send(identity, protocol::Heartbeat{});
+// Two workers disagree on a frame's VPL sets and no third breaks the tie: said once per frame.
+void MasterSession::report_stall() {
+  std::optional<HashSplit> split = scheduler_.stalled_split();
+  if (!split || stall_reported_ == split->frame_id) return;
+  stall_reported_ = split->frame_id;
+  std::fprintf(stderr, "igi-master: %s\n", stall().c_str());
+}
+
+std::string MasterSession::stall() const {
+  std::optional<HashSplit> split = scheduler_.stalled_split();
+  if (!split) return {};
+  std::string text = "frame " + std::to_string(split->frame_id) + " waits: its workers disagree on the VPL sets (";
+  bool first = true;
+  for (const auto& [hash, voters] : split->voters) {
+    for (const WorkerId& v : voters) {
+      auto peer = peers_.find(v);
+      text += (first ? "" : ", ") + (peer != peers_.end() ? peer->second.name : std::string("a departed worker")) +
+              ": hash " + hash_hex(hash);
+      first = false;
+    }
+  }
+  return text + ") and no other worker breaks the tie; start another worker of this build";
 }
 
 std::vector<CompletedFrame> MasterSession::take_completed() {
@@ -244,8 +453,12 @@ std::vector<CompletedFrame> MasterSession::take_completed() {
     f.record.reissued = s.reissued;
     f.record.duplicated = s.duplicated;
     f.record.late_dropped = s.late_dropped;
-    done.push_back(CompletedFrame{f.setup, std::move(f.image), f.record});
+    f.record.verified = s.verified;
+    f.record.failed_results = s.failed_results;
+    f.record.quarantined = s.quarantined;
+    done.push_back(CompletedFrame{f.setup, std::move(f.pixels), std::move(f.record)});
     frames_.erase(frame_id);
+    for (auto& [identity, peer] : peers_) peer.frames_sent.erase(frame_id);
   }
   return done;
 }
@@ -253,6 +466,9 @@ std::vector<CompletedFrame> MasterSession::take_completed() {
 void MasterSession::close(const std::string& reason) {
   for (const auto& [identity, peer] : peers_) send(identity, protocol::Bye{reason});
   peers_.clear();
+  // The goodbyes must leave before the process does (linger 0 would drop them
+  // when the context ends): up to a second, then they are abandoned.
+  router_.set(zmq::sockopt::linger, 1000);
   if (refused_keys_ + failed_handshakes_ > 0)
     log("CURVE: refused " + std::to_string(refused_keys_) + " unknown worker keys; " +
         std::to_string(failed_handshakes_) + " failed handshakes");

@@ -1,11 +1,22 @@
 #pragma once
 // The master's side of a cluster session: one ROUTER socket, the peers behind
 // it, the scheduler, and the frames being assembled. Single-threaded: every
-// call below runs on the thread that owns the socket.
+// call below runs on the thread that owns the socket (the session thread);
+// nothing here writes files or draws, so that thread only moves messages.
 //
 // Reliability lives here and only here: heartbeats both ways, a peer silent
-// for timeout_ms is dead and its jobs are issued again, the first result for
-// a job wins, and a frame is complete only when every job id is back.
+// for timeout_ms is dead and its jobs are issued again, a result is checked
+// against the scheduler's own job before its pixels are used, a result that
+// fails validation sends its job to another worker, a worker whose VPL sets
+// lose the quorum is quarantined (told so: it exits with status 5), and a
+// frame is complete only when every job id is back and its hash is decided.
+// Sends never block: a peer whose queue is full (it stopped reading) is
+// dropped like a dead one.
+//
+// The loop sleeps in poll() until a message arrives or a timer is due (the
+// liveness sweep, a straggler becoming late): no busy waiting. Results are
+// decoded in place and their pixels copied straight from the ZeroMQ frame
+// into the frame buffer, in the session's pixel format.
 //
 // With CURVE keys the ROUTER is a CURVE server and the session answers
 // libzmq's ZAP requests itself (in pump(), no thread): only authorised worker
@@ -16,13 +27,15 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <zmq.hpp>
 
-#include "image/image.h"
+#include "frame_buffer_pool.h"
 #include "master_options.h"
+#include "protocol/codec.h"
 #include "protocol/curve.h"
 #include "protocol/messages.h"
 #include "protocol/monitor.h"
@@ -31,12 +44,16 @@
 
 namespace igi {
 
-// What workers are told about the scene, and its bytes for those without it.
+// What workers are told about the scene, and its bytes for those without it:
+// encoded once as a SceneData message and sent without a copy.
 struct SceneSource {
   std::string name;        // built-in name or file name
   uint64_t hash = 0;       // 0 for built-in scenes
-  std::vector<uint8_t> bytes;
+  uint64_t size = 0;       // bytes of the file
+  std::shared_ptr<const std::vector<uint8_t>> message;  // the encoded SceneData; null for built-in scenes
 };
+// Reads a scene file (or names a built-in scene) and encodes what workers may ask for.
+SceneSource make_scene_source(const std::string& scene);
 
 struct PeerStats {
   uint64_t tiles = 0;
@@ -47,16 +64,23 @@ struct PeerStats {
 struct FrameRecord {
   uint64_t frame_id = 0;
   double seconds = 0.0;  // from its first job out to its last result in
-  uint64_t tiles = 0;
+  uint64_t tiles = 0;    // results whose pixels were used
   RayCounts rays;
-  std::map<std::string, PeerStats> workers;  // by peer name
-  uint64_t reissued = 0, duplicated = 0, late_dropped = 0;
+  uint64_t nonfinite_pixels = 0;  // zeroed by workers (they send finite pixels only)
+  std::map<std::string, PeerStats> workers;  // by peer name; only with detailed statistics
+  // Session totals when the frame completed.
+  uint64_t reissued = 0, duplicated = 0, late_dropped = 0, verified = 0, failed_results = 0, quarantined = 0;
 };
 
 struct CompletedFrame {
   FrameSetup setup;
-  Image image;
+  std::shared_ptr<FrameBuffer> pixels;  // back to the session's pool when the last copy goes
   FrameRecord record;
+};
+
+// The run cannot go on (a job fails validation on every worker); what() says which and why.
+struct SessionError : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 class MasterSession {
@@ -65,11 +89,13 @@ class MasterSession {
   MasterSession(const MasterOptions& options, SceneSource scene, zmq::context_t& context,
                 const protocol::CurveServerKeys* curve = nullptr);
   std::string endpoint() const { return endpoint_; }
+  PixelFormat pixel_format() const { return pixel_format_; }
 
   // Queues a frame; jobs go out as workers have credit (at most two frames open).
   bool can_add_frame() const { return scheduler_.can_add_frame(); }
   void add_frame(const FrameSetup& frame);
   // Runs the loop for up to timeout_ms; returns the frames completed meanwhile, in order.
+  // Throws SessionError when a frame can never complete.
   std::vector<CompletedFrame> pump(int timeout_ms);
   // Tells every worker goodbye.
   void close(const std::string& reason);
@@ -78,6 +104,13 @@ class MasterSession {
   uint64_t bad_messages() const { return bad_messages_; }
   uint64_t refused_keys() const { return refused_keys_; }              // CURVE keys the ZAP handler refused
   uint64_t failed_handshakes() const { return failed_handshakes_; }    // peers without CURVE or the right master key
+  uint64_t nonfinite_pixels() const { return nonfinite_pixels_; }
+  const SchedulerStats& scheduler_stats() const { return scheduler_.stats(); }
+  const std::vector<std::string>& quarantined() const { return quarantined_names_; }  // "worker-3: why"
+  // Why no frame can complete now, when that is so (two workers disagree on a
+  // frame's VPL sets and no third breaks the tie); empty otherwise.
+  std::string stall() const;
+  double session_cpu_seconds() const { return session_cpu_; }  // this thread's CPU inside pump()
   // Called with every accepted result (test hooks, progress).
   std::function<void(uint64_t accepted)> on_accepted;
 
@@ -86,42 +119,65 @@ class MasterSession {
   struct Peer {
     std::string name;
     Clock::time_point last_heard, last_sent;
-    std::set<uint64_t> frames_sent;
+    std::set<uint64_t> frames_sent;  // open frames whose setup it has
+    int failed_results = 0;
   };
   struct OpenFrame {
     FrameSetup setup;
-    Image image;
+    std::shared_ptr<FrameBuffer> pixels;
     FrameRecord record;
     std::optional<Clock::time_point> started;
   };
 
-  void wait_for_traffic(int timeout_ms);
+  void step(Clock::time_point now, std::vector<CompletedFrame>& done);
+  void wait_for_traffic(Clock::time_point until);
   void serve_security();
+  void receive_batch();
+  void on_frame(const std::string& identity, std::span<const uint8_t> payload);
   void on_zap_decision(const protocol::ZapDecision& decision);
-  void handle(const std::string& identity, const protocol::Message& message, size_t bytes);
+  void handle(const std::string& identity, const protocol::Message& message);
   void on_hello(const std::string& identity, const protocol::Hello& hello);
-  void on_result(const std::string& identity, protocol::TileResult& result);
+  void on_result(const std::string& identity, std::span<const uint8_t> bytes);
+  void use_result(const std::string& identity, Peer& peer, const protocol::TileResultView& view, size_t bytes);
+  void on_bad_result(const std::string& identity, uint64_t job_id, const std::string& error);
   void on_bad_message(const std::string& identity, const std::string& error);
   void drop_peer(const std::string& identity, const std::string& why);
-  void check_liveness();
-  void assign_jobs();
-  void send_heartbeats();
+  void quarantine_peer(const std::string& identity, const std::string& why);
+  void take_quarantined();
+  void sweep(Clock::time_point now);
+  void dispatch(const std::vector<JobAssignment>& jobs);
+  void report_stall();
   std::vector<CompletedFrame> take_completed();
-  void send(const std::string& identity, const protocol::Message& message);
+  // Bytes queued, or 0 when the peer is gone or its queue is full (it is then dropped).
+  size_t send(const std::string& identity, const protocol::Message& message);
+  size_t send_frame(const std::string& identity, zmq::message_t&& payload);
   void log(const std::string& text) const;
 
   MasterOptions options_;
   SceneSource scene_;
+  PixelFormat pixel_format_;
+  bool detailed_stats_;
   std::unique_ptr<protocol::ZapHandler> zap_;  // bound before router_, or CURVE would let every key in
   zmq::socket_t router_;
   std::unique_ptr<protocol::SocketMonitor> monitor_;  // after router_: it watches it
   std::string endpoint_;
   Scheduler scheduler_;
+  FrameBufferPool pool_;
   std::map<std::string, Peer> peers_;
+  std::set<std::string> quarantined_ids_;        // their later messages are ignored
+  std::vector<std::string> quarantined_names_;   // for the statistics (at most 1000)
   std::map<uint64_t, OpenFrame> frames_;
+  std::vector<TileJob> tiles_;             // the tiles of a frame of tiles_size_
+  std::pair<int, int> tiles_size_{0, 0};
+  std::vector<std::string> congested_;           // peers whose send queue was full: dropped after the batch
+  Clock::time_point next_sweep_;
   uint64_t accepted_ = 0;
   uint64_t bad_messages_ = 0;
   uint64_t refused_keys_ = 0, failed_handshakes_ = 0;
+  uint64_t nonfinite_pixels_ = 0, nonfinite_logged_ = 0, failures_logged_ = 0;
+  std::optional<uint64_t> stall_reported_;  // the frame whose split was logged
+  std::string fatal_;
+  double session_cpu_ = 0.0;
   std::set<std::string> refused_logged_;  // each refused key is logged once
   uint64_t next_peer_ = 0;
   uint64_t session_id_;

@@ -1,125 +1,497 @@
 #include "scheduler.h"
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 
 namespace igi {
+namespace {
+
+constexpr size_t kRoundTrips = 64;     // the median is taken over this many recent jobs
+constexpr size_t kMinRoundTrips = 8;   // fewer: no median yet
+constexpr double kUnknownStragglerSeconds = 1.0;
+
+bool same_tile(const TileJob& a, const TileJob& b) {
+  return a.x == b.x && a.y == b.y && a.w == b.w && a.h == b.h && a.border == b.border;
+}
+
+double seconds_between(TimePoint from, TimePoint to) { return std::chrono::duration<double>(to - from).count(); }
+
+}  // namespace
+
+// ---- Workers.
 
 void Scheduler::add_worker(const WorkerId& id, int credits) {
-  workers_.try_emplace(id).first->second.credits = credits > 0 ? credits : credits_;
+  Worker& w = workers_[id];
+  w.credits = credits > 0 ? credits : config_.credits;
+  if (int(w.jobs.size()) < w.credits) hungry_.insert(id);
 }
 
 void Scheduler::remove_worker(const WorkerId& id) {
   auto it = workers_.find(id);
   if (it == workers_.end()) return;
-  const std::set<uint64_t> held = it->second.jobs;
+  const std::vector<uint64_t> held = std::move(it->second.jobs);
   workers_.erase(it);
+  hungry_.erase(id);
   // Newest first: each goes to the front, so the oldest ends up leading.
-  for (auto it = held.rbegin(); it != held.rend(); ++it) release(id, *it);
+  for (auto j = held.rbegin(); j != held.rend(); ++j) {
+    auto job = jobs_.find(*j);
+    if (job == jobs_.end()) continue;
+    release_holder(job->second, id, TimePoint{}, false);
+    requeue(*j);
+  }
+  // Fewer possible voters may let a frame decide its hash.
+  for (auto& [frame_id, frame] : frames_)
+    if (!frame.reference) try_decide(frame);
 }
 
-// A job lost its worker: back to the front of the queue unless another copy
-// is still out or it is already done.
-void Scheduler::release(const WorkerId& id, uint64_t job_id) {
-  auto it = jobs_.find(job_id);
-  if (it == jobs_.end()) return;
-  Job& job = it->second;
-  job.holders.erase(id);
-  if (!job.done && job.holders.empty() &&
-      std::find(unassigned_.begin(), unassigned_.end(), job_id) == unassigned_.end()) {
-    unassigned_.push_front(job_id);
-    ++stats_.reissued;
-  }
+int Scheduler::outstanding(const WorkerId& id) const {
+  auto w = workers_.find(id);
+  return w == workers_.end() ? 0 : int(w->second.jobs.size());
 }
+
+bool Scheduler::holds(const WorkerId& id, uint64_t job_id) const {
+  auto job = jobs_.find(job_id);
+  return job != jobs_.end() && std::any_of(job->second.holders.begin(), job->second.holders.end(),
+                                           [&](const Holder& h) { return h.worker == id; });
+}
+
+bool Scheduler::trusted(const WorkerId& id) const {
+  auto w = workers_.find(id);
+  return w != workers_.end() && w->second.trusted;
+}
+
+std::vector<WorkerId> Scheduler::take_quarantined() { return std::exchange(newly_quarantined_, {}); }
+
+// The worker no longer holds the job: its credit is free again.
+void Scheduler::take_back(Worker& w, const WorkerId& id, uint64_t job_id) {
+  auto it = std::find(w.jobs.begin(), w.jobs.end(), job_id);
+  if (it == w.jobs.end()) return;
+  w.jobs.erase(it);
+  if (int(w.jobs.size()) < w.credits) hungry_.insert(id);
+}
+
+// ---- Frames and the pool.
 
 void Scheduler::add_frame(uint64_t frame_id, const std::vector<TileJob>& tiles) {
   Frame& frame = frames_[frame_id];
   for (const TileJob& tile : tiles) {
     const uint64_t id = next_job_id_++;
-    jobs_[id] = Job{frame_id, tile, {}, false};
+    Job& job = jobs_[id];
+    job.holders.reserve(2);
+    job.frame_id = frame_id;
+    job.tile = tile;
+    job.queued = true;
     frame.jobs.push_back(id);
     unassigned_.push_back(id);
   }
 }
 
-std::optional<uint64_t> Scheduler::take_unassigned(const WorkerId& id) {
-  for (auto it = unassigned_.begin(); it != unassigned_.end(); ++it)
-    if (!jobs_[*it].holders.count(id)) {
-      uint64_t job_id = *it;
-      unassigned_.erase(it);
-      return job_id;
-    }
-  return std::nullopt;
-}
-
-// The oldest outstanding job with a single holder that is not this worker.
-std::optional<uint64_t> Scheduler::pick_straggler(const WorkerId& id) const {
-  for (const auto& [frame_id, frame] : frames_)
-    for (uint64_t job_id : frame.jobs) {
-      const Job& job = jobs_.at(job_id);
-      if (!job.done && job.holders.size() == 1 && !job.holders.count(id)) return job_id;
-    }
-  return std::nullopt;
-}
-
-std::optional<JobAssignment> Scheduler::next_job(const WorkerId& id) {
-  auto w = workers_.find(id);
-  if (w == workers_.end() || int(w->second.jobs.size()) >= w->second.credits) return std::nullopt;
-  bool duplicate = false;
-  std::optional<uint64_t> job_id = take_unassigned(id);
-  if (!job_id) {
-    job_id = pick_straggler(id);
-    duplicate = job_id.has_value();
-  }
-  if (!job_id) return std::nullopt;
-  Job& job = jobs_[*job_id];
-  job.holders.insert(id);
-  w->second.jobs.insert(*job_id);
-  if (duplicate) ++stats_.duplicated;
-  if (!duplicate && forced_duplicates_ > 0) {  // test hook: the next worker gets it too
-    --forced_duplicates_;
-    unassigned_.push_front(*job_id);
-    ++stats_.duplicated;
-  }
-  return JobAssignment{*job_id, job.frame_id, job.tile, duplicate};
-}
-
-ResultVerdict Scheduler::on_result(const WorkerId& id, uint64_t job_id, uint64_t frame_state_hash) {
+void Scheduler::requeue(uint64_t job_id) {
   auto it = jobs_.find(job_id);
-  auto w = workers_.find(id);
-  if (w != workers_.end()) w->second.jobs.erase(job_id);
-  if (it == jobs_.end()) return ResultVerdict::Unknown;
+  if (it == jobs_.end()) return;
   Job& job = it->second;
-  job.holders.erase(id);
-  if (job.done) {
-    ++stats_.late_dropped;
-    return ResultVerdict::Duplicate;
-  }
-  Frame& frame = frames_[job.frame_id];
-  if (frame.state_hash && *frame.state_hash != frame_state_hash) {
-    remove_worker(id);  // its other jobs go back too
-    release(id, job_id);
-    return ResultVerdict::HashMismatch;
-  }
-  frame.state_hash = frame_state_hash;
-  job.done = true;
-  ++frame.done;
-  unassigned_.erase(std::remove(unassigned_.begin(), unassigned_.end(), job_id), unassigned_.end());
-  return ResultVerdict::Accepted;
+  if (job.done || job.held_by || !job.holders.empty() || job.queued) return;
+  job.queued = true;
+  unassigned_.push_front(job_id);
+  ++stats_.reissued;
 }
 
+bool Scheduler::release_holder(Job& job, const WorkerId& id, TimePoint now, bool sample) {
+  auto h = std::find_if(job.holders.begin(), job.holders.end(), [&](const Holder& x) { return x.worker == id; });
+  if (h == job.holders.end()) return false;
+  if (sample) {
+    const double seconds = seconds_between(h->issued, now);
+    if (round_trips_.size() < kRoundTrips) round_trips_.push_back(seconds);
+    else round_trips_[round_trip_next_] = seconds;
+    round_trip_next_ = (round_trip_next_ + 1) % kRoundTrips;
+    median_.reset();
+  }
+  job.holders.erase(h);
+  return true;
+}
+
+void Scheduler::complete(Frame& frame, Job& job) {
+  job.done = true;
+  job.queued = false;
+  ++frame.done;
+}
+
+// A copy still out when its frame completes will never be wanted: its worker
+// gets the credit back now (its result may have been lost on the way).
 std::vector<uint64_t> Scheduler::take_completed_frames() {
   std::vector<uint64_t> done;
   while (!frames_.empty() && frames_.begin()->second.done == frames_.begin()->second.jobs.size()) {
-    for (uint64_t job_id : frames_.begin()->second.jobs) jobs_.erase(job_id);
+    for (uint64_t job_id : frames_.begin()->second.jobs) {
+      for (const Holder& h : jobs_.at(job_id).holders)
+        if (auto w = workers_.find(h.worker); w != workers_.end()) take_back(w->second, h.worker, job_id);
+      jobs_.erase(job_id);
+    }
     done.push_back(frames_.begin()->first);
     frames_.erase(frames_.begin());
   }
   return done;
 }
 
-int Scheduler::outstanding(const WorkerId& id) const {
+// ---- Handing out jobs.
+
+JobAssignment Scheduler::give(const WorkerId& id, uint64_t job_id, TimePoint now) {
+  Job& job = jobs_.at(job_id);
+  const bool duplicate = !job.holders.empty() || job.held_by.has_value();
+  job.queued = false;
+  job.holders.push_back({id, now});
+  Worker& w = workers_.at(id);
+  w.jobs.push_back(job_id);
+  if (int(w.jobs.size()) >= w.credits) hungry_.erase(id);
+  issued_.push_back({now, job_id, id});
+  trim_issued();
+  return JobAssignment{id, job_id, job.frame_id, job.tile, duplicate};
+}
+
+std::optional<uint64_t> Scheduler::front_unassigned() {
+  while (!unassigned_.empty()) {
+    auto it = jobs_.find(unassigned_.front());
+    if (it != jobs_.end() && it->second.queued) return unassigned_.front();
+    unassigned_.pop_front();  // done, held or its frame gone since it was queued
+  }
+  return std::nullopt;
+}
+
+// Water-filling: first one job to each idle worker, then to each worker
+// holding one, and so on; so work spreads over the workers, and a job never
+// waits behind another on a busy worker while an idle one could take it.
+void Scheduler::assign_unassigned(TimePoint now, std::vector<JobAssignment>& out) {
+  std::vector<std::pair<size_t, const WorkerId*>> round;  // (jobs held, worker); give() changes hungry_
+  for (size_t level = 0; !hungry_.empty() && front_unassigned(); ++level) {
+    round.clear();
+    size_t deepest = 0;
+    for (const WorkerId& id : hungry_) {
+      const Worker& w = workers_.find(id)->second;
+      deepest = std::max(deepest, w.jobs.size());
+      if (w.jobs.size() <= level) round.push_back({w.jobs.size(), &workers_.find(id)->first});
+    }
+    bool progress = false;
+    for (const auto& [held, worker] : round) {
+      const WorkerId& id = *worker;
+      if (!hungry_.count(id)) continue;
+      std::optional<uint64_t> job_id = front_unassigned();
+      if (!job_id) return;
+      const Job& job = jobs_.at(*job_id);
+      if (std::any_of(job.holders.begin(), job.holders.end(), [&](const Holder& h) { return h.worker == id; }))
+        continue;  // a forced copy: for another worker
+      unassigned_.pop_front();
+      out.push_back(give(id, *job_id, now));
+      if (out.back().duplicate) ++stats_.duplicated;
+      if (forced_duplicates_ > 0 && !out.back().duplicate) force_copy(id, *job_id, now, out);
+      progress = true;
+    }
+    if (!progress && level >= deepest) return;  // every hungry worker had its turn and took nothing
+  }
+}
+
+// Test hook: a copy for another worker at once, beyond its credit if need be.
+void Scheduler::force_copy(const WorkerId& holder, uint64_t job_id, TimePoint now, std::vector<JobAssignment>& out) {
+  for (const auto& [id, worker] : workers_) {
+    if (id == holder) continue;
+    --forced_duplicates_;
+    ++stats_.duplicated;
+    out.push_back(give(id, job_id, now));
+    return;
+  }
+}
+
+double Scheduler::median_round_trip() const {
+  if (round_trips_.empty()) return 0.0;
+  if (!median_) {
+    std::vector<double> sorted = round_trips_;
+    std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
+    median_ = sorted[sorted.size() / 2];
+  }
+  return *median_;
+}
+
+double Scheduler::straggler_seconds() const {
+  const double typical =
+      round_trips_.size() < kMinRoundTrips ? kUnknownStragglerSeconds : config_.straggler_factor * median_round_trip();
+  return std::max(config_.min_straggler_seconds, typical);
+}
+
+size_t Scheduler::duplicate_budget(const Frame& frame) const {
+  return std::max<size_t>(1, size_t(std::ceil(config_.duplicate_budget * double(frame.jobs.size()))));
+}
+
+bool Scheduler::is_outstanding(const Issue& issue) const {
+  auto it = jobs_.find(issue.job_id);
+  if (it == jobs_.end() || it->second.done || it->second.held_by) return false;
+  const auto& holders = it->second.holders;
+  return std::any_of(holders.begin(), holders.end(),
+                     [&](const Holder& h) { return h.worker == issue.worker && h.issued == issue.at; });
+}
+
+// Outstanding with a single copy out, and its frame has copies to spare.
+// Outstanding with a single copy out, and its frame has copies to spare; or
+// so overdue (ten times late) that its result was surely lost: a frame must
+// not wait for ever on a worker that is alive but lost what it was sending.
+bool Scheduler::straggler_eligible(const Issue& issue, TimePoint now) const {
+  const Job& job = jobs_.at(issue.job_id);
+  const Frame& frame = frames_.at(job.frame_id);
+  const bool overdue = seconds_between(issue.at, now) >= 10.0 * straggler_seconds();
+  return job.holders.size() == 1 && (frame.copies < duplicate_budget(frame) || overdue);
+}
+
+// Copies answered, released or of a finished frame leave the front: the
+// queue holds no more than the copies issued since the oldest still out.
+void Scheduler::trim_issued() {
+  while (!issued_.empty() && !is_outstanding(issued_.front())) issued_.pop_front();
+}
+
+void Scheduler::assign_stragglers(TimePoint now, std::vector<JobAssignment>& out) {
+  trim_issued();
+  const double late = straggler_seconds();
+  // Oldest first; stop at the first that is not late yet (all after it are younger).
+  const size_t n = issued_.size();
+  for (size_t i = 0; i < n && !hungry_.empty(); ++i) {
+    const Issue issue = issued_[i];
+    if (seconds_between(issue.at, now) < late) break;
+    if (!is_outstanding(issue) || !straggler_eligible(issue, now)) continue;
+    auto w = std::find_if(hungry_.begin(), hungry_.end(), [&](const WorkerId& id) { return id != issue.worker; });
+    if (w == hungry_.end()) break;
+    const WorkerId id = *w;
+    ++frames_.at(jobs_.at(issue.job_id).frame_id).copies;
+    ++stats_.duplicated;
+    out.push_back(give(id, issue.job_id, now));
+  }
+}
+
+// A copy of an answered job that is late has surely been lost (a worker
+// that is alive and dropped its result): its worker gets the credit back, so
+// that it can vote on the frame with a fresh copy.
+void Scheduler::release_lost_copies(const Frame& frame, TimePoint now) {
+  const double late = straggler_seconds();
+  for (uint64_t job_id : frame.held) {
+    Job& job = jobs_.at(job_id);
+    std::vector<WorkerId> lost;
+    for (const Holder& h : job.holders)
+      if (seconds_between(h.issued, now) >= late) lost.push_back(h.worker);
+    for (const WorkerId& id : lost) drop_result(id, job_id);
+  }
+}
+
+// A frame whose every job is answered but whose hash is undecided needs
+// another worker's vote: an idle worker that has not voted renders a copy.
+void Scheduler::assign_verifications(TimePoint now, std::vector<JobAssignment>& out) {
+  for (auto& entry : frames_) {
+    const Frame& frame = entry.second;  // a plain reference: clang 14 lambdas cannot capture structured bindings
+    if (hungry_.empty()) return;
+    if (frame.reference || frame.held.empty() || frame.done + frame.held.size() != frame.jobs.size()) continue;
+    release_lost_copies(frame, now);
+    const bool copy_out = std::any_of(frame.held.begin(), frame.held.end(),
+                                      [&](uint64_t j) { return !jobs_.at(j).holders.empty(); });
+    if (copy_out) continue;
+    auto voted = [&](const WorkerId& id) {
+      for (const auto& [hash, voters] : frame.votes)
+        if (voters.count(id)) return true;
+      return false;
+    };
+    auto w = std::find_if(hungry_.begin(), hungry_.end(), [&](const WorkerId& id) { return !voted(id); });
+    if (w == hungry_.end()) continue;
+    const WorkerId id = *w;
+    ++stats_.verified;
+    out.push_back(give(id, frame.held.front(), now));
+  }
+}
+
+std::vector<JobAssignment> Scheduler::assign(TimePoint now) {
+  std::vector<JobAssignment> out;
+  if (hungry_.empty()) return out;
+  assign_unassigned(now, out);
+  if (hungry_.empty() || front_unassigned()) return out;
+  assign_stragglers(now, out);
+  assign_verifications(now, out);
+  return out;
+}
+
+std::optional<TimePoint> Scheduler::next_straggler_time() {
+  if (hungry_.empty()) return std::nullopt;
+  trim_issued();
+  const auto late = std::chrono::duration_cast<SchedulerClock::duration>(std::chrono::duration<double>(straggler_seconds()));
+  for (const Issue& issue : issued_) {
+    if (!is_outstanding(issue)) continue;
+    const Job& job = jobs_.at(issue.job_id);
+    const Frame& frame = frames_.at(job.frame_id);
+    if (job.holders.size() != 1) continue;
+    return issue.at + (frame.copies < duplicate_budget(frame) ? late : 10 * late);
+  }
+  return std::nullopt;
+}
+
+// ---- Results.
+
+ResultCheck Scheduler::check_result(const WorkerId& id, uint64_t job_id, uint64_t frame_id, const TileJob& tile) const {
+  auto it = jobs_.find(job_id);
+  if (it == jobs_.end()) return ResultCheck::Unknown;
+  const Job& job = it->second;
+  const bool holder =
+      std::any_of(job.holders.begin(), job.holders.end(), [&](const Holder& h) { return h.worker == id; });
+  if (!holder) return ResultCheck::Unknown;  // not a job this worker was given (or still holds)
+  if (job.frame_id != frame_id || !same_tile(job.tile, tile)) return ResultCheck::WrongTile;
+  if (job.done || job.held_by) return ResultCheck::NotNeeded;
+  return ResultCheck::Wanted;
+}
+
+void Scheduler::drop_result(const WorkerId& id, uint64_t job_id) {
   auto w = workers_.find(id);
-  return w == workers_.end() ? 0 : int(w->second.jobs.size());
+  if (w != workers_.end()) take_back(w->second, id, job_id);
+  auto job = jobs_.find(job_id);
+  if (job != jobs_.end()) release_holder(job->second, id, TimePoint{}, false);
+}
+
+bool Scheduler::on_bad_result(const WorkerId& id, uint64_t job_id) {
+  ++stats_.failed_results;
+  drop_result(id, job_id);
+  auto it = jobs_.find(job_id);
+  if (it == jobs_.end()) return false;
+  Job& job = it->second;
+  ++job.failures;
+  job.failed_on.insert(id);
+  requeue(job_id);
+  return job.failures >= config_.max_failures || int(job.failed_on.size()) >= config_.max_failed_workers;
+}
+
+ResultVerdict Scheduler::on_result(const WorkerId& id, uint64_t job_id, uint64_t hash, TimePoint now) {
+  auto it = jobs_.find(job_id);
+  if (it == jobs_.end()) {
+    drop_result(id, job_id);
+    return ResultVerdict::Unknown;
+  }
+  Job& job = it->second;
+  Frame& frame = frames_.at(job.frame_id);
+  const bool first = !job.done && !job.held_by;
+  release_holder(job, id, now, first);
+  auto w = workers_.find(id);
+  if (w != workers_.end()) take_back(w->second, id, job_id);
+  if (frame.reference) {
+    if (hash != *frame.reference) {
+      quarantine(id);
+      requeue(job_id);
+      return ResultVerdict::Rejected;
+    }
+    if (w != workers_.end()) w->second.trusted = true;  // agrees with a reference two workers (or a trusted one) set
+    if (!first) {
+      ++stats_.late_dropped;
+      return ResultVerdict::Late;
+    }
+    complete(frame, job);
+    return ResultVerdict::Accepted;
+  }
+  frame.votes[hash].insert(id);
+  if (first) {
+    job.held_by = id;
+    job.held_hash = hash;
+    frame.held.push_back(job_id);
+  } else {
+    ++stats_.late_dropped;
+  }
+  try_decide(frame);
+  if (!first) return quarantined_.count(id) ? ResultVerdict::Rejected : ResultVerdict::Late;
+  if (job.done) return ResultVerdict::Accepted;
+  if (quarantined_.count(id)) return ResultVerdict::Rejected;
+  ++stats_.held;
+  return ResultVerdict::Held;
+}
+
+// ---- The reference hash.
+
+size_t Scheduler::possible_voters(const Frame& frame) const {
+  size_t n = workers_.size();
+  std::set<WorkerId> gone;
+  for (const auto& [hash, voters] : frame.votes)
+    for (const WorkerId& v : voters)
+      if (!workers_.count(v)) gone.insert(v);
+  return n + gone.size();
+}
+
+// Two agreeing workers decide, or one trusted worker. A worker decides alone
+// only when it is the frame's only possible voter and has answered every job:
+// it earns no trust by that, so a newcomer is not judged by it.
+void Scheduler::try_decide(Frame& frame) {
+  if (frame.votes.empty()) return;
+  for (const auto& [hash, voters] : frame.votes) {
+    const bool trusted_vote = std::any_of(voters.begin(), voters.end(), [&](const WorkerId& v) { return trusted(v); });
+    if (voters.size() >= 2 || trusted_vote) {
+      const uint64_t reference = hash;  // decide() clears the votes
+      decide(frame, reference, true);
+      return;
+    }
+  }
+  const bool all_answered = frame.done + frame.held.size() == frame.jobs.size();
+  if (frame.votes.size() == 1 && all_answered && possible_voters(frame) == 1) {
+    const uint64_t reference = frame.votes.begin()->first;
+    decide(frame, reference, false);
+  }
+}
+
+void Scheduler::decide(Frame& frame, uint64_t reference, bool earns_trust) {
+  frame.reference = reference;
+  std::vector<WorkerId> losers;
+  for (const auto& [hash, voters] : frame.votes)
+    for (const WorkerId& v : voters) {
+      if (hash != reference) losers.push_back(v);
+      else if (auto w = workers_.find(v); w != workers_.end() && earns_trust) w->second.trusted = true;
+    }
+  frame.votes.clear();
+  const std::vector<uint64_t> held = std::exchange(frame.held, {});
+  for (uint64_t job_id : held) {
+    auto it = jobs_.find(job_id);
+    if (it == jobs_.end()) continue;
+    Job& job = it->second;
+    const bool agrees = job.held_hash == reference;
+    job.held_by.reset();
+    if (agrees) complete(frame, job);
+    else requeue(job_id);
+  }
+  for (const WorkerId& v : losers) quarantine(v);
+}
+
+void Scheduler::quarantine(const WorkerId& id) {
+  if (!quarantined_.insert(id).second) return;
+  newly_quarantined_.push_back(id);
+  ++stats_.quarantined;
+  // Its unconfirmed results and votes elsewhere are not to be believed either.
+  for (auto& [frame_id, frame] : frames_) {
+    for (auto v = frame.votes.begin(); v != frame.votes.end();) {
+      v->second.erase(id);
+      v = v->second.empty() ? frame.votes.erase(v) : std::next(v);
+    }
+    std::vector<uint64_t> dropped;
+    std::erase_if(frame.held, [&](uint64_t job_id) {
+      Job& job = jobs_.at(job_id);
+      if (job.held_by != id) return false;
+      job.held_by.reset();
+      dropped.push_back(job_id);
+      return true;
+    });
+    for (uint64_t job_id : dropped) requeue(job_id);
+  }
+  remove_worker(id);  // its outstanding jobs go back; frames it blocked may decide now
+}
+
+std::optional<HashSplit> Scheduler::stalled_split() const {
+  for (const auto& [frame_id, frame] : frames_) {
+    if (frame.reference || frame.votes.size() < 2) continue;
+    bool everyone_voted = true;
+    for (const auto& [id, worker] : workers_) {
+      bool voted = false;
+      for (const auto& [hash, voters] : frame.votes) voted = voted || voters.count(id);
+      everyone_voted = everyone_voted && voted;
+    }
+    if (!everyone_voted) continue;
+    HashSplit split;
+    split.frame_id = frame_id;
+    for (const auto& [hash, voters] : frame.votes) split.voters[hash].assign(voters.begin(), voters.end());
+    return split;
+  }
+  return std::nullopt;
 }
 
 }  // namespace igi

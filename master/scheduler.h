@@ -1,23 +1,56 @@
 #pragma once
-// Which tile job goes to which worker: pure bookkeeping, no sockets, no
-// clocks of its own (callers pass `now`), so every rule is unit-tested.
+// Which tile job goes to which worker, and which results a frame may use:
+// pure bookkeeping, no sockets, no clock of its own (callers pass `now`), so
+// every rule is unit-tested (tests/test_scheduler.cpp).
 //
 // Rules:
-//  - Pull by credits: a worker holds at most `credits` jobs at once.
-//  - Frames are pipelined: jobs of the next frame are handed out once the
-//    current frame's are all assigned (at most `frames_in_flight` frames).
-//  - Stragglers: when nothing unassigned is left, an idle worker gets a
-//    duplicate of the oldest outstanding job (at most two copies in flight).
-//  - The first result for a job wins; later copies are dropped.
-//  - A worker declared dead or banned gives its jobs back to the pool.
-//  - A result whose VPL-set hash differs from the frame's first result bans
-//    its worker (reported), and the job is issued again.
+//  - Pull by credits: a worker holds at most `credits` jobs at once; jobs go
+//    out when credit comes back (assign()), oldest frame first.
+//  - Frames are pipelined: at most `frames_in_flight` frames are open.
+//  - Stragglers: when nothing unassigned is left, a worker with free credit
+//    gets a copy of the oldest outstanding job, but only of one older than
+//    `straggler_factor` x the median round trip of recent jobs (at least
+//    `min_straggler_seconds`; 1 s until 8 round trips are known), at most two
+//    copies of a job, and at most `duplicate_budget` x the frame's jobs copies
+//    per frame (a job ten times late is copied whatever the budget: its
+//    result was lost). Workers that are all equally fast never render a tile
+//    twice. Water-filling: idle workers get jobs before busy ones.
+//  - A copy still out when its frame completes gives its worker's credit back.
+//  - The first usable result for a job wins; later copies are dropped.
+//  - A result that fails validation (it does not decode, non-finite pixels,
+//    a rectangle that is not its job's) releases the job to the pool; a job whose results failed
+//    on `max_failed_workers` distinct workers, or `max_failures` times in all,
+//    fails deterministically and the caller must end the run.
+//  - A worker declared dead gives its outstanding jobs back to the pool.
+//
+// The VPL-set hash (a frame's per-frame state, identical on every correct
+// worker) is decided by agreement, never by whoever answers first:
+//  - A frame's reference hash is the first one reported by two distinct
+//    workers (a quorum), or by one trusted worker: one that has agreed with
+//    another worker on a frame's reference before. A worker that is the only
+//    one there (alive, or among the frame's voters) decides alone once it has
+//    answered every job of the frame, and earns no trust by it: a worker that
+//    joins later is not judged by a hash nobody confirmed.
+//  - Until then results are held: their pixels are kept, but they do not
+//    count. A held job is not reissued; if no other worker has voted on the
+//    frame once all its jobs are held, an idle worker gets a copy to verify
+//    (a late copy still out on a held job counts as lost, and its worker's
+//    credit comes back so it can be the one).
+//  - When the reference is decided, held results with it count, the others go
+//    back to the pool, and every worker that reported another hash for the
+//    frame is quarantined: removed, its jobs reissued, its unconfirmed results
+//    elsewhere dropped. A late result whose hash differs from its frame's
+//    reference quarantines its worker too.
+//  - Two workers that disagree with no third to break the tie: the frame
+//    waits (stalled_split() reports it) until another worker joins.
+#include <chrono>
 #include <cstdint>
 #include <deque>
 #include <map>
 #include <optional>
 #include <set>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "render/frame.h"
@@ -25,75 +58,186 @@
 namespace igi {
 
 using WorkerId = std::string;  // the ZeroMQ identity
+using SchedulerClock = std::chrono::steady_clock;
+using TimePoint = SchedulerClock::time_point;
+
+struct SchedulerConfig {
+  int credits = 2;                     // a worker's default credits
+  int frames_in_flight = 2;
+  double straggler_factor = 3.0;       // late: older than this many median round trips...
+  double min_straggler_seconds = 0.02; // ...and at least this old
+  double duplicate_budget = 0.1;       // straggler copies per frame, as a fraction of its jobs (at least 1)
+  int max_failed_workers = 2;          // distinct workers whose result for a job failed validation
+  int max_failures = 3;                // failed results for one job, from any workers
+};
 
 struct JobAssignment {
+  WorkerId worker;
   uint64_t job_id;
   uint64_t frame_id;
   TileJob tile;
-  bool duplicate;
+  bool duplicate;  // another copy is out or answered (a straggler or a verification copy)
 };
 
-enum class ResultVerdict { Accepted, Duplicate, Unknown, HashMismatch };
+// What to do with a result's pixels, before they are read.
+enum class ResultCheck {
+  Wanted,     // the job's first result: copy the pixels, then call on_result()
+  NotNeeded,  // another copy already answered: do not copy, but call on_result() (its hash is a vote)
+  Unknown,    // no such job (its frame is complete, or never was): call drop_result()
+  WrongTile,  // frame or rectangle differ from the job's: call on_bad_result()
+};
+
+enum class ResultVerdict {
+  Accepted,  // counts towards its frame
+  Held,      // kept until the frame's reference hash is decided
+  Late,      // another copy answered first; dropped (its hash was checked)
+  Rejected,  // its hash differs from the frame's reference: its worker is quarantined
+  Unknown,   // no such job
+};
+
 
 struct SchedulerStats {
-  uint64_t reissued = 0;      // jobs handed out again after a worker died or was banned
+  uint64_t reissued = 0;      // jobs handed out again after a worker died, was quarantined, or failed them
   uint64_t duplicated = 0;    // straggler copies handed out
-  uint64_t late_dropped = 0;  // results that arrived after another copy won
+  uint64_t verified = 0;      // copies handed out so a second worker votes on a frame
+  uint64_t late_dropped = 0;  // results that arrived after another copy answered
+  uint64_t held = 0;          // results held until their frame's hash was decided
+  uint64_t failed_results = 0;  // results that failed validation
+  uint64_t quarantined = 0;   // workers quarantined for a hash that lost
+};
+
+// A frame whose voters disagree with no quorum possible among the workers present.
+struct HashSplit {
+  uint64_t frame_id = 0;
+  std::map<uint64_t, std::vector<WorkerId>> voters;  // hash -> workers that reported it
 };
 
 class Scheduler {
  public:
-  Scheduler(int credits, int frames_in_flight) : credits_(credits), frames_in_flight_(frames_in_flight) {}
+  explicit Scheduler(SchedulerConfig config = {}) : config_(config) {}
+  Scheduler(int credits, int frames_in_flight) : Scheduler(SchedulerConfig{credits, frames_in_flight}) {}
 
-  // credits: jobs this worker may hold; 0 means the scheduler's default.
+  // credits: jobs this worker may hold; 0 means the configured default.
   void add_worker(const WorkerId& id, int credits = 0);
-  // Forgets the worker; its outstanding jobs go back to the pool.
+  // Forgets the worker (dead, left, or reconnected); its outstanding jobs go
+  // back to the pool. Its held results and votes stay: they were correct or not
+  // whether it lives or not.
   void remove_worker(const WorkerId& id);
   bool has_worker(const WorkerId& id) const { return workers_.count(id) > 0; }
   size_t worker_count() const { return workers_.size(); }
 
   void add_frame(uint64_t frame_id, const std::vector<TileJob>& tiles);
-  bool can_add_frame() const { return int(frames_.size()) < frames_in_flight_; }
+  bool can_add_frame() const { return int(frames_.size()) < config_.frames_in_flight; }
+  size_t open_frames() const { return frames_.size(); }
 
-  // The next job for this worker, or nothing (no credit, or no work).
-  std::optional<JobAssignment> next_job(const WorkerId& id);
-  ResultVerdict on_result(const WorkerId& id, uint64_t job_id, uint64_t frame_state_hash);
-  // Frames whose every job is back, in frame order; removes them.
+  // Jobs for workers with free credit, as many as there are (in frame order).
+  std::vector<JobAssignment> assign(TimePoint now);
+  // When the oldest outstanding job becomes a straggler (nullopt: none out);
+  // a caller sleeping in poll() wakes then to call assign() again.
+  std::optional<TimePoint> next_straggler_time();
+
+  ResultCheck check_result(const WorkerId& id, uint64_t job_id, uint64_t frame_id, const TileJob& tile) const;
+  // A result may decide its frame's reference hash and so quarantine workers
+  // that contradicted it: take_quarantined() names them.
+  ResultVerdict on_result(const WorkerId& id, uint64_t job_id, uint64_t frame_state_hash, TimePoint now);
+  // The result's job is unknown: only the worker's credit comes back.
+  void drop_result(const WorkerId& id, uint64_t job_id);
+  // The result failed validation: the worker no longer holds the job, which
+  // goes back to the pool. True when the job now fails deterministically.
+  bool on_bad_result(const WorkerId& id, uint64_t job_id);
+
+  // Frames whose every job is back and counted, in frame order; removes them,
+  // and gives workers back the credit of copies still out for them.
   std::vector<uint64_t> take_completed_frames();
+  // Workers quarantined since the last call (by on_result, or by a removal
+  // that decided a frame); each is already removed, its jobs back in the pool.
+  std::vector<WorkerId> take_quarantined();
+  // The oldest frame that cannot be decided without another worker, if any.
+  std::optional<HashSplit> stalled_split() const;
 
   int outstanding(const WorkerId& id) const;
+  bool holds(const WorkerId& id, uint64_t job_id) const;  // the worker has this job and has not answered it
+  bool trusted(const WorkerId& id) const;
   const SchedulerStats& stats() const { return stats_; }
-  // Test hook: hand the next `n` jobs out twice on purpose.
+  double median_round_trip() const;  // seconds; 0 before any
+  // Test hook: hand the next `n` jobs out twice on purpose (the copy at once, to another worker, whatever its credit).
   void force_duplicates(int n) { forced_duplicates_ = n; }
 
+  const SchedulerConfig& config() const { return config_; }
+  // Bookkeeping that must stay bounded however many frames pass (tests).
+  size_t tracked_copies() const { return issued_.size(); }
+  size_t tracked_jobs() const { return jobs_.size() + unassigned_.size(); }
+
  private:
+  struct Holder {
+    WorkerId worker;
+    TimePoint issued;
+  };
   struct Job {
-    uint64_t frame_id;
+    uint64_t frame_id = 0;
     TileJob tile;
-    std::set<WorkerId> holders;  // workers rendering it now
+    std::vector<Holder> holders;  // workers rendering it now (at most two)
+    std::optional<WorkerId> held_by;  // its first result, waiting for the frame's hash
+    uint64_t held_hash = 0;
     bool done = false;
+    bool queued = false;  // in unassigned_
+    int failures = 0;
+    std::set<WorkerId> failed_on;
   };
   struct Frame {
     std::vector<uint64_t> jobs;
     size_t done = 0;
-    std::optional<uint64_t> state_hash;
+    size_t copies = 0;  // straggler copies handed out
+    std::optional<uint64_t> reference;
+    std::map<uint64_t, std::set<WorkerId>> votes;  // until the reference is decided
+    std::vector<uint64_t> held;
   };
   struct Worker {
-    std::set<uint64_t> jobs;
+    std::vector<uint64_t> jobs;  // in the order given (at most its credits)
     int credits = 1;
+    bool trusted = false;
   };
-  std::optional<uint64_t> take_unassigned(const WorkerId& id);
-  std::optional<uint64_t> pick_straggler(const WorkerId& id) const;
-  void release(const WorkerId& id, uint64_t job_id);
+  struct Issue {
+    TimePoint at;
+    uint64_t job_id;
+    WorkerId worker;
+  };
 
-  int credits_;
-  int frames_in_flight_;
+  void assign_unassigned(TimePoint now, std::vector<JobAssignment>& out);
+  void assign_stragglers(TimePoint now, std::vector<JobAssignment>& out);
+  void assign_verifications(TimePoint now, std::vector<JobAssignment>& out);
+  std::optional<uint64_t> front_unassigned();
+  bool is_outstanding(const Issue& issue) const;
+  void trim_issued();
+  bool straggler_eligible(const Issue& issue, TimePoint now) const;
+  void release_lost_copies(const Frame& frame, TimePoint now);
+  double straggler_seconds() const;
+  size_t duplicate_budget(const Frame& frame) const;
+  JobAssignment give(const WorkerId& id, uint64_t job_id, TimePoint now);
+  void force_copy(const WorkerId& holder, uint64_t job_id, TimePoint now, std::vector<JobAssignment>& out);
+  void take_back(Worker& w, const WorkerId& id, uint64_t job_id);
+  void requeue(uint64_t job_id);  // back to the front of the pool, unless out, held, done or queued
+  bool release_holder(Job& job, const WorkerId& id, TimePoint now, bool sample);
+  void complete(Frame& frame, Job& job);
+  void try_decide(Frame& frame);
+  void decide(Frame& frame, uint64_t reference, bool earns_trust);
+  void quarantine(const WorkerId& id);
+  size_t possible_voters(const Frame& frame) const;
+
+  SchedulerConfig config_;
   int forced_duplicates_ = 0;
   uint64_t next_job_id_ = 1;
   std::map<WorkerId, Worker> workers_;
+  std::set<WorkerId> hungry_;  // workers with free credit
+  std::set<WorkerId> quarantined_;        // ever, this session
+  std::vector<WorkerId> newly_quarantined_;
   std::map<uint64_t, Frame> frames_;
-  std::map<uint64_t, Job> jobs_;
-  std::deque<uint64_t> unassigned_;  // in the order they should go out
+  std::unordered_map<uint64_t, Job> jobs_;
+  std::deque<uint64_t> unassigned_;  // in the order they should go out; stale entries skipped
+  std::deque<Issue> issued_;         // copies in the order handed out; stale entries skipped
+  std::vector<double> round_trips_;  // the latest kRoundTrips, as a ring
+  size_t round_trip_next_ = 0;
+  mutable std::optional<double> median_;  // of round_trips_, until the next sample
   SchedulerStats stats_;
 };
 

@@ -21,7 +21,6 @@ constexpr int64_t kMaxThreads = 4096;
 constexpr int64_t kMaxCredits = 64;
 constexpr int64_t kMinHeartbeatMs = 10, kMaxHeartbeatMs = 60000;
 constexpr int64_t kMaxBorder = 64;
-constexpr size_t kPixelBytes = 12;  // three f32
 // sin of the smallest angle allowed between camera forward and up.
 constexpr float kMinSinForwardUp = 1e-4f;
 
@@ -214,6 +213,14 @@ void write(Writer& w, const Welcome& m) {
   write(w, m.settings);
   w.u32(m.credits);
   w.u32(m.heartbeat_ms);
+  w.u32(m.timeout_ms);
+  w.u8(static_cast<uint8_t>(m.pixel_format));
+}
+
+PixelFormat read_pixel_format(Reader& r, const char* field) {
+  const uint8_t format = r.u8(field);
+  check_range(r, field, format, 0, static_cast<uint8_t>(PixelFormat::Float16));
+  return r.ok() ? PixelFormat(format) : PixelFormat::Float32;
 }
 
 void read(Reader& r, Welcome& m) {
@@ -229,6 +236,9 @@ void read(Reader& r, Welcome& m) {
   check_range(r, "credits", m.credits, 1, kMaxCredits);
   m.heartbeat_ms = r.u32("heartbeat_ms");
   check_range(r, "heartbeat_ms", m.heartbeat_ms, kMinHeartbeatMs, kMaxHeartbeatMs);
+  m.timeout_ms = r.u32("timeout_ms");
+  check_range(r, "timeout_ms", m.timeout_ms, kMinTimeoutMs, kMaxTimeoutMs);
+  m.pixel_format = read_pixel_format(r, "pixel_format");
 }
 
 void write(Writer& w, const Refuse& m) { w.string(m.reason); }
@@ -312,31 +322,17 @@ void write(Writer& w, const TileResult& m) {
   w.u64(m.rays.primary);
   w.u64(m.rays.shadow);
   w.u64(m.rays.secondary);
+  w.u32(m.nonfinite_pixels);
+  w.u8(static_cast<uint8_t>(m.pixel_format));
   w.u32(static_cast<uint32_t>(m.pixels.size()));
-  w.reserve(m.pixels.size() * kPixelBytes);
+  w.reserve(m.pixels.size() * bytes_per_pixel(m.pixel_format));
   static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
-  w.floats(&m.pixels.data()->x, 3 * m.pixels.size());
+  if (m.pixel_format == PixelFormat::Float16) w.halves(&m.pixels.data()->x, 3 * m.pixels.size());
+  else w.floats(&m.pixels.data()->x, 3 * m.pixels.size());
 }
 
-// The count must match the tile before anything is allocated for it.
-void read_pixels(Reader& r, TileResult& m) {
-  uint32_t n = r.count("pixels", kPixelBytes, size_t(kMaxTileSide) * kMaxTileSide);
-  size_t expected = size_t(m.tile.w) * size_t(m.tile.h);
-  if (r.ok() && n != expected)
-    r.fail("pixels", std::to_string(n) + " pixels, expected " + std::to_string(m.tile.w) + " x " +
-                         std::to_string(m.tile.h) + " = " + std::to_string(expected));
-  if (!r.ok()) return;
-  m.pixels.resize(n);
-  if (!r.floats("pixels", &m.pixels.data()->x, 3 * size_t(n))) return;
-  for (uint32_t i = 0; i < n && r.ok(); ++i) {
-    const glm::vec3 p = m.pixels[i];
-    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
-      r.fail("pixels", "pixel " + std::to_string(i) + " is (" + show(p.x) + ", " + show(p.y) + ", " + show(p.z) +
-                           "), expected finite values");
-  }
-}
-
-void read(Reader& r, TileResult& m) {
+// Everything but the pixels themselves (the master copies those straight into its frame).
+void read_fields(Reader& r, TileResult& m) {
   m.frame_id = r.u64("frame_id");
   m.job_id = r.u64("job_id");
   read(r, m.tile);
@@ -346,16 +342,59 @@ void read(Reader& r, TileResult& m) {
   m.rays.primary = r.u64("rays.primary");
   m.rays.shadow = r.u64("rays.shadow");
   m.rays.secondary = r.u64("rays.secondary");
-  read_pixels(r, m);
+  m.nonfinite_pixels = r.u32("nonfinite_pixels");
+  check_range(r, "nonfinite_pixels", m.nonfinite_pixels, 0, int64_t(m.tile.w) * m.tile.h);
+  m.pixel_format = read_pixel_format(r, "pixel_format");
+}
+
+// The pixel block: its count must match the tile before anything is allocated
+// or read for it. Returns its bytes, unchecked for finiteness.
+std::span<const uint8_t> read_pixel_block(Reader& r, const TileResult& m) {
+  const size_t pixel_bytes = bytes_per_pixel(m.pixel_format);
+  const uint32_t n = r.count("pixels", pixel_bytes, size_t(kMaxTileSide) * kMaxTileSide);
+  const size_t expected = size_t(m.tile.w) * size_t(m.tile.h);
+  if (r.ok() && n != expected)
+    r.fail("pixels", std::to_string(n) + " pixels, expected " + std::to_string(m.tile.w) + " x " +
+                         std::to_string(m.tile.h) + " = " + std::to_string(expected));
+  if (!r.ok()) return {};
+  return r.span("pixels", size_t(n) * pixel_bytes);
+}
+
+void read(Reader& r, TileResult& m) {
+  read_fields(r, m);
+  const std::span<const uint8_t> block = read_pixel_block(r, m);
+  // Trailing bytes before finiteness: the order decode_tile_result + copy_tile_pixels check them in.
+  if (r.ok() && r.remaining() != 0)
+    r.fail("TileResult: " + std::to_string(r.remaining()) + " trailing bytes after the payload");
+  if (!r.ok()) return;
+  const size_t n = block.size() / bytes_per_pixel(m.pixel_format);
+  m.pixels.resize(n);
+  Reader pixels(block);
+  if (m.pixel_format == PixelFormat::Float16) pixels.halves("pixels", &m.pixels.data()->x, 3 * n);
+  else pixels.floats("pixels", &m.pixels.data()->x, 3 * n);
+  for (size_t i = 0; i < n && r.ok(); ++i) {
+    const glm::vec3 p = m.pixels[i];
+    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
+      r.fail("pixels", "pixel " + std::to_string(i) + " is (" + show(p.x) + ", " + show(p.y) + ", " + show(p.z) +
+                           "), expected finite values");
+  }
 }
 
 void write(Writer&, const Heartbeat&) {}
 
 void read(Reader&, Heartbeat&) {}
 
-void write(Writer& w, const Bye& m) { w.string(m.reason); }
+void write(Writer& w, const Bye& m) {
+  w.string(m.reason);
+  w.u8(static_cast<uint8_t>(m.kind));
+}
 
-void read(Reader& r, Bye& m) { m.reason = r.string("reason", kMaxString); }
+void read(Reader& r, Bye& m) {
+  m.reason = r.string("reason", kMaxString);
+  const uint8_t kind = r.u8("kind");
+  check_range(r, "kind", kind, 0, static_cast<uint8_t>(ByeKind::Failed));
+  if (r.ok()) m.kind = ByeKind(kind);
+}
 
 // ---- Header and dispatch.
 
@@ -425,10 +464,51 @@ std::vector<uint8_t> encode(const Message& message) {
   return w.take();
 }
 
+namespace {
+std::string oversized(size_t bytes) {
+  return "message of " + std::to_string(bytes) + " bytes, over the limit of " + std::to_string(kMaxMessageBytes);
+}
+}  // namespace
+
+bool is_tile_result(std::span<const uint8_t> bytes) {
+  return bytes.size() >= kHeaderBytes && bytes[6] == static_cast<uint8_t>(MessageType::TileResult);
+}
+
+std::optional<uint64_t> tile_result_job_id(std::span<const uint8_t> bytes) {
+  Reader r(bytes);
+  std::optional<MessageType> type = read_header(r);
+  if (type != MessageType::TileResult) return std::nullopt;
+  r.u64("frame_id");
+  const uint64_t job_id = r.u64("job_id");
+  return r.ok() ? std::optional<uint64_t>(job_id) : std::nullopt;
+}
+
+std::optional<TileResultView> decode_tile_result(std::span<const uint8_t> bytes, std::string& error) {
+  if (bytes.size() > kMaxMessageBytes) {
+    error = oversized(bytes.size());
+    return std::nullopt;
+  }
+  Reader r(bytes);
+  std::optional<MessageType> type = read_header(r);
+  if (type && *type != MessageType::TileResult)
+    r.fail(std::string(message_name(*type)) + " where a TileResult was expected");
+  TileResultView view;
+  if (r.ok()) {
+    r.begin(message_name(MessageType::TileResult));
+    read_fields(r, view.fields);
+    view.pixel_bytes = read_pixel_block(r, view.fields);
+    if (r.ok() && r.remaining() != 0)
+      r.fail("TileResult: " + std::to_string(r.remaining()) + " trailing bytes after the payload");
+  }
+  if (!r.ok()) {
+    error = r.error();
+    return std::nullopt;
+  }
+  return view;
+}
+
 DecodeResult decode(std::span<const uint8_t> bytes) {
-  if (bytes.size() > kMaxMessageBytes)
-    return {std::nullopt, "message of " + std::to_string(bytes.size()) + " bytes, over the limit of " +
-                              std::to_string(kMaxMessageBytes)};
+  if (bytes.size() > kMaxMessageBytes) return {std::nullopt, oversized(bytes.size())};
   Reader r(bytes);
   std::optional<MessageType> type = read_header(r);
   if (!type) return {std::nullopt, r.error()};

@@ -34,4 +34,23 @@ struct DecodeResult {
 // "protocol version N, this build speaks M".
 DecodeResult decode(std::span<const uint8_t> bytes);
 
+// A TileResult whose pixels stay where they are (the master copies them
+// straight from the ZeroMQ frame into its image: protocol/pixels.h).
+struct TileResultView {
+  TileResult fields;                      // every field but `pixels`, which stays empty
+  std::span<const uint8_t> pixel_bytes;   // tile.w * tile.h pixels in fields.pixel_format
+};
+
+// The header's type byte says TileResult (nothing else is checked).
+bool is_tile_result(std::span<const uint8_t> bytes);
+// The job id of a TileResult whose header (magic, version, type, flags) is
+// valid and whose job id is there, whatever follows: so that a result that
+// fails to decode still sends its job to another worker.
+std::optional<uint64_t> tile_result_job_id(std::span<const uint8_t> bytes);
+// Checks everything decode() checks except that the pixels are finite, which
+// copy_tile_pixels() checks as it copies them; so a message passes both
+// exactly when decode() accepts it, with the same error text otherwise.
+// nullopt, with `error` set, when it does not decode (or is not a TileResult).
+std::optional<TileResultView> decode_tile_result(std::span<const uint8_t> bytes, std::string& error);
+
 }  // namespace igi::protocol

@@ -22,14 +22,18 @@
 
 #include <glm/glm.hpp>
 
+#include "image/frame_buffer.h"
 #include "methods/settings.h"
 #include "render/frame.h"
 
 namespace igi::protocol {
 
 inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
-inline constexpr uint16_t kVersion = 5;  // 3: split path lengths, anti-aliasing, glossy gather, lightcuts;
-                                         // 5: light importance and bidirectional IR (4: issue 12)
+// 2: RenderSettings carries compensation_samples. 3: Welcome carries the master's timeout and
+// the pixel format; TileResult its pixel format and count of non-finite pixels the worker zeroed;
+// Bye says why (leaving, quarantined, failed). 4: settings split path lengths, anti-aliasing,
+// glossy gather, lightcuts. 5: settings carry light importance and bidirectional IR.
+inline constexpr uint16_t kVersion = 5;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;
@@ -37,6 +41,7 @@ inline constexpr size_t kMaxSceneBytes = 512u << 20;
 inline constexpr int kMaxImageSide = 16384;
 inline constexpr int kMaxTileSide = 1024;
 inline constexpr size_t kMaxMessageBytes = kMaxSceneBytes + 65536;
+inline constexpr uint32_t kMinTimeoutMs = 50, kMaxTimeoutMs = 3600000;
 
 enum class MessageType : uint8_t {
   Hello = 1,
@@ -67,6 +72,10 @@ struct Welcome {
   RenderSettings settings;
   uint32_t credits = 2;         // jobs the worker may hold at once
   uint32_t heartbeat_ms = 500;  // both sides send at least this often
+  // The master declares a worker dead after this much silence; the worker
+  // waits longer than this for the master (so the master always gives up first).
+  uint32_t timeout_ms = 1500;
+  PixelFormat pixel_format = PixelFormat::Float32;  // how TileResults carry pixels
 };
 
 struct Refuse {
@@ -100,13 +109,24 @@ struct TileResult {
   float render_seconds = 0.0f;
   uint64_t frame_state_hash = 0;  // the worker's VPL-set hash for this frame
   igi::RayCounts rays;
-  std::vector<glm::vec3> pixels;  // tile.w * tile.h, row-major, linear RGB
+  uint32_t nonfinite_pixels = 0;  // pixels the method left NaN or infinite, sent as 0 (at most w * h)
+  PixelFormat pixel_format = PixelFormat::Float32;  // on the wire; `pixels` holds floats either way
+  // tile.w * tile.h, row-major, linear RGB, finite; as Float16 each is a half
+  // value (encode() rounds to nearest even; protocol::wire_pixels prepares them).
+  std::vector<glm::vec3> pixels;
 };
 
 struct Heartbeat {};
 
+enum class ByeKind : uint8_t {
+  Leaving = 0,      // done: the session ended, or the worker stops
+  Quarantined = 1,  // master -> worker: your VPL sets differ from the quorum's; no more work (exit 5)
+  Failed = 2,       // worker -> master: cannot go on (e.g. the scene does not load)
+};
+
 struct Bye {
   std::string reason;
+  ByeKind kind = ByeKind::Leaving;
 };
 
 using Message = std::variant<Hello, Welcome, Refuse, SceneRequest, SceneData, FrameSetupMsg, TileJobMsg,

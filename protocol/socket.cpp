@@ -63,6 +63,10 @@ void send(zmq::socket_t& socket, const Message& m) {
   socket.send(to_frame(m), zmq::send_flags::none);
 }
 
+bool try_send(zmq::socket_t& socket, const Message& m) {
+  return socket.send(to_frame(m), zmq::send_flags::dontwait).has_value();
+}
+
 void send_to(zmq::socket_t& router, const std::string& identity, const Message& m) {
   router.send(zmq::buffer(identity), zmq::send_flags::sndmore);
   router.send(to_frame(m), zmq::send_flags::none);

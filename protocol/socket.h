@@ -29,6 +29,10 @@ void configure(zmq::socket_t& socket, size_t max_bytes = kMaxMessageBytes);
 // the socket's high-water mark (1000 messages by default); blocks past it.
 void send(zmq::socket_t& socket, const Message& m);
 
+// Sends without blocking: false, and nothing queued, when the socket's queue
+// is full (the peer stopped reading) or no peer can take it.
+bool try_send(zmq::socket_t& socket, const Message& m);
+
 // Sends [identity, message] (ROUTER side). A ROUTER drops messages for an
 // identity it does not know or whose queue is full, without an error.
 void send_to(zmq::socket_t& router, const std::string& identity, const Message& m);

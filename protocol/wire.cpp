@@ -3,6 +3,8 @@
 #include <bit>
 #include <cstring>
 
+#include "image/half.h"
+
 namespace igi::protocol {
 
 void Writer::u16(uint16_t v) {
@@ -32,6 +34,14 @@ static_assert(std::endian::native == std::endian::little, "the wire format assum
 void Writer::floats(const float* values, size_t n) {
   const auto* p = reinterpret_cast<const uint8_t*>(values);
   bytes_.insert(bytes_.end(), p, p + n * sizeof(float));
+}
+
+void Writer::halves(const float* values, size_t n) {
+  const size_t at = bytes_.size();
+  bytes_.resize(at + 2 * n);
+  std::vector<uint16_t> h(n);
+  to_half(values, h.data(), n);
+  std::memcpy(bytes_.data() + at, h.data(), 2 * n);
 }
 
 void Writer::string(std::string_view s) {
@@ -102,6 +112,20 @@ bool Reader::floats(const char* field, float* out, size_t n) {
   if (!p) return false;
   std::memcpy(out, p, n * sizeof(float));
   return true;
+}
+
+bool Reader::halves(const char* field, float* out, size_t n) {
+  const uint8_t* p = take(field, n * sizeof(uint16_t));
+  if (!p) return false;
+  std::vector<uint16_t> h(n);
+  std::memcpy(h.data(), p, n * sizeof(uint16_t));
+  from_half(h.data(), out, n);
+  return true;
+}
+
+std::span<const uint8_t> Reader::span(const char* field, size_t n) {
+  const uint8_t* p = take(field, n);
+  return p ? std::span<const uint8_t>(p, n) : std::span<const uint8_t>();
 }
 
 glm::vec3 Reader::vec3(const char* field) {

@@ -31,6 +31,7 @@ class Writer {
   void boolean(bool v) { u8(v ? 1 : 0); }
   void vec3(glm::vec3 v);
   void floats(const float* values, size_t n);
+  void halves(const float* values, size_t n);  // each rounded to a half (image/half.h), 2 bytes
   void string(std::string_view s);             // u32 length + bytes
   void bytes(std::span<const uint8_t> bytes);  // u32 length + bytes
 
@@ -62,6 +63,10 @@ class Reader {
   glm::vec3 vec3(const char* field);
   // n floats in one bounds check (pixel blocks); false when too few bytes are left.
   bool floats(const char* field, float* out, size_t n);
+  // n halves, widened to floats (exactly); false when too few bytes are left.
+  bool halves(const char* field, float* out, size_t n);
+  // The next n bytes as they are (no copy); empty, with an error, when fewer are left.
+  std::span<const uint8_t> span(const char* field, size_t n);
   // u32 length (at most max_bytes) + bytes.
   std::string string(const char* field, size_t max_bytes);
   std::vector<uint8_t> bytes(const char* field, size_t max_bytes);

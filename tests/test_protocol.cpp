@@ -15,7 +15,9 @@
 
 #include <gtest/gtest.h>
 
+#include "image/frame_buffer.h"
 #include "protocol/codec.h"
+#include "protocol/pixels.h"
 #include "protocol/socket.h"
 
 namespace igi::protocol {
@@ -46,7 +48,7 @@ bool same(const Hello& a, const Hello& b) {
 bool same(const Welcome& a, const Welcome& b) {
   return a.session == b.session && a.scene_name == b.scene_name && a.scene_hash == b.scene_hash &&
          a.scene_size == b.scene_size && same(a.settings, b.settings) && a.credits == b.credits &&
-         a.heartbeat_ms == b.heartbeat_ms;
+         a.heartbeat_ms == b.heartbeat_ms && a.timeout_ms == b.timeout_ms && a.pixel_format == b.pixel_format;
 }
 bool same(const Refuse& a, const Refuse& b) { return a.reason == b.reason; }
 bool same(const SceneRequest& a, const SceneRequest& b) { return a.scene_hash == b.scene_hash; }
@@ -69,10 +71,11 @@ bool same(const TileResult& a, const TileResult& b) {
   for (size_t i = 0; pixels && i < a.pixels.size(); ++i) pixels = same(a.pixels[i], b.pixels[i]);
   return pixels && a.frame_id == b.frame_id && a.job_id == b.job_id && same(a.tile, b.tile) &&
          same(a.render_seconds, b.render_seconds) && a.frame_state_hash == b.frame_state_hash &&
-         a.rays.primary == b.rays.primary && a.rays.shadow == b.rays.shadow && a.rays.secondary == b.rays.secondary;
+         a.rays.primary == b.rays.primary && a.rays.shadow == b.rays.shadow && a.rays.secondary == b.rays.secondary &&
+         a.nonfinite_pixels == b.nonfinite_pixels && a.pixel_format == b.pixel_format;
 }
 bool same(const Heartbeat&, const Heartbeat&) { return true; }
-bool same(const Bye& a, const Bye& b) { return a.reason == b.reason; }
+bool same(const Bye& a, const Bye& b) { return a.reason == b.reason && a.kind == b.kind; }
 bool same(const Message& a, const Message& b) {
   if (a.index() != b.index()) return false;
   return std::visit([&b](const auto& x) { return same(x, std::get<std::decay_t<decltype(x)>>(b)); }, a);
@@ -81,8 +84,16 @@ bool same(const Message& a, const Message& b) {
 // ---- One message of every type, every field away from its default.
 
 TileResult sample_tile_result() {
-  TileResult m{9, 77, {64, 32, 8, 8, 1}, 0.125f, 0xa5a5a5a5deadbeefull, {100, 200, 300}, {}};
+  TileResult m{9, 77, {64, 32, 8, 8, 1}, 0.125f, 0xa5a5a5a5deadbeefull, {100, 200, 300}, 3, PixelFormat::Float32, {}};
   for (int i = 0; i < 64; ++i) m.pixels.push_back({0.5f * float(i), -0.0f, 1e-3f * float(i * i)});
+  return m;
+}
+
+// The same tile as half floats: values a half holds exactly (encode would round others).
+TileResult sample_half_tile_result() {
+  TileResult m = sample_tile_result();
+  m.pixel_format = PixelFormat::Float16;
+  for (int i = 0; i < 64; ++i) m.pixels[size_t(i)] = {0.5f * float(i), -0.0f, float(i) / 1024.0f};
   return m;
 }
 
@@ -94,7 +105,8 @@ std::vector<Message> samples() {
   for (size_t i = 0; i < scene.size(); ++i) scene[i] = uint8_t(i * 7);
   return {
       Hello{"igi-1.0-abc123", "avx2", 12},
-      Welcome{0x1122334455667788ull, "cornell.glb", 0xcbf29ce484222325ull, 123456, settings, 3, 250},
+      Welcome{0x1122334455667788ull, "cornell.glb", 0xcbf29ce484222325ull, 123456, settings, 3, 250, 1700,
+              PixelFormat::Float16},
       Refuse{"build id mismatch: worker abc, master def"},
       SceneRequest{0xdeadbeefcafef00dull},
       SceneData{0x0123456789abcdefull, "scene.glb", scene},
@@ -102,7 +114,7 @@ std::vector<Message> samples() {
       TileJobMsg{9, 77, {64, 32, 16, 8, 2}},
       sample_tile_result(),
       Heartbeat{},
-      Bye{"shutting down"},
+      Bye{"shutting down", ByeKind::Quarantined},
   };
 }
 
@@ -238,6 +250,80 @@ TEST(Protocol, TrailingBytesAreRejected) {
   }
 }
 
+TEST(Protocol, HalfFloatTilesRoundTripAndTakeHalfTheBytes) {
+  const TileResult m = sample_half_tile_result();
+  const std::vector<uint8_t> bytes = encode(m);
+  EXPECT_EQ(encode(sample_tile_result()).size() - bytes.size(), 64u * 6u) << "6 bytes a pixel instead of 12";
+  DecodeResult d = decode_copy(bytes);
+  ASSERT_TRUE(d.message) << d.error;
+  EXPECT_TRUE(same(*d.message, m));
+  EXPECT_EQ(encode(*d.message), bytes);
+  // A value a half cannot hold is rounded to the nearest one; beyond 65504 it is infinite and refused.
+  TileResult rounded = m;
+  rounded.pixels[5].x = 1.0f + 1.0f / 4096.0f;
+  DecodeResult r = decode_copy(encode(rounded));
+  ASSERT_TRUE(r.message) << r.error;
+  EXPECT_EQ(std::get<TileResult>(*r.message).pixels[5].x, 1.0f) << "ties to even";
+  TileResult huge = m;
+  huge.pixels[9].z = 70000.0f;
+  EXPECT_EQ(decode_copy(encode(huge)).error.rfind("TileResult.pixels: pixel 9 is (4.5, -0, inf)", 0), 0u)
+      << decode_copy(encode(huge)).error;
+}
+
+// The master's path: a view over the bytes, pixels copied straight into a frame.
+TEST(Protocol, TileResultViewAgreesWithDecodeAndCopiesIntoAFrame) {
+  for (const TileResult& m : {sample_tile_result(), sample_half_tile_result()}) {
+    const std::vector<uint8_t> bytes = encode(m);
+    std::string error;
+    std::optional<TileResultView> view = decode_tile_result(bytes, error);
+    ASSERT_TRUE(view) << error;
+    EXPECT_TRUE(view->fields.pixels.empty());
+    EXPECT_EQ(view->fields.job_id, m.job_id);
+    EXPECT_EQ(view->fields.nonfinite_pixels, m.nonfinite_pixels);
+    EXPECT_EQ(view->pixel_bytes.size(), 64 * bytes_per_pixel(m.pixel_format));
+    FrameBuffer frame(80, 48, m.pixel_format);
+    ASSERT_EQ(copy_tile_pixels(*view, frame.pixel(m.tile.x, m.tile.y), frame.row_bytes()), "");
+    const Image image = frame.to_image();
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x)
+        EXPECT_TRUE(same(image.at(64 + x, 32 + y), m.pixels[size_t(y * 8 + x)])) << x << ", " << y;
+    // A non-finite pixel: the copy fails with decode()'s own words.
+    TileResult bad = m;
+    bad.pixels[42].y = std::numeric_limits<float>::quiet_NaN();
+    const std::vector<uint8_t> bad_bytes = encode(bad);
+    view = decode_tile_result(bad_bytes, error);
+    ASSERT_TRUE(view) << "finiteness is checked by the copy";
+    EXPECT_EQ(copy_tile_pixels(*view, frame.pixel(64, 32), frame.row_bytes()), decode_copy(bad_bytes).error);
+    // Anything else decode() refuses, the view refuses with the same error.
+    for (size_t cut : {size_t(0), size_t(12), bytes.size() - 1}) {
+      const std::vector<uint8_t> short_bytes(bytes.begin(), bytes.begin() + long(cut));
+      EXPECT_FALSE(decode_tile_result(short_bytes, error));
+      EXPECT_EQ(error, decode_copy(short_bytes).error);
+    }
+  }
+  std::string error;
+  EXPECT_FALSE(decode_tile_result(encode(Heartbeat{}), error));
+  EXPECT_EQ(error, "Heartbeat where a TileResult was expected");
+}
+
+TEST(Protocol, WorkersSendFinitePixelsInTheFormatsRange) {
+  std::vector<glm::vec3> pixels = {{1, 2, 3}, {NAN, 0.5f, 0.5f}, {0, INFINITY, 0}, {1e6f, -1e6f, 7}};
+  std::vector<glm::vec3> as_float = pixels;
+  EXPECT_EQ(wire_pixels(as_float, PixelFormat::Float32), 2u);
+  EXPECT_EQ(as_float[0], glm::vec3(1, 2, 3));
+  EXPECT_EQ(as_float[1], glm::vec3(0)) << "the whole pixel, not only the bad channel";
+  EXPECT_EQ(as_float[2], glm::vec3(0));
+  EXPECT_EQ(as_float[3], glm::vec3(1e6f, -1e6f, 7)) << "floats keep their range";
+  std::vector<glm::vec3> as_half = pixels;
+  EXPECT_EQ(wire_pixels(as_half, PixelFormat::Float16), 2u);
+  EXPECT_EQ(as_half[3], glm::vec3(65504.0f, -65504.0f, 7)) << "clamped to the largest finite half";
+  TileResult m = sample_half_tile_result();
+  m.tile.w = 2;
+  m.tile.h = 2;
+  m.pixels = as_half;
+  EXPECT_TRUE(decode_copy(encode(m)).message) << "sendable as halves";
+}
+
 TEST(Protocol, TileResultPixelsMustMatchTheTileAndBeFinite) {
   TileResult m = sample_tile_result();
   m.pixels.resize(37);
@@ -340,6 +426,12 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {edited<TileResult>([](TileResult& m) { m.tile.w = 1025; }), "TileResult.tile.w"},
       {edited<TileResult>([](TileResult& m) { m.render_seconds = -1; }), "TileResult.render_seconds"},
       {edited<TileResult>([](TileResult& m) { m.render_seconds = NAN; }), "TileResult.render_seconds"},
+      {edited<TileResult>([](TileResult& m) { m.nonfinite_pixels = 65; }), "TileResult.nonfinite_pixels: 65, expected [0, 64]"},
+      {edited<TileResult>([](TileResult& m) { m.pixel_format = PixelFormat(2); }), "TileResult.pixel_format: 2"},
+      {edited<Welcome>([](Welcome& m) { m.timeout_ms = 49; }), "Welcome.timeout_ms: 49, expected [50, 3600000]"},
+      {edited<Welcome>([](Welcome& m) { m.timeout_ms = 3600001; }), "Welcome.timeout_ms"},
+      {edited<Welcome>([](Welcome& m) { m.pixel_format = PixelFormat(7); }), "Welcome.pixel_format: 7, expected [0, 1]"},
+      {edited<Bye>([](Bye& m) { m.kind = ByeKind(3); }), "Bye.kind: 3, expected [0, 2]"},
   };
   for (const Case& c : cases) {
     DecodeResult d = decode_copy(encode(c.message));
@@ -375,7 +467,9 @@ TEST(Protocol, LimitsThemselvesAreAccepted) {
       frame_edited([](auto& f) { f.jitter_x = 0; f.jitter_y = 1; }),
       frame_edited([](auto& f) { f.width = kMaxImageSide; f.height = 1; }),
       edited<TileJobMsg>([](TileJobMsg& m) { m.tile = {kMaxImageSide - 1, 0, kMaxTileSide, 1, 64}; }),
-      edited<TileResult>([](TileResult& m) { m.tile = {0, 0, 1, 1, 0}; m.pixels.resize(1); }),
+      edited<TileResult>([](TileResult& m) { m.tile = {0, 0, 1, 1, 0}; m.pixels.resize(1); m.nonfinite_pixels = 1; }),
+      edited<Welcome>([](Welcome& m) { m.timeout_ms = kMinTimeoutMs; }),
+      edited<Welcome>([](Welcome& m) { m.timeout_ms = kMaxTimeoutMs; m.pixel_format = PixelFormat::Float32; }),
   };
   for (const Message& m : edges) {
     DecodeResult d = decode_copy(encode(m));
@@ -399,9 +493,14 @@ TEST(Protocol, HugeLengthsAndBadBytesAreRejectedBeforeUse) {
   size_t bytes_at = 8 + 8 + 4 + scene.file_name.size();
   EXPECT_EQ(patched(scene, bytes_at, all_ones), "SceneData.bytes: length 4294967295 over the limit of 536870912");
   EXPECT_EQ(patched(scene, bytes_at, {0, 0, 0, 0x20}), "SceneData.bytes: truncated: length 536870912, 300 bytes left");
-  size_t pixels_at = 8 + 16 + 20 + 4 + 8 + 24;
+  size_t nonfinite_at = 8 + 16 + 20 + 4 + 8 + 24, pixels_at = nonfinite_at + 4 + 1;
+  EXPECT_EQ(patched(sample<TileResult>(), nonfinite_at, all_ones),
+            "TileResult.nonfinite_pixels: 4294967295, expected [0, 64]");
+  EXPECT_EQ(patched(sample<TileResult>(), nonfinite_at + 4, {2}), "TileResult.pixel_format: 2, expected [0, 1]");
   EXPECT_EQ(patched(sample<TileResult>(), pixels_at, all_ones),
             "TileResult.pixels: count 4294967295 over the limit of 1048576");
+  EXPECT_EQ(patched(sample_half_tile_result(), pixels_at, {0, 1, 0, 0}),
+            "TileResult.pixels: truncated: 256 elements of 6 bytes, 384 bytes left");
   Welcome welcome = sample<Welcome>();
   size_t method_at = 8 + 8 + 4 + welcome.scene_name.size() + 16;
   EXPECT_EQ(patched(welcome, method_at, {7}), "Welcome.settings.method: 7, expected [0, 3]");

@@ -1,10 +1,21 @@
-// The master's scheduling rules, one test each, without sockets.
+// The master's scheduling rules, one test each, without sockets or clocks.
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <queue>
 
 #include "scheduler.h"
 
 namespace igi {
 namespace {
+
+WorkerId worker_name(int i) {
+  char name[16];
+  std::snprintf(name, sizeof name, "w%d", i);
+  return name;
+}
 
 std::vector<TileJob> tiles(int n) {
   std::vector<TileJob> t;
@@ -12,14 +23,50 @@ std::vector<TileJob> tiles(int n) {
   return t;
 }
 
+const TimePoint t0 = TimePoint{} + std::chrono::hours(1);
+TimePoint at(double ms) {
+  return t0 + std::chrono::duration_cast<SchedulerClock::duration>(std::chrono::duration<double, std::milli>(ms));
+}
+
+std::vector<JobAssignment> for_worker(const std::vector<JobAssignment>& all, const WorkerId& id) {
+  std::vector<JobAssignment> mine;
+  for (const JobAssignment& a : all)
+    if (a.worker == id) mine.push_back(a);
+  return mine;
+}
+
+// Answers every job in `jobs` with `hash` at time `when`.
+void answer(Scheduler& s, const std::vector<JobAssignment>& jobs, uint64_t hash, TimePoint when) {
+  for (const JobAssignment& j : jobs) {
+    ASSERT_EQ(s.check_result(j.worker, j.job_id, j.frame_id, j.tile), ResultCheck::Wanted);
+    s.on_result(j.worker, j.job_id, hash, when);
+  }
+}
+
+// Answers copies of jobs another result already answered (their hash still votes).
+void answer_late(Scheduler& s, const std::vector<JobAssignment>& jobs, uint64_t hash, TimePoint when) {
+  for (const JobAssignment& j : jobs) {
+    ASSERT_EQ(s.check_result(j.worker, j.job_id, j.frame_id, j.tile), ResultCheck::NotNeeded);
+    s.on_result(j.worker, j.job_id, hash, when);
+  }
+}
+
 TEST(Scheduler, WorkersHoldAtMostTheirCredits) {
   Scheduler s(2, 2);
   s.add_worker("a");
   s.add_frame(0, tiles(5));
-  EXPECT_TRUE(s.next_job("a"));
-  EXPECT_TRUE(s.next_job("a"));
-  EXPECT_FALSE(s.next_job("a")) << "third job beyond 2 credits";
+  EXPECT_EQ(s.assign(at(0)).size(), 2u) << "two credits, two jobs";
+  EXPECT_TRUE(s.assign(at(1)).empty()) << "no third job beyond 2 credits";
   EXPECT_EQ(s.outstanding("a"), 2);
+}
+
+TEST(Scheduler, JobsSpreadOverWorkersOneARound) {
+  Scheduler s(4, 2);
+  for (const char* w : {"a", "b", "c"}) s.add_worker(w);
+  s.add_frame(0, tiles(6));
+  const auto jobs = s.assign(at(0));
+  ASSERT_EQ(jobs.size(), 6u);
+  for (const char* w : {"a", "b", "c"}) EXPECT_EQ(s.outstanding(w), 2) << w;
 }
 
 TEST(Scheduler, AFrameCompletesWhenEveryJobIsBackAndFramesComeInOrder) {
@@ -28,48 +75,66 @@ TEST(Scheduler, AFrameCompletesWhenEveryJobIsBackAndFramesComeInOrder) {
   s.add_frame(0, tiles(2));
   s.add_frame(1, tiles(2));
   EXPECT_FALSE(s.can_add_frame()) << "two frames in flight at most";
-  std::vector<JobAssignment> jobs;
-  while (auto j = s.next_job("a")) jobs.push_back(*j);
+  const std::vector<JobAssignment> jobs = s.assign(at(0));
   ASSERT_EQ(jobs.size(), 4u) << "the next frame's jobs go out while the first is unfinished";
   EXPECT_EQ(jobs[0].frame_id, 0u);
   EXPECT_EQ(jobs[3].frame_id, 1u);
   // Frame 1 finishes first but is reported only after frame 0.
-  s.on_result("a", jobs[2].job_id, 7);
-  s.on_result("a", jobs[3].job_id, 7);
+  answer(s, {jobs[2], jobs[3]}, 7, at(1));
   EXPECT_TRUE(s.take_completed_frames().empty());
-  s.on_result("a", jobs[0].job_id, 7);
-  s.on_result("a", jobs[1].job_id, 7);
+  answer(s, {jobs[0], jobs[1]}, 7, at(2));
   EXPECT_EQ(s.take_completed_frames(), (std::vector<uint64_t>{0, 1}));
 }
 
 TEST(Scheduler, ADeadWorkersJobsAreIssuedAgain) {
   Scheduler s(2, 2);
   s.add_worker("a");
-  s.add_worker("b");
   s.add_frame(0, tiles(2));
-  auto ja = s.next_job("a");
-  auto jb = s.next_job("a");
-  ASSERT_TRUE(ja && jb);
+  const auto lost = s.assign(at(0));
+  ASSERT_EQ(lost.size(), 2u);
+  s.add_worker("b");
   s.remove_worker("a");
   EXPECT_EQ(s.stats().reissued, 2u);
-  auto again = s.next_job("b");
-  ASSERT_TRUE(again);
-  EXPECT_EQ(again->job_id, ja->job_id) << "lost jobs go to the front";
-  EXPECT_FALSE(again->duplicate);
+  const auto again = s.assign(at(1));
+  ASSERT_EQ(again.size(), 2u);
+  EXPECT_EQ(again[0].job_id, lost[0].job_id) << "lost jobs go to the front, oldest first";
+  EXPECT_FALSE(again[0].duplicate);
 }
 
-TEST(Scheduler, IdleWorkersDuplicateStragglersAndTheFirstResultWins) {
+// Twenty round trips of 10 ms make the median 10 ms: a job is late after 30 ms.
+void learn_round_trips(Scheduler& s, double& clock_ms) {
+  s.add_frame(99, tiles(20));
+  for (int i = 0; i < 20; ++i) {
+    auto jobs = s.assign(at(clock_ms));
+    ASSERT_EQ(jobs.size(), 1u);
+    clock_ms += 10;
+    answer(s, jobs, 1, at(clock_ms));
+  }
+  ASSERT_EQ(s.take_completed_frames().size(), 1u);
+}
+
+TEST(Scheduler, AStragglerIsCopiedOnlyOnceOlderThanThreeMedianRoundTrips) {
   Scheduler s(1, 2);
   s.add_worker("slow");
+  double clock = 0;
+  learn_round_trips(s, clock);
+  EXPECT_NEAR(s.median_round_trip(), 0.010, 1e-9);
   s.add_worker("fast");
   s.add_frame(0, tiles(1));
-  auto original = s.next_job("slow");
-  auto copy = s.next_job("fast");
-  ASSERT_TRUE(original && copy);
-  EXPECT_TRUE(copy->duplicate);
-  EXPECT_EQ(copy->job_id, original->job_id);
-  EXPECT_EQ(s.on_result("fast", copy->job_id, 1), ResultVerdict::Accepted);
-  EXPECT_EQ(s.on_result("slow", original->job_id, 1), ResultVerdict::Duplicate);
+  const auto original = s.assign(at(clock));
+  ASSERT_EQ(original.size(), 1u);
+  EXPECT_TRUE(s.assign(at(clock + 29)).empty()) << "not late yet: younger than 3 x 10 ms";
+  ASSERT_TRUE(s.next_straggler_time());
+  EXPECT_EQ(*s.next_straggler_time(), at(clock + 30));
+  const auto copy = s.assign(at(clock + 31));
+  ASSERT_EQ(copy.size(), 1u);
+  EXPECT_EQ(copy[0].worker, original[0].worker == "slow" ? "fast" : "slow");
+  EXPECT_TRUE(copy[0].duplicate);
+  EXPECT_EQ(copy[0].job_id, original[0].job_id);
+  EXPECT_EQ(s.stats().duplicated, 1u);
+  answer(s, copy, 1, at(clock + 35));
+  EXPECT_EQ(s.check_result(original[0].worker, original[0].job_id, 0, original[0].tile), ResultCheck::NotNeeded);
+  EXPECT_EQ(s.on_result(original[0].worker, original[0].job_id, 1, at(clock + 60)), ResultVerdict::Late);
   EXPECT_EQ(s.stats().late_dropped, 1u);
   EXPECT_EQ(s.take_completed_frames().size(), 1u);
 }
@@ -78,37 +143,294 @@ TEST(Scheduler, NoMoreThanTwoCopiesOfAJob) {
   Scheduler s(1, 2);
   for (const char* w : {"a", "b", "c"}) s.add_worker(w);
   s.add_frame(0, tiles(1));
-  EXPECT_TRUE(s.next_job("a"));
-  EXPECT_TRUE(s.next_job("b"));
-  EXPECT_FALSE(s.next_job("c"));
+  EXPECT_EQ(s.assign(at(0)).size(), 1u);
+  EXPECT_EQ(s.assign(at(5000)).size(), 1u) << "one copy of a late job";
+  EXPECT_TRUE(s.assign(at(10000)).empty()) << "no third";
 }
 
-TEST(Scheduler, ADivergingVplHashBansTheWorkerAndReissuesItsJobs) {
+TEST(Scheduler, CopiesPerFrameStayWithinTheBudget) {
+  SchedulerConfig c;
+  c.credits = 1;
+  c.duplicate_budget = 0.1;  // 20 jobs: at most 2 copies
+  Scheduler s(c);
+  for (int i = 0; i < 40; ++i) s.add_worker(worker_name(i));
+  s.add_frame(0, tiles(20));
+  EXPECT_EQ(s.assign(at(0)).size(), 20u);
+  EXPECT_EQ(s.assign(at(5000)).size(), 2u) << "20 late jobs, 20 idle workers, a budget of 2";
+  EXPECT_EQ(s.stats().duplicated, 2u);
+}
+
+// Eight workers that each take 10 ms a tile, 50 frames of 30 tiles: the
+// frames complete, and no tile is ever handed out twice.
+TEST(Scheduler, EquallyFastWorkersNeverRenderATileTwice) {
   Scheduler s(2, 2);
-  s.add_worker("good");
-  s.add_worker("bad");
-  s.add_frame(0, tiles(4));
-  auto g = s.next_job("good");
-  auto b1 = s.next_job("bad");
-  auto b2 = s.next_job("bad");
-  EXPECT_EQ(s.on_result("good", g->job_id, 42), ResultVerdict::Accepted);
-  EXPECT_EQ(s.on_result("bad", b1->job_id, 43), ResultVerdict::HashMismatch);
-  EXPECT_FALSE(s.has_worker("bad"));
-  EXPECT_FALSE(s.next_job("bad")) << "a banned worker gets no more work";
-  std::set<uint64_t> handed;
-  while (auto j = s.next_job("good")) {
-    handed.insert(j->job_id);
-    s.on_result("good", j->job_id, 42);
+  for (int i = 0; i < 8; ++i) s.add_worker(worker_name(i));
+  using Due = std::pair<double, JobAssignment>;
+  auto later = [](const Due& a, const Due& b) { return a.first > b.first; };
+  std::priority_queue<Due, std::vector<Due>, decltype(later)> due(later);
+  std::map<WorkerId, double> free_at;  // each worker renders one tile at a time
+  int next_frame = 0, completed = 0;
+  double clock = 0;
+  while (completed < 50) {
+    while (next_frame < 50 && s.can_add_frame()) s.add_frame(uint64_t(next_frame++), tiles(30));
+    for (const JobAssignment& j : s.assign(at(clock))) {
+      const double start = std::max(clock, free_at[j.worker]);
+      free_at[j.worker] = start + 10;
+      due.push({start + 10, j});
+    }
+    ASSERT_FALSE(due.empty()) << "nothing in flight at " << clock << " ms";
+    clock = due.top().first;
+    const JobAssignment j = due.top().second;
+    due.pop();
+    EXPECT_EQ(s.check_result(j.worker, j.job_id, j.frame_id, j.tile), ResultCheck::Wanted);
+    s.on_result(j.worker, j.job_id, 42, at(clock));
+    completed += int(s.take_completed_frames().size());
   }
-  EXPECT_TRUE(handed.count(b1->job_id) && handed.count(b2->job_id)) << "the banned worker's jobs go out again";
-  EXPECT_EQ(s.take_completed_frames().size(), 1u);
+  EXPECT_EQ(s.stats().duplicated, 0u);
+  EXPECT_EQ(s.stats().verified, 0u);
+  EXPECT_EQ(s.stats().late_dropped, 0u);
 }
 
-TEST(Scheduler, UnknownAndLateResultsAreHarmless) {
+// Always more work than credit (the copies' queue was only trimmed when a
+// worker had nothing to do, and grew by a copy a tile): 2,000 frames later
+// the bookkeeping holds what is in flight and no more.
+TEST(Scheduler, BookkeepingStaysBoundedOverThousandsOfFrames) {
   Scheduler s(2, 2);
   s.add_worker("a");
-  EXPECT_EQ(s.on_result("a", 999, 0), ResultVerdict::Unknown);
-  EXPECT_EQ(s.on_result("ghost", 999, 0), ResultVerdict::Unknown);
+  s.add_worker("b");
+  size_t most_copies = 0, most_jobs = 0;
+  int next = 0;
+  double clock = 0;
+  for (int completed = 0; completed < 2000;) {
+    while (s.can_add_frame()) s.add_frame(uint64_t(next++), tiles(8));
+    const auto jobs = s.assign(at(clock));
+    ASSERT_FALSE(jobs.empty());
+    clock += 1;
+    answer(s, jobs, 3, at(clock));
+    completed += int(s.take_completed_frames().size());
+    most_copies = std::max(most_copies, s.tracked_copies());
+    most_jobs = std::max(most_jobs, s.tracked_jobs());
+  }
+  EXPECT_LE(most_copies, 8u) << "copies tracked: at most those in flight, and the frame's";
+  EXPECT_LE(most_jobs, 2u * 16u) << "two open frames of 8 jobs, each at most once in the pool";
+}
+
+TEST(Scheduler, AWrongFirstHashQuarantinesOnlyTheDivergingWorker) {
+  Scheduler s(2, 2);
+  for (const char* w : {"bad", "good1", "good2"}) s.add_worker(w);
+  s.add_frame(0, tiles(6));
+  const auto jobs = s.assign(at(0));
+  ASSERT_EQ(jobs.size(), 6u);
+  const auto bad = for_worker(jobs, "bad"), good1 = for_worker(jobs, "good1"), good2 = for_worker(jobs, "good2");
+  // The diverging worker answers first: its result is held, not trusted.
+  EXPECT_EQ(s.on_result("bad", bad[0].job_id, 666, at(1)), ResultVerdict::Held);
+  EXPECT_EQ(s.on_result("good1", good1[0].job_id, 42, at(2)), ResultVerdict::Held) << "one against one: undecided";
+  EXPECT_TRUE(s.take_quarantined().empty());
+  // A second worker agrees with good1: 42 is the reference, "bad" is quarantined.
+  EXPECT_EQ(s.on_result("good2", good2[0].job_id, 42, at(3)), ResultVerdict::Accepted);
+  EXPECT_EQ(s.take_quarantined(), std::vector<WorkerId>{"bad"});
+  EXPECT_FALSE(s.has_worker("bad"));
+  EXPECT_TRUE(s.has_worker("good1") && s.has_worker("good2"));
+  EXPECT_TRUE(s.trusted("good1") && s.trusted("good2"));
+  EXPECT_EQ(s.stats().quarantined, 1u);
+  // good1's held result now counts; bad's two jobs (held and outstanding) go out again.
+  answer(s, {good1[1], good2[1]}, 42, at(4));
+  auto again = s.assign(at(5));
+  ASSERT_EQ(again.size(), 2u);
+  std::set<uint64_t> reissued{again[0].job_id, again[1].job_id};
+  EXPECT_EQ(reissued, (std::set<uint64_t>{bad[0].job_id, bad[1].job_id}));
+  answer(s, again, 42, at(6));
+  EXPECT_EQ(s.take_completed_frames(), std::vector<uint64_t>{0});
+}
+
+TEST(Scheduler, TwoWorkersThatDisagreeWaitForAThird) {
+  Scheduler s(1, 2);
+  s.add_worker("a");
+  s.add_worker("b");
+  s.add_frame(0, tiles(3));
+  const auto jobs = s.assign(at(0));
+  ASSERT_EQ(jobs.size(), 2u);
+  s.on_result("a", for_worker(jobs, "a")[0].job_id, 1, at(1));
+  s.on_result("b", for_worker(jobs, "b")[0].job_id, 2, at(1));
+  EXPECT_TRUE(s.take_quarantined().empty()) << "one against one: nobody can tell who is right";
+  std::optional<HashSplit> split = s.stalled_split();
+  ASSERT_TRUE(split) << "both workers voted, the frame cannot be decided";
+  EXPECT_EQ(split->voters.size(), 2u);
+  // A third worker agrees with b.
+  s.add_worker("c");
+  answer(s, s.assign(at(2)), 2, at(3));
+  EXPECT_EQ(s.take_quarantined(), std::vector<WorkerId>{"a"});
+  EXPECT_FALSE(s.stalled_split());
+}
+
+TEST(Scheduler, ALoneWorkerDecidesOnceItHasAnsweredEveryJobAndEarnsNoTrust) {
+  Scheduler s(4, 2);
+  s.add_worker("a");
+  s.add_frame(0, tiles(3));
+  const auto j = s.assign(at(0));
+  ASSERT_EQ(j.size(), 3u);
+  EXPECT_EQ(s.on_result("a", j[0].job_id, 5, at(1)), ResultVerdict::Held) << "another worker may still come";
+  EXPECT_EQ(s.on_result("a", j[1].job_id, 5, at(1)), ResultVerdict::Held);
+  EXPECT_EQ(s.on_result("a", j[2].job_id, 5, at(1)), ResultVerdict::Accepted) << "all answered, nobody else: decided";
+  EXPECT_EQ(s.take_completed_frames().size(), 1u);
+  EXPECT_FALSE(s.trusted("a")) << "nobody confirmed its hash";
+  // A newcomer that computes other VPL sets is not judged by a hash nobody confirmed: a tie.
+  s.add_worker("b");
+  s.add_frame(1, tiles(2));
+  const auto jobs = s.assign(at(2));
+  ASSERT_EQ(jobs.size(), 2u);
+  EXPECT_EQ(s.on_result("a", for_worker(jobs, "a")[0].job_id, 5, at(3)), ResultVerdict::Held);
+  EXPECT_EQ(s.on_result("b", for_worker(jobs, "b")[0].job_id, 6, at(3)), ResultVerdict::Held);
+  EXPECT_TRUE(s.take_quarantined().empty());
+  EXPECT_TRUE(s.stalled_split());
+}
+
+TEST(Scheduler, TwoAgreeingWorkersAreTrustedAndThenDecideAlone) {
+  Scheduler s(1, 2);
+  s.add_worker("a");
+  s.add_worker("b");
+  s.add_frame(0, tiles(2));
+  answer(s, s.assign(at(0)), 5, at(1));
+  EXPECT_TRUE(s.trusted("a") && s.trusted("b"));
+  EXPECT_EQ(s.take_completed_frames().size(), 1u);
+  s.add_worker("c");
+  s.add_frame(1, tiles(3));
+  const auto jobs = s.assign(at(2));
+  ASSERT_EQ(jobs.size(), 3u);
+  EXPECT_EQ(s.on_result("a", for_worker(jobs, "a")[0].job_id, 5, at(3)), ResultVerdict::Accepted)
+      << "a trusted worker decides a frame alone";
+  EXPECT_EQ(s.on_result("c", for_worker(jobs, "c")[0].job_id, 6, at(3)), ResultVerdict::Rejected);
+  EXPECT_EQ(s.take_quarantined(), std::vector<WorkerId>{"c"});
+}
+
+TEST(Scheduler, AFrameAnsweredByOneWorkerGetsAVerificationCopy) {
+  Scheduler s(4, 2);
+  s.add_worker("a");
+  s.add_worker("b");
+  s.add_frame(0, tiles(1));
+  const auto j = s.assign(at(0));
+  ASSERT_EQ(j.size(), 1u);
+  EXPECT_EQ(s.on_result(j[0].worker, j[0].job_id, 9, at(1)), ResultVerdict::Held);
+  const auto verify = s.assign(at(2));
+  ASSERT_EQ(verify.size(), 1u) << "the other worker votes on the frame";
+  EXPECT_NE(verify[0].worker, j[0].worker);
+  EXPECT_TRUE(verify[0].duplicate);
+  EXPECT_EQ(s.stats().verified, 1u);
+  EXPECT_EQ(s.check_result(verify[0].worker, verify[0].job_id, 0, verify[0].tile), ResultCheck::NotNeeded);
+  EXPECT_EQ(s.on_result(verify[0].worker, verify[0].job_id, 9, at(3)), ResultVerdict::Late);
+  EXPECT_EQ(s.take_completed_frames().size(), 1u) << "two votes: the held result counts";
+}
+
+TEST(Scheduler, ADeadVoterStillCountsSoTheSurvivorCannotDecideAlone) {
+  Scheduler s(1, 2);
+  s.add_worker("a");
+  s.add_worker("b");
+  s.add_frame(0, tiles(4));
+  const auto jobs = s.assign(at(0));
+  s.on_result("a", for_worker(jobs, "a")[0].job_id, 1, at(1));
+  s.on_result("b", for_worker(jobs, "b")[0].job_id, 2, at(1));
+  s.remove_worker("b");
+  EXPECT_TRUE(s.take_quarantined().empty());
+  EXPECT_TRUE(s.stalled_split()) << "a said 1, b said 2 before it died: still a tie";
+}
+
+TEST(Scheduler, AResultThatFailsValidationReleasesItsJob) {
+  Scheduler s(1, 2);
+  s.add_worker("a");
+  s.add_frame(0, tiles(1));
+  auto j = s.assign(at(0));
+  ASSERT_EQ(j.size(), 1u);
+  EXPECT_FALSE(s.on_bad_result("a", j[0].job_id)) << "one failure is not yet deterministic";
+  EXPECT_EQ(s.outstanding("a"), 0) << "its credit is back";
+  EXPECT_EQ(s.stats().reissued, 1u);
+  // Another worker takes it over (a has gone) and fails it too: two workers, deterministic.
+  s.add_worker("b");
+  s.remove_worker("a");
+  auto again = s.assign(at(1));
+  ASSERT_EQ(again.size(), 1u) << "the job goes out again";
+  EXPECT_EQ(again[0].job_id, j[0].job_id);
+  EXPECT_EQ(again[0].worker, "b");
+  EXPECT_FALSE(again[0].duplicate);
+  EXPECT_TRUE(s.on_bad_result("b", again[0].job_id)) << "two workers failed it: deterministic";
+  EXPECT_EQ(s.stats().failed_results, 2u);
+}
+
+TEST(Scheduler, ThreeFailuresOnOneWorkerAreDeterministicToo) {
+  Scheduler s(1, 2);
+  s.add_worker("only");
+  s.add_frame(0, tiles(1));
+  bool deterministic = false;
+  for (int i = 0; i < 3; ++i) {
+    auto j = s.assign(at(i));
+    ASSERT_EQ(j.size(), 1u);
+    deterministic = s.on_bad_result("only", j[0].job_id);
+    EXPECT_EQ(deterministic, i == 2) << "failure " << i + 1;
+  }
+}
+
+TEST(Scheduler, AResultIsCheckedAgainstItsOwnJob) {
+  Scheduler s(2, 2);
+  s.add_worker("a");
+  s.add_frame(0, tiles(2));
+  const auto j = s.assign(at(0));
+  ASSERT_EQ(j.size(), 2u);
+  EXPECT_EQ(s.check_result("a", j[0].job_id, 0, j[1].tile), ResultCheck::WrongTile) << "another job's rectangle";
+  TileJob shifted = j[0].tile;
+  shifted.border = 0;
+  EXPECT_EQ(s.check_result("a", j[0].job_id, 0, shifted), ResultCheck::WrongTile);
+  EXPECT_EQ(s.check_result("a", j[0].job_id, 1, j[0].tile), ResultCheck::WrongTile) << "another frame";
+  EXPECT_EQ(s.check_result("b", j[0].job_id, 0, j[0].tile), ResultCheck::Unknown) << "not b's job";
+  EXPECT_EQ(s.check_result("a", j[0].job_id, 0, j[0].tile), ResultCheck::Wanted);
+}
+
+// Two workers; one answers a tile but its result is lost on the way (it is
+// alive and heartbeats). The other copies the late tile, but its result alone
+// cannot decide the frame's hash: the lost copy is given up, and the worker
+// that lost it votes with a fresh copy. Nothing hangs, no credit is kept.
+TEST(Scheduler, AResultLostOnTheWayNeitherHangsTheFrameNorKeepsItsCredit) {
+  Scheduler s(1, 2);
+  s.add_worker("lost");
+  double clock = 0;
+  learn_round_trips(s, clock);  // 10 ms tiles: late after 30 ms
+  s.add_worker("fast");
+  s.add_frame(0, tiles(1));
+  const auto original = s.assign(at(clock));
+  ASSERT_EQ(original.size(), 1u);
+  const auto copy = s.assign(at(clock + 40));
+  ASSERT_EQ(copy.size(), 1u) << "the late tile is copied";
+  EXPECT_EQ(s.on_result(copy[0].worker, copy[0].job_id, 1, at(clock + 50)), ResultVerdict::Held);
+  const auto verify = s.assign(at(clock + 100));
+  ASSERT_EQ(verify.size(), 1u) << "the lost copy is given up; its worker verifies";
+  EXPECT_EQ(verify[0].worker, original[0].worker);
+  EXPECT_EQ(s.stats().verified, 1u);
+  answer_late(s, verify, 1, at(clock + 110));
+  EXPECT_EQ(s.take_completed_frames().size(), 1u);
+  EXPECT_EQ(s.outstanding("lost"), 0);
+  EXPECT_EQ(s.outstanding("fast"), 0);
+}
+
+TEST(Scheduler, UnknownResultsAreHarmless) {
+  Scheduler s(2, 2);
+  s.add_worker("a");
+  EXPECT_EQ(s.check_result("a", 999, 0, {}), ResultCheck::Unknown);
+  EXPECT_EQ(s.on_result("a", 999, 0, at(0)), ResultVerdict::Unknown);
+  EXPECT_EQ(s.on_result("ghost", 999, 0, at(0)), ResultVerdict::Unknown);
+  s.drop_result("ghost", 999);
+  EXPECT_FALSE(s.on_bad_result("ghost", 999));
+}
+
+TEST(Scheduler, ForcedDuplicatesGoToAnotherWorker) {
+  Scheduler s(1, 2);
+  s.add_worker("a");
+  s.add_worker("b");
+  s.force_duplicates(1);
+  s.add_frame(0, tiles(2));
+  const auto jobs = s.assign(at(0));
+  ASSERT_EQ(jobs.size(), 2u);
+  EXPECT_EQ(jobs[0].job_id, jobs[1].job_id);
+  EXPECT_NE(jobs[0].worker, jobs[1].worker);
+  EXPECT_TRUE(jobs[1].duplicate);
+  EXPECT_EQ(s.stats().duplicated, 1u);
 }
 
 }  // namespace

@@ -473,7 +473,13 @@ int serve_scene(const fs::path& dir, uint64_t hash, const std::vector<uint8_t>& 
       protocol::send_to(router, got->identity, welcome);
     } else if (std::holds_alternative<protocol::SceneRequest>(*got->message)) {
       protocol::send_to(router, got->identity, protocol::SceneData{hash, "box.glb", bytes});
-      std::this_thread::sleep_for(std::chrono::milliseconds(300));  // stored (or refused) by now
+      // The worker stores (or refuses) the bytes, then tries to load them: it
+      // leaves by itself (refused: 3, not a scene: a Bye and 6); else say goodbye.
+      int status = 0;
+      for (int i = 0; i < 100; ++i) {
+        if (waitpid(w, &status, WNOHANG) == w) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      }
       protocol::send_to(router, got->identity, protocol::Bye{"done"});
       break;
     }
@@ -494,8 +500,9 @@ TEST(Security, SceneBytesFromAMasterAreStoredOnlyInTheCacheUnderTheirHash) {
   // Bytes that do not match their hash are refused and never written.
   EXPECT_EQ(serve_scene(dir, content_hash(bytes) + 1, bytes), 3);
   EXPECT_TRUE(files_under(dir).empty());
-  // Bytes that do are written in the cache folder as HASH-NAME, and nowhere else.
-  EXPECT_EQ(serve_scene(dir, content_hash(bytes), bytes), 0);
+  // Bytes that do are written in the cache folder as HASH-NAME, and nowhere else; they are
+  // no scene, so the worker tells the master it cannot load them and exits with status 6.
+  EXPECT_EQ(serve_scene(dir, content_hash(bytes), bytes), 6);
   EXPECT_EQ(files_under(dir), std::vector<std::string>{"cache/" + hash_hex(content_hash(bytes)) + "-box.glb"});
 }
 

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <utility>
 
+#include "protocol/pixels.h"
 #include "scene/accel.h"
 
 #include <sys/eventfd.h>
@@ -10,8 +11,8 @@
 
 namespace igi {
 
-RenderPool::RenderPool(const SceneContext& context, const RenderSettings& settings, int threads)
-    : context_(context), settings_(settings), results_fd_(eventfd(0, EFD_NONBLOCK)) {
+RenderPool::RenderPool(const SceneContext& context, const RenderSettings& settings, PixelFormat format, int threads)
+    : context_(context), settings_(settings), format_(format), results_fd_(eventfd(0, EFD_NONBLOCK)) {
   for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { run(); });
 }
 
@@ -60,6 +61,8 @@ protocol::TileResult RenderPool::render(const protocol::TileJobMsg& job, FrameSt
   r.tile = job.tile;
   r.pixels.resize(size_t(job.tile.w) * job.tile.h);
   frame.method->render_tile(job.tile, r.pixels, r.rays);
+  r.pixel_format = format_;
+  r.nonfinite_pixels = protocol::wire_pixels(r.pixels, format_);  // the master rejects non-finite pixels
   r.frame_state_hash = frame.method->frame_state_hash();
   r.render_seconds = std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
   return r;

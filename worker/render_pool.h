@@ -16,7 +16,8 @@ namespace igi {
 
 class RenderPool {
  public:
-  RenderPool(const SceneContext& context, const RenderSettings& settings, int threads);
+  // Results carry their pixels in `format`, made sendable (protocol::wire_pixels: finite, in range).
+  RenderPool(const SceneContext& context, const RenderSettings& settings, PixelFormat format, int threads);
   ~RenderPool();  // finishes nothing further: pending jobs are dropped
 
   // A frame's setup must be added before its jobs. Old frames are forgotten
@@ -38,6 +39,7 @@ class RenderPool {
 
   SceneContext context_;
   RenderSettings settings_;
+  PixelFormat format_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<protocol::TileJobMsg> queue_;

@@ -20,7 +20,10 @@ const char* kUsage =
     "  --key FILE        this worker's secret key (igi-keys new NAME writes NAME.key): CURVE authentication\n"
     "                    and encryption; the master must list NAME.pub in its --authorized-keys\n"
     "  --curve-fd N      read both keys from file descriptor N (how igi-master passes them to local workers)\n"
-    "  --quiet           no log lines\n";
+    "  --quiet           no log lines\n"
+    "exit status: 0 the master said goodbye, 2 bad options or key files, 3 refused (another build or\n"
+    "  protocol version, an unknown key), 4 gave up (no master for --give-up seconds), 5 quarantined\n"
+    "  (its VPL sets differ from the other workers'), 6 the scene does not load here\n";
 
 // Keys through an inherited descriptor: never on the command line, where any user sees them.
 igi::protocol::CurveClientKeys read_keys_from_fd(const std::string& fd_text) {
@@ -55,6 +58,7 @@ igi::WorkerOptions parse(int argc, char** argv) {
     }
     else if (a == "--give-up") o.give_up_seconds = std::stod(value());
     else if (a == "--build-id") o.build_id = value();  // tests: pretend to be another build
+    else if (a == "--test-fail-scene-load") o.fail_scene_load = true;  // tests: a scene that does not load here
     else if (a == "--quiet") o.quiet = true;
     else if (a == "--master-key") master_key = value();
     else if (a == "--key") key = value();

@@ -9,18 +9,27 @@
 #include "render/frame_renderer.h"
 #include "scene/accel.h"
 #include "scene/load_scene.h"
+#include "scene/scene_file.h"
 
 namespace igi {
+namespace {
+
+constexpr int kLogFirst = 5;  // non-finite pixels are logged this often, then only counted
+constexpr double kFirstBackoff = 0.25, kMaxBackoff = 32.0;
+
+std::string scene_key(const std::string& name, uint64_t hash) { return name + "#" + hash_hex(hash); }
+
+}  // namespace
 
 struct WorkerSession::Loaded {
   Scene scene;
   std::unique_ptr<Accel> accel;
   std::unique_ptr<LightSet> lights;
-  std::unique_ptr<RenderPool> pool;
+  std::unique_ptr<RenderPool> pool;  // made for each connection's settings
 };
 
 WorkerSession::WorkerSession(WorkerOptions options)
-    : options_(std::move(options)), cache_(options_.cache_dir, options_.search_dirs) {
+    : options_(std::move(options)), cache_(std::make_shared<SceneCache>(options_.cache_dir, options_.search_dirs)) {
   if (options_.threads <= 0) options_.threads = default_thread_count();
   if (options_.build_id.empty()) options_.build_id = kBuildId;
 }
@@ -33,31 +42,40 @@ void WorkerSession::log(const std::string& text) const {
   if (!options_.quiet) std::fprintf(stderr, "igi-worker: %s\n", text.c_str());
 }
 
+void WorkerSession::announce(const std::string& text) const {
+  std::fprintf(stderr, "igi-worker: %s\n", text.c_str());  // even when quiet: it is why we exit
+}
+
+// Never blocks: with the master's queue full (it stopped reading) the message
+// is dropped; the master reissues a lost result, and silence ends the connection.
 void WorkerSession::send(zmq::socket_t& socket, const protocol::Message& message) {
-  protocol::send(socket, message);
-  last_sent_ = Clock::now();
+  if (protocol::try_send(socket, message)) last_sent_ = Clock::now();
 }
 
 WorkerExit WorkerSession::run() {
   zmq::context_t context;
   auto last_contact = Clock::now();
-  double backoff = 1.0;
+  double backoff = kFirstBackoff;
   for (;;) {
-    Outcome outcome = serve(context);
+    const Outcome outcome = serve(context);
     if (outcome == Outcome::Bye) return WorkerExit::Bye;
     if (outcome == Outcome::Refused) return WorkerExit::Refused;
-    if (welcome_) last_contact = Clock::now(), backoff = 1.0;  // it was alive until just now
+    if (outcome == Outcome::Quarantined) return WorkerExit::Quarantined;
+    if (outcome == Outcome::SceneFailed) return WorkerExit::SceneFailed;
+    if (welcome_) last_contact = Clock::now(), backoff = kFirstBackoff;  // it was alive until just now
     welcome_.reset();
-    double silent = std::chrono::duration<double>(Clock::now() - last_contact).count();
+    const double silent = std::chrono::duration<double>(Clock::now() - last_contact).count();
     if (silent + backoff > options_.give_up_seconds) {
       if (failed_handshakes_ == 0) log("no master for " + std::to_string(int(silent)) + " s: giving up");
       else announce("no master for " + std::to_string(int(silent)) + " s: giving up; " + handshake_hint());
       return WorkerExit::GaveUp;
     }
     if (failed_handshakes_ > 0) log(handshake_hint());
-    log("master lost; reconnecting in " + std::to_string(int(backoff)) + " s");
+    char text[64];
+    std::snprintf(text, sizeof text, "master lost; reconnecting in %.2g s", backoff);
+    log(text);
     std::this_thread::sleep_for(std::chrono::duration<double>(backoff));
-    backoff = std::min(backoff * 2.0, 32.0);
+    backoff = std::min(std::max(2.0 * backoff, 1.0), kMaxBackoff);
   }
 }
 
@@ -67,33 +85,44 @@ WorkerSession::Outcome WorkerSession::serve(zmq::context_t& context) {
   if (options_.curve) protocol::make_curve_client(socket, *options_.curve);
   protocol::SocketMonitor monitor(context, socket,
                                   ZMQ_EVENT_HANDSHAKE_SUCCEEDED | ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL |
-                                      ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL | ZMQ_EVENT_HANDSHAKE_FAILED_AUTH);
+                                      ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL | ZMQ_EVENT_HANDSHAKE_FAILED_AUTH |
+                                      ZMQ_EVENT_DISCONNECTED);
   socket.connect(options_.endpoint);
   send(socket, protocol::Hello{options_.build_id, "native", uint32_t(options_.threads)});
   auto last_heard = Clock::now();
   for (;;) {
     wait_for_work(socket);
-    if (auto outcome = check_handshakes(monitor)) return *outcome;
+    if (auto outcome = check_connection(monitor)) return *outcome;
     while (auto received = protocol::receive(socket, 0, false)) {
       last_heard = Clock::now();
       if (!received->message) {
         log("dropped a bad message: " + received->error);
-      } else if (auto outcome = handle(socket, *received->message)) {
+      } else if (auto outcome = handle(*received->message)) {
         return *outcome;
       }
     }
-    poll_loading();
-    if (loaded_ && loaded_->pool)
-      for (protocol::TileResult& r : loaded_->pool->take_results()) send(socket, r);
+    if (auto outcome = poll_loading(socket)) return *outcome;
+    send_results(socket);
     const auto heartbeat = std::chrono::milliseconds(welcome_ ? welcome_->heartbeat_ms : 500);
     if (Clock::now() - last_sent_ > heartbeat) send(socket, protocol::Heartbeat{});
-    if (Clock::now() - last_heard > 4 * heartbeat + std::chrono::seconds(welcome_ ? 0 : 2))
-      return Outcome::MasterLost;
+    // Longer than the master waits for us: it declares us dead (and reissues our jobs) first.
+    const auto patience = welcome_ ? std::chrono::milliseconds(welcome_->timeout_ms) + 2 * heartbeat
+                                   : 4 * heartbeat + std::chrono::seconds(2);
+    if (Clock::now() - last_heard > patience) return Outcome::MasterLost;
   }
 }
 
-void WorkerSession::announce(const std::string& text) const {
-  std::fprintf(stderr, "igi-worker: %s\n", text.c_str());  // even when quiet: it is why we exit
+void WorkerSession::send_results(zmq::socket_t& socket) {
+  if (!loaded_ || !loaded_->pool) return;
+  for (protocol::TileResult& r : loaded_->pool->take_results()) {
+    if (r.nonfinite_pixels > 0) {
+      nonfinite_pixels_ += r.nonfinite_pixels;
+      if (++nonfinite_logged_ <= kLogFirst)
+        log("frame " + std::to_string(r.frame_id) + ": " + std::to_string(r.nonfinite_pixels) +
+            " non-finite pixels sent as black (" + std::to_string(nonfinite_pixels_) + " so far)");
+    }
+    send(socket, r);
+  }
 }
 
 WorkerSession::Outcome WorkerSession::refused(const std::string& why) const {
@@ -107,11 +136,14 @@ std::string WorkerSession::handshake_hint() const {
 }
 
 // A refused handshake never becomes a message: zmq would retry it for ever.
-std::optional<WorkerSession::Outcome> WorkerSession::check_handshakes(protocol::SocketMonitor& monitor) {
+// A connection that closes after a Welcome means the master process ended.
+std::optional<WorkerSession::Outcome> WorkerSession::check_connection(protocol::SocketMonitor& monitor) {
   const std::string& master = options_.endpoint;
   for (const protocol::SocketEvent& e : monitor.take_events()) {
     if (e.event == ZMQ_EVENT_HANDSHAKE_SUCCEEDED) {
       failed_handshakes_ = 0;
+    } else if (e.event == ZMQ_EVENT_DISCONNECTED) {
+      if (welcome_) return Outcome::MasterLost;
     } else if (e.event == ZMQ_EVENT_HANDSHAKE_FAILED_AUTH) {
       const std::string key = options_.curve ? options_.curve->own.public_key : "none: no --key";
       return refused("the master at " + master + " refused this worker's key (public key " + key + ", ZAP status " +
@@ -137,76 +169,119 @@ void WorkerSession::wait_for_work(zmq::socket_t& socket) {
   zmq::poll(items, std::chrono::milliseconds(5));
 }
 
-std::optional<WorkerSession::Outcome> WorkerSession::handle(zmq::socket_t& socket, const protocol::Message& m) {
+std::optional<WorkerSession::Outcome> WorkerSession::handle(protocol::Message& m) {
   if (auto* w = std::get_if<protocol::Welcome>(&m)) {
-    on_welcome(socket, *w);
+    on_welcome(*w);
   } else if (auto* r = std::get_if<protocol::Refuse>(&m)) {
-    log("refused by master: " + r->reason);
+    announce("refused by master: " + r->reason);
     return Outcome::Refused;
   } else if (auto* bye = std::get_if<protocol::Bye>(&m)) {
+    if (bye->kind == protocol::ByeKind::Quarantined) {
+      announce(bye->reason + ": exiting with status 5");
+      return Outcome::Quarantined;
+    }
     log("master said bye: " + bye->reason);
     return Outcome::Bye;
   } else if (auto* data = std::get_if<protocol::SceneData>(&m)) {
-    try {
-      start_loading(cache_.store(*data));
-    } catch (const std::exception& e) {
-      log(e.what());
-      return Outcome::Refused;
-    }
+    if (!welcome_ || data->scene_hash != welcome_->scene_hash) return std::nullopt;  // not what we asked for
+    auto bytes = std::make_shared<protocol::SceneData>(std::move(*data));
+    start_loading([cache = cache_, bytes, fail = options_.fail_scene_load] {
+      std::string path;
+      try {
+        path = cache->store(*bytes);  // checks the hash; writes only inside the cache folder
+      } catch (const std::exception& e) {
+        return LoadResult{nullptr, false, e.what(), true};
+      }
+      return load(path, fail);
+    });
   } else if (std::holds_alternative<protocol::FrameSetupMsg>(m) || std::holds_alternative<protocol::TileJobMsg>(m)) {
     if (!welcome_) return std::nullopt;  // not ours to render yet
     if (loaded_ && loaded_->pool) {
       if (auto* f = std::get_if<protocol::FrameSetupMsg>(&m)) loaded_->pool->add_frame(f->frame);
       else loaded_->pool->add_job(std::get<protocol::TileJobMsg>(m));
     } else {
-      waiting_.push_back(m);
+      waiting_.push_back(std::move(m));
     }
   }
   return std::nullopt;
 }
 
-void WorkerSession::on_welcome(zmq::socket_t& socket, const protocol::Welcome& welcome) {
-  const bool same_scene = welcome_ && loaded_ && welcome_->scene_hash == welcome.scene_hash &&
-                          welcome_->scene_name == welcome.scene_name;
-  welcome_ = welcome;
-  waiting_.clear();
-  if (same_scene) {  // a reconnect to the same session: keep the BVH, fresh pool
-    loaded_->pool = std::make_unique<RenderPool>(SceneContext{loaded_->scene, *loaded_->accel, *loaded_->lights},
-                                                 welcome.settings, options_.threads);
-    return;
-  }
-  loaded_.reset();
-  if (welcome.scene_hash == 0) return start_loading(welcome.scene_name);  // built-in
-  if (auto path = cache_.find(welcome.scene_name, welcome.scene_hash)) return start_loading(*path);
-  log("scene " + welcome.scene_name + " not found locally: asking the master for it");
-  send(socket, protocol::SceneRequest{welcome.scene_hash});
-}
-
-// Loads and builds on another thread; the socket loop keeps heartbeating.
-void WorkerSession::start_loading(const std::string& scene) {
-  const RenderSettings settings = welcome_->settings;
-  const int threads = options_.threads;
-  loading_ = std::async(std::launch::async, [scene, settings, threads] {
+// The scene, its BVH and lights, built on the loading thread.
+WorkerSession::LoadResult WorkerSession::load(const std::string& scene, bool fail) {
+  try {
+    if (fail) throw std::runtime_error("--test-fail-scene-load");
     auto loaded = std::make_shared<Loaded>();
     loaded->scene = load_scene(scene);
     loaded->accel = std::make_unique<Accel>(loaded->scene);
     loaded->lights = std::make_unique<LightSet>(loaded->scene);
-    loaded->pool = std::make_unique<RenderPool>(SceneContext{loaded->scene, *loaded->accel, *loaded->lights},
-                                                settings, threads);
-    return loaded;
+    return {loaded, false, {}, false};
+  } catch (const std::exception& e) {
+    return {nullptr, false, e.what(), false};
+  }
+}
+
+// Same scene as the one loaded (a master restart, a reconnect): keep it, BVH
+// and all. Otherwise find it by content hash on the loading thread (reading
+// and hashing a large file takes seconds); the master sends the bytes if not found.
+void WorkerSession::on_welcome(const protocol::Welcome& welcome) {
+  welcome_ = welcome;
+  waiting_.clear();
+  const std::string key = scene_key(welcome.scene_name, welcome.scene_hash);
+  if (loaded_ && loaded_key_ == key) {
+    log("welcomed again: keeping scene " + loaded_->scene.name + " and its BVH (no reload)");
+    return start_pool();
+  }
+  if (loading_.valid() && loading_key_ == key) return;  // on its way
+  loaded_.reset();
+  loaded_key_.clear();
+  loading_key_ = key;
+  start_loading([cache = cache_, welcome, fail = options_.fail_scene_load] {
+    if (welcome.scene_hash == 0) return load(welcome.scene_name, fail);  // built-in
+    if (auto path = cache->find(welcome.scene_name, welcome.scene_hash)) return load(*path, fail);
+    return LoadResult{nullptr, true, {}, false};
   });
 }
 
-void WorkerSession::poll_loading() {
-  if (!loading_.valid() || loading_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
-  try {
-    loaded_ = loading_.get();
-    log("scene " + loaded_->scene.name + " ready: " + std::to_string(loaded_->scene.triangles.size()) + " triangles");
-  } catch (const std::exception& e) {
-    log(std::string("cannot load the scene: ") + e.what());
-    return;
+// A previous load still running is waited for first (a new master with
+// another scene while the old one loads: rare, and bounded by one load).
+void WorkerSession::start_loading(std::function<LoadResult()> work) {
+  if (loading_.valid()) loading_.wait();
+  loading_ = std::async(std::launch::async, std::move(work));
+}
+
+std::optional<WorkerSession::Outcome> WorkerSession::poll_loading(zmq::socket_t& socket) {
+  if (!loading_.valid() || loading_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return std::nullopt;
+  LoadResult result = loading_.get();
+  const bool current = welcome_ && scene_key(welcome_->scene_name, welcome_->scene_hash) == loading_key_;
+  if (result.refused) return refused(result.error);
+  if (!result.error.empty()) {
+    const std::string why = "cannot load the scene " + (welcome_ ? welcome_->scene_name : loading_key_) + ": " + result.error;
+    announce(why + ": exiting with status 6");
+    send(socket, protocol::Bye{why, protocol::ByeKind::Failed});
+    socket.set(zmq::sockopt::linger, 500);  // the Bye leaves before the process does
+    return Outcome::SceneFailed;
   }
-  for (const protocol::Message& m : waiting_) {
+  if (result.need_bytes) {
+    if (!current) return std::nullopt;
+    log("scene " + welcome_->scene_name + " not found locally: asking the master for it");
+    send(socket, protocol::SceneRequest{welcome_->scene_hash});
+    return std::nullopt;
+  }
+  loaded_ = result.loaded;
+  loaded_key_ = loading_key_;
+  ++loads_;
+  log("scene " + loaded_->scene.name + " ready: " + std::to_string(loaded_->scene.triangles.size()) +
+      " triangles (scene loads by this worker: " + std::to_string(loads_) + ")");
+  if (current) start_pool();
+  return std::nullopt;
+}
+
+// A fresh pool for this connection's settings; jobs that came early go in now.
+void WorkerSession::start_pool() {
+  loaded_->pool.reset();
+  loaded_->pool = std::make_unique<RenderPool>(SceneContext{loaded_->scene, *loaded_->accel, *loaded_->lights},
+                                               welcome_->settings, welcome_->pixel_format, options_.threads);
+  for (protocol::Message& m : waiting_) {
     if (auto* f = std::get_if<protocol::FrameSetupMsg>(&m)) loaded_->pool->add_frame(f->frame);
     else loaded_->pool->add_job(std::get<protocol::TileJobMsg>(m));
   }

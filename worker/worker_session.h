@@ -1,11 +1,19 @@
 #pragma once
 // One worker process's whole state: the connection to the master, the scene,
-// and the render pool. The socket loop runs on the calling thread; scene
-// loading and rendering run on others, so heartbeats keep flowing.
+// and the render pool. The socket loop runs on the calling thread and only
+// moves messages; finding, hashing, storing and loading the scene and
+// rendering run on other threads, so heartbeats keep flowing.
 //
-// Liveness: the master is presumed lost after 4 heartbeat intervals of
-// silence; the worker then reconnects with back-off 1 s, 2 s, ... 32 s and
-// gives up `give_up_seconds` after it last heard from a master.
+// Liveness: the master declares a worker dead after Welcome::timeout_ms of
+// silence; the worker waits longer for the master (that timeout plus two
+// heartbeats), so the master always gives up first and no worker reconnects
+// while the master still counts on it. A closed connection (the master
+// process ended) is noticed at once. The worker then reconnects with back-off
+// 0.25 s, 1 s, 2 s, ... 32 s and gives up `give_up_seconds` after it last
+// heard from a master.
+//
+// A reconnect keeps the loaded scene and its BVH when the new Welcome names
+// the same scene (name and content hash): a master restart costs no reload.
 //
 // With CURVE keys the DEALER is a CURVE client. A handshake the master turns
 // down is reported by the socket monitor, not by a message. A refused key or
@@ -13,6 +21,7 @@
 // (Refused); other failed handshakes (a wrong --master-key looks like a
 // dropped connection) are retried as a lost master, and giving up says so.
 #include <chrono>
+#include <functional>
 #include <future>
 #include <memory>
 #include <optional>
@@ -38,9 +47,17 @@ struct WorkerOptions {
   std::string build_id;          // empty: this binary's
   std::optional<protocol::CurveClientKeys> curve;  // empty: a plain connection
   bool quiet = false;
+  bool fail_scene_load = false;  // test hook: every scene fails to load
 };
 
-enum class WorkerExit { Bye = 0, Refused = 3, GaveUp = 4 };
+// The process's exit status.
+enum class WorkerExit {
+  Bye = 0,          // the master said goodbye
+  Refused = 3,      // another build or protocol version, an unknown key, CURVE on one side only
+  GaveUp = 4,       // no master for give_up_seconds
+  Quarantined = 5,  // the master will not use this worker's results (its VPL sets differ from the others')
+  SceneFailed = 6,  // the scene the master named does not load here
+};
 
 class WorkerSession {
  public:
@@ -49,31 +66,45 @@ class WorkerSession {
   WorkerExit run();
 
  private:
-  enum class Outcome { Bye, Refused, MasterLost };
+  enum class Outcome { Bye, Refused, MasterLost, Quarantined, SceneFailed };
   using Clock = std::chrono::steady_clock;
   struct Loaded;  // scene, BVH, lights, pool
+  // What the loading thread found: a loaded scene, or that the master must send the bytes, or why not.
+  struct LoadResult {
+    std::shared_ptr<Loaded> loaded;
+    bool need_bytes = false;
+    std::string error;
+    bool refused = false;  // bytes from the master that do not match their hash or name
+  };
+  static LoadResult load(const std::string& scene, bool fail);
 
   Outcome serve(zmq::context_t& context);
   void wait_for_work(zmq::socket_t& socket);
-  std::optional<Outcome> check_handshakes(protocol::SocketMonitor& monitor);
+  std::optional<Outcome> check_connection(protocol::SocketMonitor& monitor);
   void announce(const std::string& text) const;  // log() even when quiet
   Outcome refused(const std::string& why) const;
   std::string handshake_hint() const;
-  std::optional<Outcome> handle(zmq::socket_t& socket, const protocol::Message& message);
-  void on_welcome(zmq::socket_t& socket, const protocol::Welcome& welcome);
-  void start_loading(const std::string& scene_path_or_name);
-  void poll_loading();
+  std::optional<Outcome> handle(protocol::Message& message);
+  void on_welcome(const protocol::Welcome& welcome);
+  void start_loading(std::function<LoadResult()> work);
+  std::optional<Outcome> poll_loading(zmq::socket_t& socket);
+  void start_pool();
   void send(zmq::socket_t& socket, const protocol::Message& message);
+  void send_results(zmq::socket_t& socket);
   void log(const std::string& text) const;
 
   WorkerOptions options_;
-  SceneCache cache_;
-  std::optional<protocol::Welcome> welcome_;
-  std::future<std::shared_ptr<Loaded>> loading_;
-  std::shared_ptr<Loaded> loaded_;
-  std::vector<protocol::Message> waiting_;  // frames and jobs that came before the scene was ready
+  std::shared_ptr<const SceneCache> cache_;
+  std::optional<protocol::Welcome> welcome_;  // of this connection
+  std::future<LoadResult> loading_;
+  std::string loading_key_;                  // the scene being loaded (name and hash)
+  std::shared_ptr<Loaded> loaded_;           // survives reconnects
+  std::string loaded_key_;
+  std::vector<protocol::Message> waiting_;   // frames and jobs that came before the scene was ready
   Clock::time_point last_sent_;
   int failed_handshakes_ = 0;  // in a row; reset by a handshake that succeeds
+  uint64_t nonfinite_pixels_ = 0, nonfinite_logged_ = 0;
+  int loads_ = 0;  // scenes loaded by this process (logged: a reconnect should not add one)
 };
 
 }  // namespace igi

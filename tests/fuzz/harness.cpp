@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <exception>
 
+#include "image/frame_buffer.h"
 #include "lighting/lights.h"
 #include "protocol/codec.h"
+#include "protocol/pixels.h"
 #include "scene/gltf_loader.h"
 
 namespace igi::fuzz {
@@ -65,8 +68,34 @@ std::string check_loaded(const LoadedScene& loaded) {
 
 }  // namespace
 
+// The master's in-place path for TileResults (decode_tile_result, then
+// copy_tile_pixels into a frame) must accept exactly what decode() accepts,
+// with the same error, and copy the same pixels.
+static std::string check_tile_result_view(std::span<const uint8_t> bytes, const protocol::DecodeResult& decoded) {
+  if (!protocol::is_tile_result(bytes)) return {};
+  std::string error;
+  const std::optional<protocol::TileResultView> view = protocol::decode_tile_result(bytes, error);
+  if (!view) {
+    if (decoded.message) return "decode_tile_result refused what decode accepted: " + error;
+    return error == decoded.error ? "" : "decode_tile_result's error differs: " + error + " / " + decoded.error;
+  }
+  const TileJob& t = view->fields.tile;
+  FrameBuffer frame(t.w, t.h, view->fields.pixel_format);
+  error = protocol::copy_tile_pixels(*view, frame.pixel(0, 0), frame.row_bytes());
+  if (!decoded.message) return error == decoded.error ? "" : "the view accepted, the copy said: " + error + " / " + decoded.error;
+  if (!error.empty()) return "copy_tile_pixels refused what decode accepted: " + error;
+  const auto& pixels = std::get<protocol::TileResult>(*decoded.message).pixels;
+  const Image image = frame.to_image();
+  if (!std::equal(pixels.begin(), pixels.end(), image.pixels.begin(), image.pixels.end(), [](glm::vec3 a, glm::vec3 b) {
+        return std::memcmp(&a, &b, sizeof a) == 0;
+      }))
+    return "the copied pixels differ from the decoded ones";
+  return {};
+}
+
 std::string check_decode(std::span<const uint8_t> bytes) {
   const protocol::DecodeResult first = protocol::decode(bytes);
+  if (std::string error = check_tile_result_view(bytes, first); !error.empty()) return error;
   if (!first.message) return first.error.empty() ? "decode failed without an error message" : "";
   if (!first.error.empty()) return "decode succeeded with an error: " + first.error;
   const std::vector<uint8_t> encoded = protocol::encode(*first.message);

@@ -15,7 +15,9 @@
 namespace igi::fuzz {
 
 // protocol::decode: a rejected message has an error; an accepted one encodes
-// back to the same bytes and decodes again.
+// back to the same bytes and decodes again. For a TileResult the master's
+// in-place path (decode_tile_result + copy_tile_pixels) accepts exactly the
+// same messages, with the same error, and copies the same pixels.
 std::string check_decode(std::span<const uint8_t> bytes);
 
 // load_gltf_memory (no external files): a rejected scene throws SceneError

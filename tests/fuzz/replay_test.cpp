@@ -38,15 +38,16 @@ std::vector<Seed> scene_seeds_here() {
 
 TEST(FuzzReplay, DecodeSeedsCoverEveryMessageTypeAndDecode) {
   const std::vector<Seed> seeds = decode_seeds();
-  EXPECT_EQ(seeds.size(), size_t(protocol::MessageType::Bye));
-  std::vector<bool> seen(seeds.size() + 1, false);
+  const size_t types = size_t(protocol::MessageType::Bye);
+  EXPECT_GE(seeds.size(), types);
+  std::vector<bool> seen(types + 1, false);
   for (const Seed& seed : seeds) {
     const protocol::DecodeResult result = protocol::decode(seed.bytes);
     ASSERT_TRUE(result.message) << seed.name << ": " << result.error;
     seen[size_t(protocol::type_of(*result.message))] = true;
     EXPECT_EQ(check_decode(seed.bytes), "") << seed.name;
   }
-  EXPECT_EQ(std::count(seen.begin() + 1, seen.end(), true), std::ptrdiff_t(seeds.size()));
+  EXPECT_EQ(std::count(seen.begin() + 1, seen.end(), true), std::ptrdiff_t(types)) << "a seed of every type";
 }
 
 // Every truncation of every seed is rejected with an error, never accepted.

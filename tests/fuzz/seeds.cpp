@@ -34,7 +34,16 @@ TileResult tile_result() {
   m.render_seconds = 0.25f;
   m.frame_state_hash = 0x1234abcd5678ef00;
   m.rays = {4, 40, 12};
+  m.nonfinite_pixels = 1;
   m.pixels = {{0.1f, 0.2f, 0.3f}, {1.0f, 0.5f, 0.0f}, {0.0f, 0.0f, 0.0f}, {7.5f, 2.0f, 1.0f}};
+  return m;
+}
+
+// Display frames: the same tile as half floats (values a half holds exactly).
+TileResult half_tile_result() {
+  TileResult m = tile_result();
+  m.pixel_format = PixelFormat::Float16;
+  m.pixels = {{0.125f, 0.25f, 0.375f}, {1.0f, 0.5f, 0.0f}, {0.0f, -0.0f, 65504.0f}, {7.5f, 2.0f, 1.0f}};
   return m;
 }
 
@@ -156,6 +165,8 @@ std::vector<Seed> decode_seeds() {
   welcome.scene_hash = 0xfeedface;
   welcome.scene_size = 4096;
   welcome.settings = settings();
+  welcome.timeout_ms = 1500;
+  welcome.pixel_format = PixelFormat::Float16;
   SceneData data;
   data.scene_hash = 0xfeedface;
   data.file_name = "cornell.glb";
@@ -173,8 +184,10 @@ std::vector<Seed> decode_seeds() {
       {"FrameSetup", frame_setup()},
       {"TileJob", job},
       {"TileResult", tile_result()},
+      {"TileResult-half", half_tile_result()},
       {"Heartbeat", Heartbeat{}},
       {"Bye", Bye{"shutting down"}},
+      {"Bye-quarantined", Bye{"VPL sets differ", ByeKind::Quarantined}},
   };
   std::vector<Seed> seeds;
   for (const auto& [name, message] : messages) seeds.push_back({name + ".bin", encode(message)});

@@ -1,0 +1,47 @@
+#pragma once
+// Where a headless run's finished frames go, on a thread of its own: the
+// progressive sum, the conversion from the wire's pixel format, and the image
+// file. The session thread only queues a frame and goes back to its workers;
+// it stops adding frames while backlog() is at its limit, so a slow disk
+// bounds the frames in memory instead of growing a queue.
+#include <condition_variable>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "image/frame_buffer.h"
+#include "render/accumulator.h"
+
+namespace igi {
+
+class FrameSink {
+ public:
+  // progressive: each frame joins a running sum and the sum is written.
+  FrameSink(int width, int height, float exposure, bool progressive);
+  ~FrameSink() { finish(); }
+  // Finishes everything queued, then stops the thread (idempotent).
+  void finish();
+  // path empty: the frame only joins the sum (or is dropped, when not progressive).
+  void push(std::shared_ptr<FrameBuffer> pixels, std::string path);
+  size_t backlog() const;  // frames queued and not yet done
+  // The first write error, if any (checked by the caller at the end).
+  std::string error() const;
+
+ private:
+  void run();
+  void consume(const FrameBuffer& pixels, const std::string& path);
+  float exposure_;
+  std::optional<Accumulator> accumulator_;  // progressive only; touched by the sink's thread alone
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<std::pair<std::shared_ptr<FrameBuffer>, std::string>> queue_;
+  size_t busy_ = 0;
+  std::string error_;
+  bool stopping_ = false;
+  std::thread thread_;
+};
+
+}  // namespace igi

@@ -1,0 +1,85 @@
+#include "protocol/pixels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "image/half.h"
+
+namespace igi::protocol {
+
+uint32_t wire_pixels(std::span<glm::vec3> pixels, PixelFormat format) {
+  uint32_t nonfinite = 0;
+  for (glm::vec3& p : pixels)
+    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) {
+      p = glm::vec3(0.0f);
+      ++nonfinite;
+    }
+  if (format == PixelFormat::Float16)
+    for (glm::vec3& p : pixels) p = glm::clamp(p, glm::vec3(-kHalfMax), glm::vec3(kHalfMax));
+  return nonfinite;
+}
+
+namespace {
+
+// True when any of the n values has an all-ones exponent (infinity or NaN).
+bool any_nonfinite(const uint8_t* bytes, size_t n, PixelFormat format) {
+  uint32_t bad = 0;
+  if (format == PixelFormat::Float16) {
+    for (size_t i = 0; i < n; ++i) {
+      uint16_t v;
+      std::memcpy(&v, bytes + 2 * i, 2);
+      bad |= uint32_t((v & 0x7c00u) == 0x7c00u);
+    }
+  } else {
+    for (size_t i = 0; i < n; ++i) {
+      uint32_t v;
+      std::memcpy(&v, bytes + 4 * i, 4);
+      bad |= uint32_t((v & 0x7f800000u) == 0x7f800000u);
+    }
+  }
+  return bad != 0;
+}
+
+float value_at(const uint8_t* bytes, size_t i, PixelFormat format) {
+  if (format == PixelFormat::Float16) {
+    uint16_t v;
+    std::memcpy(&v, bytes + 2 * i, 2);
+    return from_half(v);
+  }
+  float v;
+  std::memcpy(&v, bytes + 4 * i, 4);
+  return v;
+}
+
+// decode()'s words for the first non-finite pixel of the block.
+std::string nonfinite_error(std::span<const uint8_t> block, PixelFormat format) {
+  const size_t values = block.size() / bytes_per_value(format);
+  for (size_t i = 0; i + 2 < values; i += 3) {
+    const float x = value_at(block.data(), i, format), y = value_at(block.data(), i + 1, format),
+                z = value_at(block.data(), i + 2, format);
+    if (std::isfinite(x) && std::isfinite(y) && std::isfinite(z)) continue;
+    char text[160];
+    std::snprintf(text, sizeof text, "TileResult.pixels: pixel %zu is (%.9g, %.9g, %.9g), expected finite values",
+                  i / 3, double(x), double(y), double(z));
+    return text;
+  }
+  return "TileResult.pixels: a non-finite value";  // not reached: the caller saw one
+}
+
+}  // namespace
+
+std::string copy_tile_pixels(const TileResultView& view, uint8_t* dst, size_t dst_row_bytes) {
+  const PixelFormat format = view.fields.pixel_format;
+  const size_t row_bytes = size_t(view.fields.tile.w) * bytes_per_pixel(format);
+  const size_t row_values = size_t(view.fields.tile.w) * 3;
+  for (int y = 0; y < view.fields.tile.h; ++y) {
+    uint8_t* row = dst + size_t(y) * dst_row_bytes;
+    std::memcpy(row, view.pixel_bytes.data() + size_t(y) * row_bytes, row_bytes);
+    if (any_nonfinite(row, row_values, format)) return nonfinite_error(view.pixel_bytes, format);
+  }
+  return {};
+}
+
+}  // namespace igi::protocol

@@ -1,0 +1,75 @@
+#include "tile_cache.h"
+
+#include <cstring>
+#include <stdexcept>
+
+#include "protocol/codec.h"
+
+namespace igi::loadgen {
+namespace {
+
+// Where a TileResult's fields sit (protocol/codec.cpp writes them in declaration order
+// after the 8-byte header); checked against the decoder the first time a tile is made.
+constexpr size_t kFrameIdAt = 8, kJobIdAt = 16, kTileAt = 24, kHashAt = 48, kPixelsAt = 89;
+
+void put_u64(uint8_t* at, uint64_t v) {
+  for (int i = 0; i < 8; ++i) at[i] = uint8_t(v >> (8 * i));
+}
+
+void put_i32(uint8_t* at, int32_t v) {
+  for (int i = 0; i < 4; ++i) at[i] = uint8_t(uint32_t(v) >> (8 * i));
+}
+
+}  // namespace
+
+glm::vec3 expected_pixel(int x, int y) {
+  return {float(x % 2048) / 1024.0f, float(y % 2048) / 1024.0f, 0.25f + 0.125f * float((x + y) % 4)};
+}
+
+const std::vector<uint8_t>& TileCache::encoded(const TileJob& t, PixelFormat format) {
+  const Key key{t.x, t.y, t.w, t.h, t.border, int(format)};
+  std::lock_guard lock(mutex_);
+  auto it = tiles_.find(key);
+  if (it != tiles_.end()) return *it->second;
+  protocol::TileResult r;
+  r.tile = t;
+  r.render_seconds = 0.001f;
+  r.rays = {uint64_t(t.w) * t.h, 0, 0};
+  r.pixel_format = format;
+  for (int y = 0; y < t.h; ++y)
+    for (int x = 0; x < t.w; ++x) r.pixels.push_back(expected_pixel(t.x + x, t.y + y));
+  auto bytes = std::make_unique<std::vector<uint8_t>>(protocol::encode(r));
+  // The offsets above must still be the codec's: patch a copy and decode it.
+  const TileJob moved{t.x + 1, t.y, t.w, t.h, t.border};
+  zmq::message_t probe = answer(*bytes, 7, 9, 11, moved);
+  protocol::DecodeResult d = protocol::decode({probe.data<uint8_t>(), probe.size()});
+  const auto* back = d.message ? std::get_if<protocol::TileResult>(&*d.message) : nullptr;
+  if (!back || back->frame_id != 7 || back->job_id != 9 || back->frame_state_hash != 11 || back->tile.x != t.x + 1)
+    throw std::logic_error("loadgen: the TileResult layout changed (protocol/codec.cpp): " + d.error);
+  return *tiles_.emplace(key, std::move(bytes)).first->second;
+}
+
+zmq::message_t TileCache::answer(const std::vector<uint8_t>& encoded, uint64_t frame_id, uint64_t job_id,
+                                 uint64_t frame_state_hash, const TileJob& claimed) {
+  zmq::message_t m(encoded.data(), encoded.size());
+  uint8_t* bytes = m.data<uint8_t>();
+  put_u64(bytes + kFrameIdAt, frame_id);
+  put_u64(bytes + kJobIdAt, job_id);
+  const int32_t tile[5] = {claimed.x, claimed.y, claimed.w, claimed.h, claimed.border};
+  for (int i = 0; i < 5; ++i) put_i32(bytes + kTileAt + 4 * i, tile[i]);
+  put_u64(bytes + kHashAt, frame_state_hash);
+  return m;
+}
+
+void TileCache::poison(zmq::message_t& answer, PixelFormat format) {
+  uint8_t* first = answer.data<uint8_t>() + kPixelsAt;
+  if (format == PixelFormat::Float16) {
+    const uint16_t nan = 0x7e00;
+    std::memcpy(first, &nan, 2);
+  } else {
+    const uint32_t nan = 0x7fc00000u;
+    std::memcpy(first, &nan, 4);
+  }
+}
+
+}  // namespace igi::loadgen

@@ -1,0 +1,163 @@
+// Faults between real masters and real workers (issue 12): a master restart
+// costs the worker no scene reload, a worker waits longer for the master than
+// the master for it, a worker whose scene does not load leaves with its own
+// status, a stopped local worker does not hold up the master's exit, and a
+// send to a peer that stopped reading never blocks the session.
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "build_info.h"
+#include "master_session.h"
+#include "protocol/socket.h"
+#include "support/image_compare.h"
+#include "support/process.h"
+#include "support/sanitizers.h"
+
+namespace igi {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+std::string endpoint_here() { return "tcp://127.0.0.1:" + std::to_string(test::free_port()); }
+
+// A log path with no old file: waiting for a line must not find the previous run's.
+std::string fresh_log(const std::string& name) {
+  const std::string path = test::output_path(name);
+  fs::remove(path);
+  return path;
+}
+
+std::string master(const std::string& endpoint, const std::string& extra) {
+  return std::string(IGI_MASTER_BINARY) + " --workers 0 --listen " + endpoint +
+         " --scene cornell --method igi --vpl-paths 4 --size 64x48 --tile 16 --quiet " + extra;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+size_t count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+bool wait_for_text(const std::string& path, const std::string& what, double seconds) {
+  const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+  while (Clock::now() < end) {
+    if (read_text(path).find(what) != std::string::npos) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+int wait_exit(pid_t pid, double seconds) {
+  const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+  while (Clock::now() < end) {
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  test::stop(pid);
+  return -2;
+}
+
+TEST(ClusterFaults, AMasterRestartCostsTheWorkerNoSceneReload) {
+  const std::string endpoint = endpoint_here(), log = fresh_log("restart-worker.log");
+  pid_t first = test::start(master(endpoint, "--frames 100000 --no-write -o " + test::output_path("restart.exr")));
+  pid_t worker = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 >" + log + " 2>&1");
+  ASSERT_TRUE(wait_for_text(log, "ready", 20 * test::kSlowdown)) << read_text(log);
+  test::stop(first);  // kill -9: the worker notices the closed connection
+  pid_t second = test::start(master(endpoint, "--frames 3 -o " + test::output_path("restart.exr")));
+  EXPECT_EQ(wait_exit(second, 30 * test::kSlowdown), 0) << "the new master got its frames from the old worker";
+  EXPECT_EQ(wait_exit(worker, 10 * test::kSlowdown), 0);
+  const std::string text = read_text(log);
+  EXPECT_EQ(count(text, " ready: "), 1u) << "loaded once:\n" << text;
+  EXPECT_NE(text.find("keeping scene cornell and its BVH (no reload)"), std::string::npos) << text;
+  EXPECT_NE(text.find("master lost; reconnecting in 0.25 s"), std::string::npos) << text;
+}
+
+TEST(ClusterFaults, AWorkerWaitsLongerForTheMasterThanTheMasterForIt) {
+  const std::string endpoint = endpoint_here(), log = fresh_log("patience-worker.log");
+  // The master declares a worker dead after 2 s; the worker waits 2 s + two heartbeats.
+  pid_t m = test::start(master(endpoint, "--frames 100000 --no-write --heartbeat-ms 100 --timeout-ms 2000 -o " +
+                                             test::output_path("patience.exr")));
+  pid_t worker = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 >" + log + " 2>&1");
+  ASSERT_TRUE(wait_for_text(log, "ready", 20 * test::kSlowdown)) << read_text(log);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  kill(m, SIGSTOP);  // a master that pauses 1 s (swapping, a debugger): ten heartbeats missed
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  kill(m, SIGCONT);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const std::string text = read_text(log);  // before the master goes: its end is a lost master too
+  test::stop(worker);
+  test::stop(m);
+  EXPECT_EQ(text.find("master lost"), std::string::npos) << "the worker gave up before the master would have:\n" << text;
+}
+
+TEST(ClusterFaults, AWorkerThatCannotLoadTheSceneLeavesWithStatus6AndTheFramesComplete) {
+  const std::string endpoint = endpoint_here();
+  pid_t m = test::start(master(endpoint, "--frames 4 -o " + test::output_path("scene-fail.exr")));
+  auto failing = test::run(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --test-fail-scene-load",
+                           int(30 * test::kSlowdown));
+  EXPECT_EQ(failing.exit_code, 6) << failing.output;
+  EXPECT_NE(failing.output.find("cannot load the scene cornell"), std::string::npos) << failing.output;
+  pid_t good = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --quiet");
+  EXPECT_EQ(wait_exit(m, 30 * test::kSlowdown), 0);
+  EXPECT_EQ(wait_exit(good, 10 * test::kSlowdown), 0);
+}
+
+TEST(ClusterFaults, AStoppedLocalWorkerDoesNotHoldUpTheMastersExit) {
+  const auto start = Clock::now();
+  auto r = test::run(std::string(IGI_MASTER_BINARY) +
+                         " --workers 2 --worker-threads 1 --scene cornell --method igi --vpl-paths 4 --size 64x48 "
+                         "--tile 16 --frames 30 --heartbeat-ms 50 --timeout-ms 300 --test-stop-worker-after 20 --quiet -o " +
+                         test::output_path("stopped.exr"),
+                     int(60 * test::kSlowdown));
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_LT(seconds, 20.0 * test::kSlowdown) << "stop_all waited for a stopped worker";
+}
+
+// In one process: the master's ROUTER over inproc (no kernel buffers), a
+// queue of two messages per peer, and a peer that says hello and heartbeats
+// but never reads. The session must drop it, not block on it.
+TEST(ClusterFaults, ASendToAPeerThatStoppedReadingNeverBlocks) {
+  alarm(unsigned(60 * test::kSlowdown));  // a blocked send would hang the test: end it instead
+  zmq::context_t context;
+  const MasterOptions o = parse_master_options({"--workers", "0", "--listen", "inproc://igi-deaf-peer", "--frames", "1",
+                                                "--heartbeat-ms", "10", "--timeout-ms", "5000", "--test-send-hwm", "2",
+                                                "--quiet", "--no-write", "--size", "64x48"});
+  MasterSession session(o, make_scene_source("cornell"), context);
+  zmq::socket_t deaf(context, zmq::socket_type::dealer);
+  deaf.set(zmq::sockopt::rcvhwm, 1);
+  deaf.set(zmq::sockopt::linger, 0);
+  deaf.connect("inproc://igi-deaf-peer");
+  protocol::send(deaf, protocol::Hello{kBuildId, "deaf", 1});
+  bool joined = false;
+  const auto end = Clock::now() + std::chrono::seconds(3);
+  while (Clock::now() < end) {
+    protocol::send(deaf, protocol::Heartbeat{});  // alive, so only its full queue can drop it
+    session.pump(10);
+    joined = joined || session.worker_count() == 1;
+    if (joined && session.worker_count() == 0) break;
+  }
+  alarm(0);
+  EXPECT_TRUE(joined);
+  EXPECT_EQ(session.worker_count(), 0u) << "a peer whose queue is full is dropped like a dead one";
+}
+
+}  // namespace
+}  // namespace igi
