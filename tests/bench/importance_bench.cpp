@@ -14,10 +14,9 @@
 // over their mean luminance (test_stability.cpp's measure, over the whole
 // image), averaged over --seeds runs of seeds 1, 1001, ...
 //
-// Visible share: of the first pass's VPLs (all sets), those with an unoccluded
-// line to at least one of the points seen through a 32 x 32 grid of pixel
-// centres, on the side the VPL lights: in a building of rooms, the VPLs that
-// landed in rooms the camera can see.
+// Seen: of the first pass's VPLs (all sets), the share in rooms where the
+// camera sees a point (scene/suite_scenes.h suite_room(); one room in scenes
+// without rooms), as igi-accuracy's vpls_seen.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -35,7 +34,7 @@
 #include "sampling/warp.h"
 #include "scene/camera_rays.h"
 #include "scene/load_scene.h"
-#include "scene/surface.h"
+#include "scene/suite_scenes.h"
 
 namespace igi {
 namespace {
@@ -90,28 +89,22 @@ double cpu_seconds() {
   return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
-// Share of VPLs with a line of sight to a point the camera sees.
-double visible_share(const SceneContext& context, const FrameSetup& frame, const VplSets& sets) {
+// Share of VPLs in rooms where the camera sees a point (through a 32 x 32
+// grid of pixel centres): scene/suite_scenes.h suite_room().
+double visible_share(const std::string& scene_name, const SceneContext& context, const FrameSetup& frame,
+                     const VplSets& sets) {
   const CameraBasis camera(frame.camera, frame.width, frame.height);
-  std::vector<SurfacePoint> seen;
+  std::vector<int> rooms;
   for (int j = 0; j < 32; ++j)
     for (int i = 0; i < 32; ++i) {
       Ray ray = camera.ray((float(i) + 0.5f) * float(frame.width) / 32.0f, (float(j) + 0.5f) * float(frame.height) / 32.0f);
       ray.mask = kCameraRayMask;
       Hit hit;
-      if (context.accel.intersect(ray, hit)) seen.push_back(surface_at(context.scene, hit, ray.direction));
+      if (context.accel.intersect(ray, hit)) rooms.push_back(suite_room(scene_name, ray.origin + hit.t * ray.direction));
     }
-  size_t visible = 0;
-  for (const Vpl& v : sets.vpls)
-    for (const SurfacePoint& p : seen) {
-      const glm::vec3 d = p.position - v.position;
-      const float dist = glm::length(d);
-      if (!(dist > 0.0f) || glm::dot(d, v.normal) <= 0.0f) continue;
-      const glm::vec3 w = -d / dist;
-      Ray shadow{offset_origin(p, w), w, 0.0f, dist * (1.0f - kShadowEpsilon)};
-      if (!context.accel.occluded(shadow)) { ++visible; break; }
-    }
-  return sets.vpls.empty() ? 0.0 : double(visible) / double(sets.vpls.size());
+  size_t seen = 0;
+  for (const Vpl& v : sets.vpls) seen += std::find(rooms.begin(), rooms.end(), suite_room(scene_name, v.position)) != rooms.end();
+  return sets.vpls.empty() ? 0.0 : double(seen) / double(sets.vpls.size());
 }
 
 struct Run {
@@ -155,7 +148,7 @@ Run render(const SceneContext& context, const RenderSettings& settings, const Op
   run.mean_ratio = luminance(image.mean()) / luminance(reference.mean());
   if (vpl) {
     method->begin_frame(base);
-    run.visible = visible_share(context, base, vpl->vpls());
+    run.visible = visible_share(o.scene, context, base, vpl->vpls());
   }
   return run;
 }
