@@ -104,6 +104,12 @@ std::string render_usage(const std::string& program) {
          "  --lightcuts-max-cut N lightcuts: at most N nodes (shadow rays) in a cut [1000]\n"
          "  --lightcuts-spacing S lightcuts: reconstruction cuts, full cuts every S pixels only, 0 = off [0]\n"
          "  --lightcuts-samples K lightcuts: K = 1, 4, 9 ... 64 gather points per pixel (multidimensional) [1]\n"
+         "  --importance N        ir/igi: start VPL light paths at lights by their estimated share of the image,\n"
+         "                        from N camera paths (light importance for the view), 0 = by power [0]\n"
+         "  --importance-floor F  ir/igi: share of light paths still started by power, 0..1 [0.2]\n"
+         "  --bidir K             ir/igi: bidirectional instant radiosity: per set, keep K of the VPLs of\n"
+         "                        --vpl-paths light paths and R camera paths, by their estimated contribution [0]\n"
+         "  --bidir-camera-paths R  ir/igi with --bidir: camera paths per set, 0 = --vpl-paths [0]\n"
          "  --export-gltf FILE    write the scene as glTF and exit\n"
          "  --quiet               no progress output\n"
          "  --show                show the result in a window (Esc closes it)\n"
@@ -157,6 +163,10 @@ RenderOptions parse_render_options(const std::vector<std::string>& args) {
     else if (a == "--lightcuts-max-cut") s.lightcuts_max_cut = to_int(a, value(), 1);
     else if (a == "--lightcuts-spacing") s.lightcuts_spacing = to_int(a, value(), 0);
     else if (a == "--lightcuts-samples") s.lightcuts_samples = to_int(a, value(), 1);
+    else if (a == "--importance") s.importance_paths = to_int(a, value(), 0);
+    else if (a == "--importance-floor") s.importance_floor = to_float(a, value());
+    else if (a == "--bidir") s.bidir_vpls = to_int(a, value(), 0);
+    else if (a == "--bidir-camera-paths") s.bidir_camera_paths = to_int(a, value(), 0);
     else if (a == "--export-gltf") o.export_gltf = value();
     else if (a == "--quiet") o.quiet = true;
     else if (a == "--show") o.show = true;

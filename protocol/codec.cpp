@@ -111,6 +111,10 @@ void write(Writer& w, const RenderSettings& s) {
   w.boolean(s.caustics);
   w.i32(s.caustic_photons);
   w.f32(s.caustic_radius);
+  w.i32(s.importance_paths);
+  w.f32(s.importance_floor);
+  w.i32(s.bidir_vpls);
+  w.i32(s.bidir_camera_paths);
 }
 
 void read(Reader& r, RenderSettings& s) {
@@ -162,6 +166,18 @@ void read(Reader& r, RenderSettings& s) {
   // What else lightcuts refuses (a non-square sample count, spacing with samples).
   if (r.ok() && s.method == MethodKind::Lightcuts && !lightcuts::settings_error(s).empty())
     r.fail("settings.lightcuts", lightcuts::settings_error(s));
+  s.importance_paths = r.i32("settings.importance_paths");
+  check_range(r, "settings.importance_paths", s.importance_paths, 0, kMaxImportancePaths);
+  s.importance_floor = r.f32("settings.importance_floor");
+  check_closed(r, "settings.importance_floor", s.importance_floor, 0.0f, 1.0f);
+  s.bidir_vpls = r.i32("settings.bidir_vpls");
+  check_range(r, "settings.bidir_vpls", s.bidir_vpls, 0, kMaxBidirVpls);
+  s.bidir_camera_paths = r.i32("settings.bidir_camera_paths");
+  check_range(r, "settings.bidir_camera_paths", s.bidir_camera_paths, 0, kMaxBidirPaths);
+  // What else they refuse together (the method, the counts they need).
+  if (r.ok()) {
+    if (auto e = importance_settings_error(s)) r.fail("settings.importance", *e);
+  }
 }
 
 void write(Writer& w, const TileJob& t) {

@@ -32,8 +32,9 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // 2: RenderSettings carries compensation_samples. 3: Welcome carries the master's timeout and
 // the pixel format; TileResult its pixel format and count of non-finite pixels the worker zeroed;
 // Bye says why (leaving, quarantined, failed). 4: settings split path lengths, anti-aliasing,
-// glossy gather, lightcuts. 5: glass branches, caustic photons.
-inline constexpr uint16_t kVersion = 5;
+// glossy gather, lightcuts. 5: glass branches, caustic photons. 6: settings
+// carry light importance and bidirectional IR.
+inline constexpr uint16_t kVersion = 6;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;

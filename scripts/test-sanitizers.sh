@@ -19,7 +19,7 @@ targets=(igi_tests igi-master igi-worker igi-render igi-keys igi-soak)
 # Under TSan (5-15x slower) the statistical accuracy tests would take most of
 # CI's time: they run the same render pool single-process that TileInvariance,
 # WhiteFurnace and the distributed tests run, and check numbers, not threads.
-tsan_skip='IgiAccuracy|LightcutsAccuracy|Clamping\.|Stability\.|CornellMean|CornerRegains|SuiteScenes\.Large|GroupsKeepTheMean|VplFurnace\.|CausticAccuracy|CausticFurnace'
+tsan_skip='IgiAccuracy|ImportanceAccuracy|LightcutsAccuracy|Clamping\.|Stability\.|CornellMean|CornerRegains|SuiteScenes\.Large|GroupsKeepTheMean|VplFurnace\.|CausticAccuracy|CausticFurnace'
 
 status=0
 for kind in "${kinds[@]}"; do

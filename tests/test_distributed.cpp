@@ -152,6 +152,34 @@ TEST(Distributed, WorkerKilledMidFrameLosesNothing) {
   EXPECT_LT(slowest, 2 * 0.3 + 1.0 * test::kSlowdown) << "a kill delays a frame by about a timeout, not more";
 }
 
+// Light importance and bidirectional IR: every worker computes the light
+// probabilities and resampled sets itself, so no frame setup carries them,
+// and a tile reissued after a worker's death comes out the same.
+TEST(Distributed, LightImportanceAndBidirectionalMatchOneProcessWithAWorkerKilled) {
+  const std::string out = test::output_path("dist-importance.exr"), stats = test::output_path("dist-importance.json");
+  const std::string options = "--aa 4 --clamp 0.05 --importance 256 --bidir 12 ";
+  const int frames = 6;
+  auto r = test::run(master("--workers 2 --frames " + std::to_string(frames) +
+                            " --heartbeat-ms 50 --timeout-ms 300 --test-kill-worker-after 20 " + options + "-o " + out +
+                            " --stats " + stats, "rooms"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // The kill comes after 20 results once both workers have joined (80 tiles a frame).
+  const nlohmann::json last = read_json(stats)["frames"][frames - 1];
+  EXPECT_EQ(last["workers"].size(), 1u) << "one worker was killed";
+  EXPECT_GT(last["reissued_total"].get<int>() + last["duplicated_total"].get<int>(), 0)
+      << "its tiles came back from the other";
+  test::Prepared p(load_scene("rooms"));
+  RenderSettings s = test::vpl_settings(MethodKind::Igi, 8, 0.05f, true, 0, 4);
+  s.importance_paths = 256;
+  s.bidir_vpls = 12;
+  const Image one = p.render(s, kWidth, kHeight, 1, 1);
+  for (int f = 0; f < frames; ++f) {
+    char name[64];
+    std::snprintf(name, sizeof name, "dist-importance-%04d.exr", f);
+    EXPECT_TRUE(test::images_identical(name, read_image(test::output_path(name)), one));
+  }
+}
+
 TEST(Distributed, WorkerJoiningMidSessionGetsWork) {
   const int port = test::free_port();
   const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(port);

@@ -50,7 +50,8 @@ struct TileCase {
 
 // Every option that changes how a pixel is shaded, on a scene where it acts:
 // anti-aliasing, the glossy gather (glossy), exact spot light (corner),
-// bias compensation, glass branches and the caustic photon map (glass).
+// bias compensation, glass branches and the caustic photon map (glass), light
+// importance (rooms) and bidirectional IR (corridor).
 std::vector<TileCase> tile_cases() {
   RenderSettings all = vpl_settings(MethodKind::Igi, 4, 0.05f, true, 2);
   all.aa_samples = 4;
@@ -60,13 +61,27 @@ std::vector<TileCase> tile_cases() {
   caustics.caustics = true;
   caustics.caustic_photons = 3000;
   caustics.caustic_radius = 0.02f;
+  // Light importance and bidirectional IR (common/importance/): their
+  // estimates, threads and resampling must not leak into the pixels.
+  RenderSettings importance = vpl_settings(MethodKind::Igi, 8, 0.05f, true, 0, 4);
+  importance.importance_paths = 300;
+  RenderSettings bidir = importance;
+  bidir.importance_paths = 0;
+  bidir.bidir_vpls = 12;
+  RenderSettings ir_both = importance;
+  ir_both.method = MethodKind::InstantRadiosity;
+  ir_both.bidir_vpls = 8;
+  ir_both.aa_samples = 1;
   return {{"ir", "cornell", vpl_settings(MethodKind::InstantRadiosity, 4, 0.05f)},
           {"igi", "cornell", vpl_settings(MethodKind::Igi, 4, 0.05f)},
           {"igi_aa_glossy_compensation", "glossy", all},
           {"ir_aa_glossy_compensation", "glossy", ir_all},
           {"igi_aa_spot", "corner", all},
           {"igi_aa_glass_caustics", "glass", caustics},
-          {"lightcuts", "cornell", vpl_settings(MethodKind::Lightcuts, 4, 0.05f)}};
+          {"lightcuts", "cornell", vpl_settings(MethodKind::Lightcuts, 4, 0.05f)},
+          {"igi_importance", "rooms", importance},
+          {"igi_bidir", "corridor", bidir},
+          {"ir_importance_bidir", "rooms-3", ir_both}};
 }
 
 class TileInvariance : public ::testing::TestWithParam<TileCase> {};

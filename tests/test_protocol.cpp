@@ -40,7 +40,9 @@ bool same(const RenderSettings& a, const RenderSettings& b) {
          same(a.lightcuts_error, b.lightcuts_error) && a.lightcuts_max_cut == b.lightcuts_max_cut &&
          a.lightcuts_spacing == b.lightcuts_spacing && a.lightcuts_samples == b.lightcuts_samples &&
          a.glass_branches == b.glass_branches && a.caustics == b.caustics && a.caustic_photons == b.caustic_photons &&
-         same(a.caustic_radius, b.caustic_radius);
+         same(a.caustic_radius, b.caustic_radius) && a.importance_paths == b.importance_paths &&
+         same(a.importance_floor, b.importance_floor) && a.bidir_vpls == b.bidir_vpls &&
+         a.bidir_camera_paths == b.bidir_camera_paths;
 }
 bool same(const Hello& a, const Hello& b) {
   return a.build_id == b.build_id && a.simd == b.simd && a.threads == b.threads;
@@ -99,7 +101,7 @@ TileResult sample_half_tile_result() {
 
 std::vector<Message> samples() {
   RenderSettings settings{MethodKind::InstantRadiosity, 7, 5, 3, 4, 64, 9, 0.3f, 2, 0.05f, 3, false, 0.8f, 0.1f, 0.03f, 500, 6, 4,
-                          5, true, 12345, 0.02f};
+                          5, true, 12345, 0.02f, 512, 0.3f, 64, 8};
   Camera camera{{1, 2, 3}, {0, -0.2f, -1}, {0.1f, 1, 0}, 0.9f};
   std::vector<uint8_t> scene(300);
   for (size_t i = 0; i < scene.size(); ++i) scene[i] = uint8_t(i * 7);
@@ -367,6 +369,16 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {settings_edited([](auto& s) { s.glossy_rays = 0; }), "Welcome.settings.glossy_rays"},
       {settings_edited([](auto& s) { s.glossy_rays = 65; }), "Welcome.settings.glossy_rays"},
       {settings_edited([](auto& s) { s.interleave = 17; }), "Welcome.settings.interleave"},
+      {settings_edited([](auto& s) { s.importance_paths = -1; }), "Welcome.settings.importance_paths"},
+      {settings_edited([](auto& s) { s.importance_paths = (1 << 20) + 1; }), "Welcome.settings.importance_paths"},
+      {settings_edited([](auto& s) { s.importance_floor = 1.5f; }), "Welcome.settings.importance_floor"},
+      {settings_edited([](auto& s) { s.importance_floor = NAN; }), "Welcome.settings.importance_floor"},
+      {settings_edited([](auto& s) { s.bidir_vpls = -1; }), "Welcome.settings.bidir_vpls"},
+      {settings_edited([](auto& s) { s.bidir_vpls = (1 << 16) + 1; }), "Welcome.settings.bidir_vpls"},
+      {settings_edited([](auto& s) { s.bidir_camera_paths = 4097; }), "Welcome.settings.bidir_camera_paths"},
+      {settings_edited([](auto& s) { s.method = MethodKind::PathTracer; s.importance_paths = 0; }),
+       "Welcome.settings.importance: --bidir: only for --method ir or igi"},
+      {settings_edited([](auto& s) { s.bidir_vpls = 4; }), "Welcome.settings.importance: --bidir 4 with --aa 9"},
       {settings_edited([](auto& s) { s.interleave = 0; }), "Welcome.settings.interleave"},
       {settings_edited([](auto& s) { s.paths_per_set = (1 << 20) + 1; }), "Welcome.settings.paths_per_set"},
       {settings_edited([](auto& s) { s.paths_per_set = -3; }), "Welcome.settings.paths_per_set"},
@@ -446,7 +458,16 @@ TEST(Protocol, LimitsThemselvesAreAccepted) {
       settings_edited([](auto& s) { s.filter_normal_cos = -1; s.clamp = 0; }),
       settings_edited([](auto& s) { s.aa_samples = 64; s.paths_per_set = 64; s.glossy_threshold = 1; s.glossy_rays = 64; }),
       settings_edited([](auto& s) {
+        s.importance_paths = 1 << 20;
+        s.importance_floor = 1;
+        s.bidir_vpls = 1 << 16;
+        s.bidir_camera_paths = 4096;
+        s.paths_per_set = 4096;
+      }),
+      settings_edited([](auto& s) { s.importance_floor = 0; s.bidir_vpls = 9; s.bidir_camera_paths = 0; }),
+      settings_edited([](auto& s) {
         s.method = MethodKind::Lightcuts;
+        s.importance_paths = s.bidir_vpls = 0;
         s.lightcuts_max_cut = 1 << 20;
         s.lightcuts_spacing = 64;
         s.lightcuts_samples = 1;

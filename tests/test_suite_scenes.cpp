@@ -9,6 +9,7 @@
 #include "lighting/lights.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
+#include "scene/accel.h"
 #include "scene/gltf_writer.h"
 #include "scene/load_scene.h"
 #include "scene/suite_scenes.h"
@@ -74,7 +75,7 @@ void expect_round_trip(const std::string& name) {
 }
 
 TEST(SuiteScenes, NamesAreRegistered) {
-  for (const char* name : {"corner", "rooms", "rooms-1", "rooms-7", "rooms-10", "glossy", "large", "glass"})
+  for (const char* name : {"corner", "rooms", "rooms-1", "rooms-7", "rooms-10", "corridor", "glossy", "large", "glass"})
     EXPECT_TRUE(is_builtin_scene(name)) << name;
   for (const char* name : {"rooms-0", "rooms-11", "rooms-", "rooms-x", "roomsy"})
     EXPECT_FALSE(is_builtin_scene(name)) << name;
@@ -108,6 +109,32 @@ TEST(SuiteScenes, RoomsHaveDoorwaysAndOneLightEach) {
   EXPECT_EQ(load_scene("rooms").triangles.size(), make_rooms_scene(4).triangles.size());
   expect_round_trip("rooms");
   expect_round_trip("rooms-10");
+}
+
+TEST(SuiteScenes, CorridorHidesItsLampFromTheCameraRoom) {
+  const Scene s = load_scene("corridor");
+  EXPECT_NO_THROW(s.validate());
+  EXPECT_EQ(emissive_triangles(s), 2u);
+  EXPECT_TRUE(s.lights.empty());
+  EXPECT_EQ(suite_room("corridor", s.camera->position), 0) << "the camera stands in room 0";
+  // From anywhere in the camera's room (x, z in [1, 5]) to anywhere on the lamp: a wall.
+  const Accel accel(s);
+  int lines = 0;
+  for (uint32_t t = 0; t < s.triangles.size(); ++t) {
+    if (!s.materials[s.triangle_material[t]].is_emissive()) continue;
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 lamp = 0.98f * s.positions[s.triangles[t][k]] + 0.02f * s.positions[s.triangles[t][(k + 1) % 3]];
+      for (float x = 1.05f; x < 5.0f; x += 0.45f)
+        for (float z = 1.05f; z < 5.0f; z += 0.45f)
+          for (float y : {0.05f, 1.2f, 2.45f}) {
+            const glm::vec3 p(x, y, z), d = lamp - p;
+            ++lines;
+            ASSERT_TRUE(accel.occluded(Ray{p, glm::normalize(d), 0.0f, glm::length(d) * 0.999f})) << x << " " << y << " " << z;
+          }
+    }
+  }
+  EXPECT_GT(lines, 1000);
+  expect_round_trip("corridor");
 }
 
 TEST(SuiteScenes, GlossyIsTheCornellBoxWithAMetalFloor) {

@@ -53,10 +53,13 @@ float LightSet::power(const Light& light) const {
 }
 
 LightSample LightSet::sample(glm::vec3 p, float u_select, glm::vec2 u) const {
-  LightSample s;
-  if (lights_.empty()) return s;
+  if (lights_.empty()) return LightSample{};
   uint32_t index = distribution_.sample(u_select);
-  float select = distribution_.probability(index);
+  return sample_light(index, distribution_.probability(index), p, u);
+}
+
+LightSample LightSet::sample_light(uint32_t index, float select, glm::vec3 p, glm::vec2 u) const {
+  LightSample s;
   const Light& light = lights_[index];
   if (light.kind == LightKind::Area) {
     const glm::uvec3& t = scene_.triangles[light.index];
@@ -106,8 +109,12 @@ float LightSet::pdf_area(uint32_t triangle, glm::vec3 p, glm::vec3 hit_point) co
 }
 
 EmissionSample LightSet::sample_emission(float u_select, glm::vec2 u) const {
-  uint32_t index = distribution_.sample(u_select);
-  float select = distribution_.probability(index);
+  return sample_emission(distribution_, u_select, u);
+}
+
+EmissionSample LightSet::sample_emission(const Distribution1D& selection, float u_select, glm::vec2 u) const {
+  uint32_t index = selection.sample(u_select);
+  float select = selection.probability(index);
   const Light& light = lights_[index];
   EmissionSample e{};
   e.kind = light.kind;

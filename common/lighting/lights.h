@@ -49,6 +49,8 @@ class LightSet {
 
   // Next-event estimation from point p. u_select picks the light; u picks the point.
   LightSample sample(glm::vec3 p, float u_select, glm::vec2 u) const;
+  // The same for a light the caller chose, with probability `select` (folded into pdf).
+  LightSample sample_light(uint32_t light, float select, glm::vec3 p, glm::vec2 u) const;
   // Solid-angle density with which sample() would have picked the point hit on
   // emissive `triangle` at `hit_point` from `p` (for MIS of BSDF-sampled hits).
   float pdf_area(uint32_t triangle, glm::vec3 p, glm::vec3 hit_point) const;
@@ -56,6 +58,11 @@ class LightSet {
   // A light and a point on it, with the power it carries (for VPL light paths).
   // Area lights: point uniform on the triangle; the direction is sampled by the caller.
   EmissionSample sample_emission(float u_select, glm::vec2 u) const;
+  // The same with the light chosen by `selection` (one weight per light, e.g.
+  // light importance) instead of by power; power is divided by its probability.
+  EmissionSample sample_emission(const Distribution1D& selection, float u_select, glm::vec2 u) const;
+  // Emitted power of light `light` (luminance of its flux): the weights of power selection.
+  float light_power(uint32_t light) const { return power(lights_[light]); }
 
   float scene_radius() const { return scene_radius_; }
   const Scene& scene() const { return scene_; }

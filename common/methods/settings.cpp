@@ -34,6 +34,26 @@ std::optional<std::string> out_of_range(const char* option, int value, int lo, i
 
 }  // namespace
 
+std::optional<std::string> importance_settings_error(const RenderSettings& s) {
+  if (auto e = out_of_range("--importance", s.importance_paths, 0, kMaxImportancePaths, " (0 = off)")) return e;
+  if (!(s.importance_floor >= 0.0f && s.importance_floor <= 1.0f))
+    return "--importance-floor: expected a share in [0, 1], got " + std::to_string(s.importance_floor);
+  if (auto e = out_of_range("--bidir", s.bidir_vpls, 0, kMaxBidirVpls, " (0 = off)")) return e;
+  if (auto e = out_of_range("--bidir-camera-paths", s.bidir_camera_paths, 0, kMaxBidirPaths, " (0 = --vpl-paths)"))
+    return e;
+  const bool vpl_method = s.method == MethodKind::InstantRadiosity || s.method == MethodKind::Igi;
+  if (!vpl_method && s.importance_paths > 0) return std::string("--importance: only for --method ir or igi");
+  if (!vpl_method && s.bidir_vpls > 0) return std::string("--bidir: only for --method ir or igi");
+  if (s.bidir_vpls == 0) return std::nullopt;
+  if (s.paths_per_set > kMaxBidirPaths)
+    return "--bidir needs --vpl-paths <= " + std::to_string(kMaxBidirPaths) +
+           " (every candidate is tested against every camera path), got " + std::to_string(s.paths_per_set);
+  if (s.bidir_vpls < s.aa_samples)
+    return "--bidir " + std::to_string(s.bidir_vpls) + " with --aa " + std::to_string(s.aa_samples) +
+           ": each sub-sample's group needs a VPL of its own, so keep at least " + std::to_string(s.aa_samples);
+  return std::nullopt;
+}
+
 std::optional<std::string> settings_error(const RenderSettings& s) {
   const char* unbounded = " (0 = unbounded)";
   if (auto e = out_of_range("--path-depth", s.path_depth, 0, kMaxDepth, unbounded)) return e;
@@ -61,7 +81,7 @@ std::optional<std::string> settings_error(const RenderSettings& s) {
   if (auto e = out_of_range("--glass-branches", s.glass_branches, 1, kMaxGlassBranches)) return e;
   if (std::string e = lightcuts::settings_error(s); !e.empty()) return e;
   if (std::string e = photons::settings_error(s); !e.empty()) return e;
-  return std::nullopt;
+  return importance_settings_error(s);
 }
 
 }  // namespace igi

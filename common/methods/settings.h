@@ -24,6 +24,9 @@ inline constexpr int kMaxCompensationSamples = 256;
 inline constexpr int kMaxAntialiasSamples = 64;  // 8 x 8 sub-samples
 inline constexpr int kMaxGlossyRays = 64;
 inline constexpr int kMaxGlassBranches = 8;
+inline constexpr int kMaxImportancePaths = 1 << 20;  // camera paths of the light-importance estimate
+inline constexpr int kMaxBidirPaths = 4096;          // bidirectional: light and camera paths per set
+inline constexpr int kMaxBidirVpls = 1 << 16;        // bidirectional: VPLs kept per set
 
 // The defaults of anti-aliasing, clamp and compensation are the best trade-off
 // measured at interactive frame times (README, "Defaults").
@@ -71,11 +74,23 @@ struct RenderSettings {
   bool caustics = false;
   int caustic_photons = 20000;    // photon paths shot per frame (photons/caustic_settings.h)
   float caustic_radius = 0.01f;   // density-estimation radius, a fraction of the scene diagonal
+  // Light importance for the current view (ir/igi; common/importance/light_importance.h):
+  // VPL light paths start at lights in proportion to an estimate of what each
+  // adds to the image, from this many camera paths. 0 = lights by power.
+  int importance_paths = 0;
+  float importance_floor = 0.2f;  // share of the light paths still started by power (no light starved)
+  // Bidirectional instant radiosity (ir/igi; common/importance/bidirectional.h):
+  // each set's M light paths and R camera paths give candidate VPLs, of which
+  // this many are kept by their estimated contribution to the image. 0 = off.
+  int bidir_vpls = 0;
+  int bidir_camera_paths = 0;     // R; 0 = as many as light paths (M)
 };
 
 // What is wrong with the settings, named as igi-render's option (e.g.
 // "--aa: ..."), or nothing when every field is in range and they fit together.
 std::optional<std::string> settings_error(const RenderSettings& settings);
+// The part of settings_error() about --importance and --bidir (the wire format checks it too).
+std::optional<std::string> importance_settings_error(const RenderSettings& settings);
 
 }  // namespace igi
 

@@ -5,11 +5,11 @@
 #include <stdexcept>
 
 #include "filter/discontinuity_buffer.h"
+#include "importance/view_vpls.h"
 #include "methods/bias_compensation.h"
 #include "methods/direct_lights.h"
 #include "methods/subpixel.h"
 #include "methods/vpl_contribution.h"
-#include "vpl/vpl_generator.h"
 
 namespace igi {
 
@@ -41,7 +41,8 @@ VplMethod::VplMethod(const SceneContext& context, const RenderSettings& settings
 
 void VplMethod::begin_frame(const FrameSetup& frame) {
   frame_ = frame;
-  vpls_ = generate_vpls(context_, settings_, frame.seed);
+  setup_rays_ = RayCounts{};
+  vpls_ = importance::generate_view_vpls(context_, settings_, frame, setup_rays_);
   if (caustics_) caustics_->build(frame.seed);
   // A typical demodulated irradiance: one set's flux spread over the scene.
   double flux = 0.0;

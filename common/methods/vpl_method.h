@@ -41,6 +41,8 @@ class VplMethod final : public Method {
   uint64_t frame_state_hash() const override;
   const VplSets& vpls() const { return vpls_; }
   const CausticMap* caustics() const { return caustics_ ? &*caustics_ : nullptr; }
+  // Rays begin_frame() traced for light importance and bidirectional IR (not the light paths).
+  const RayCounts& setup_rays() const { return setup_rays_; }
   // Benchmarks only: record every packet traced from now on (one thread only).
   void record_rays(RayLog* log) { log_ = log; }
 
@@ -60,6 +62,7 @@ class VplMethod final : public Method {
   RenderSettings settings_;
   FrameSetup frame_;
   VplSets vpls_;
+  RayCounts setup_rays_;
   std::vector<Vpl> exact_;  // point, spot and directional lights (methods/direct_lights.h)
   std::optional<CausticMap> caustics_;
   float clamp_bound_ = INFINITY;

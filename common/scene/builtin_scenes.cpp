@@ -137,7 +137,7 @@ Scene make_cornell_blob(int triangles) {
 
 // "rooms-N" takes any N in 1..kMaxRooms; the list names the largest as an example.
 std::vector<std::string> builtin_scene_names() {
-  return {"cornell", "cornell-blob", "furnace", "corner", "rooms", "rooms-10", "glossy", "glossy-rough", "large", "glass"};
+  return {"cornell", "cornell-blob", "furnace", "corner", "rooms", "rooms-10", "corridor", "glossy", "glossy-rough", "large", "glass"};
 }
 
 bool is_builtin_scene(const std::string& name) {
@@ -153,6 +153,7 @@ Scene make_builtin_scene(const std::string& name) {
   if (name == "cornell-blob") return make_cornell_blob(320000);
   if (name == "corner") return make_corner_scene();
   if (const int rooms = parse_rooms_name(name)) return make_rooms_scene(rooms);
+  if (name == "corridor") return make_corridor_scene();
   if (name == "glossy") return make_glossy_cornell();
   if (name == "glossy-rough") return make_glossy_cornell(0.3f, "glossy-rough");
   if (name == "large") return make_large_scene();

@@ -49,6 +49,36 @@ void add_ceiling_light(Scene& s, float cx, float y, float cz, float h, uint32_t 
   add_quad(s, {cx + h, y, cz - h}, {cx + h, y, cz + h}, {cx - h, y, cz + h}, {cx - h, y, cz - h}, material);
 }
 
+// A square of side 2 half_u x 2 half_v around `center` spanned by unit axes u
+// and v, its front face towards `normal`.
+void add_facing_quad(Scene& s, glm::vec3 center, glm::vec3 u, glm::vec3 v, glm::vec3 normal, uint32_t material) {
+  if (glm::dot(glm::cross(u, v), normal) < 0.0f) std::swap(u, v);
+  add_quad(s, center - u - v, center + u - v, center + u + v, center - u + v, material);
+}
+
+// Floor, ceiling and walls of a plan of square cells (`cell` metres, x to
+// the right, z down the rows): '#' is solid, anything else open. Every
+// face looks into its open cell.
+void add_floor_plan(Scene& s, const std::vector<std::string>& plan, float cell, float height, uint32_t walls,
+                    uint32_t floor, uint32_t ceiling) {
+  auto open = [&](int x, int z) {
+    return z >= 0 && z < int(plan.size()) && x >= 0 && x < int(plan[size_t(z)].size()) && plan[size_t(z)][size_t(x)] != '#';
+  };
+  const float h = 0.5f * cell;
+  const glm::vec3 ex(h, 0, 0), ey(0, 0.5f * height, 0), ez(0, 0, h);
+  for (int z = 0; z < int(plan.size()); ++z)
+    for (int x = 0; x < int(plan[size_t(z)].size()); ++x) {
+      if (!open(x, z)) continue;
+      const glm::vec3 c((float(x) + 0.5f) * cell, 0.5f * height, (float(z) + 0.5f) * cell);
+      add_facing_quad(s, c - ey, ex, ez, {0, 1, 0}, floor);
+      add_facing_quad(s, c + ey, ex, ez, {0, -1, 0}, ceiling);
+      if (!open(x - 1, z)) add_facing_quad(s, c - ex, ey, ez, {1, 0, 0}, walls);
+      if (!open(x + 1, z)) add_facing_quad(s, c + ex, ey, ez, {-1, 0, 0}, walls);
+      if (!open(x, z - 1)) add_facing_quad(s, c - ez, ex, ey, {0, 0, 1}, walls);
+      if (!open(x, z + 1)) add_facing_quad(s, c + ez, ex, ey, {0, 0, -1}, walls);
+    }
+}
+
 }  // namespace
 
 void group_by_material(Scene& s) {
@@ -139,6 +169,39 @@ Scene make_rooms_scene(int n) {
   return s;
 }
 
+Scene make_corridor_scene() {
+  Scene s;
+  s.name = "corridor";
+  const uint32_t walls = diffuse(s, "walls", {0.8f, 0.8f, 0.8f});
+  const uint32_t floor = diffuse(s, "floor", {0.6f, 0.55f, 0.5f});
+  const uint32_t ceiling = diffuse(s, "ceiling", {0.85f, 0.85f, 0.85f});
+  const uint32_t lamp = emitter(s, "lamp", {kCorridorLamp, 0.9f * kCorridorLamp, 0.7f * kCorridorLamp});
+  // Room A (camera) at the top left, a corridor 2 m wide down and then
+  // right, room B (lamp) at the bottom right. No straight line leaves A
+  // through its door (x 2..4, z = 5) and reaches B: down the first leg to
+  // the second (x = 4, z 7..9) it needs a slope of at least 1 in z per x,
+  // along the second at most 1 per 2.
+  const std::vector<std::string> plan = {
+      "##############",  // z = 0
+      "#....#########",
+      "#....#########",
+      "#....#########",
+      "#....#########",
+      "##..##########",  // z = 5: A's door
+      "##..####....##",
+      "##..........##",  // z = 7, 8: the corridor's second leg, open into B
+      "##..........##",
+      "########....##",
+      "##############",
+  };
+  const float height = 2.5f;
+  add_floor_plan(s, plan, 1.0f, height, walls, floor, ceiling);
+  add_ceiling_light(s, 10.0f, height - 1e-3f, 8.0f, 0.4f, lamp);
+  s.camera = look_at({1.5f, 1.6f, 1.4f}, {3.2f, 1.0f, 8.0f}, 60.0f);
+  group_by_material(s);
+  return s;
+}
+
 Scene make_glossy_cornell(float alpha, const std::string& name) {
   Scene s = make_cornell_box();
   s.name = name;
@@ -225,6 +288,15 @@ Scene make_glass_cornell() {
   add_smooth_sphere(s, {0.185f, 1.5f * radius, 0.17f}, radius, 32, glass_id);
   group_by_material(s);
   return s;
+}
+
+int suite_room(const std::string& name, glm::vec3 p) {
+  if (const int n = parse_rooms_name(name)) {
+    const int i = std::clamp(int(std::floor(p.x / 4.0f)), 0, n - 1), j = std::clamp(int(std::floor(p.z / 4.0f)), 0, n - 1);
+    return i * n + j;
+  }
+  if (name == "corridor") return p.z < 5.0f ? 0 : p.x < 8.0f ? 1 : 2;  // the plan of make_corridor_scene()
+  return 0;
 }
 
 int parse_rooms_name(const std::string& name) {

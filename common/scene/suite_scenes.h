@@ -12,6 +12,11 @@
 //           darkens it).
 //   rooms-N N x N rooms of 4 x 4 x 2.5 m joined by doorways, one ceiling
 //           light each; the camera sees a few rooms, most light is occluded.
+//   corridor  a 4 x 4 m room (the camera's) joined by a corridor with a bend
+//           to a second room with the only light: no light can be seen from
+//           the camera's room, whose light has bounced at least once in the
+//           corridor (light paths seldom get there). Through the door the
+//           camera also sees the bend, lit straight along the second leg.
 //   glossy  the Cornell box with a GGX metal floor (alpha 0.04): VPLs show as
 //           spikes; glossy-rough: alpha 0.3, where they blur.
 //   large   the Cornell box without its blocks and a 3 x 3 grid of bumpy
@@ -31,6 +36,8 @@ inline constexpr int kMaxRooms = 10;
 Scene make_corner_scene();
 // 1 <= n <= kMaxRooms; throws SceneError otherwise.
 Scene make_rooms_scene(int n);
+inline constexpr float kCorridorLamp = 100.0f;  // the lamp's radiance (red channel), W/(m^2 sr)
+Scene make_corridor_scene();
 // alpha: GGX roughness parameter of the floor (roughness^2).
 Scene make_glossy_cornell(float alpha = 0.04f, const std::string& name = "glossy");
 // At least `triangles` triangles in the spheres (the box adds 20).
@@ -41,6 +48,12 @@ Scene make_large_scene(int triangles = 1'050'000);
 // sees the caustic past the sphere. About 4,000 triangles, with
 // smooth shading normals on the sphere (and face normals elsewhere).
 Scene make_glass_cornell();
+
+// The room of suite scene `name` (as named on the command line) holding
+// point p, for counting the VPLs that land in rooms the camera sees: the
+// 4 x 4 m cells of rooms-N (i N + j); in "corridor" 0 for the camera's room,
+// 1 for the corridor, 2 for the lamp's room; 0 in scenes of one room.
+int suite_room(const std::string& name, glm::vec3 p);
 
 // The room count named by "rooms" (4) or "rooms-N"; 0 when `name` is neither
 // or N is outside 1..kMaxRooms.

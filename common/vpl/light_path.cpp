@@ -6,12 +6,15 @@
 
 namespace igi {
 
-LightPathStart start_light_path(const LightSet& lights, const Scene& scene, SampleStream& u) {
+LightPathStart start_light_path(const LightSet& lights, const Scene& scene, SampleStream& u,
+                                const Distribution1D* selection) {
   const float u_select = u.next_1d();
   const glm::vec2 u_point = u.next_2d();
   const glm::vec2 u_dir = u.next_2d();
-  EmissionSample e = lights.sample_emission(u_select, u_point);
+  const EmissionSample e = selection ? lights.sample_emission(*selection, u_select, u_point)
+                                     : lights.sample_emission(u_select, u_point);
   LightPathStart start;
+  start.light = e.light;
   switch (e.kind) {
     case LightKind::Area: {
       start.on_area_light = true;

@@ -22,6 +22,7 @@ inline constexpr uint32_t kDimsPerBounce = 8;
 struct LightPathStart {
   Ray ray;               // the first ray leaving the light
   glm::vec3 flux{0.0f};  // power carried along it, per path (W)
+  uint32_t light = 0;    // the LightSet entry it leaves
   // Area lights: the point on the light, its normal and power / pdf of the
   // point (what an Area VPL carries). Point, spot and directional lights
   // leave no such vertex.
@@ -29,9 +30,11 @@ struct LightPathStart {
   glm::vec3 position{0.0f}, normal{0.0f}, power{0.0f};
 };
 
-// Picks a light in proportion to its power, a point on it and a direction
-// (cosine-distributed for area lights, uniform for point lights and inside a
-// spot's cone), from the stream's next kStartDims dimensions.
-LightPathStart start_light_path(const LightSet& lights, const Scene& scene, SampleStream& u);
+// Picks a light in proportion to its power (or by `selection`, a
+// distribution over the LightSet's entries: light importance), a point on it
+// and a direction (cosine-distributed for area lights, uniform for point
+// lights and inside a spot's cone), from the stream's next kStartDims dimensions.
+LightPathStart start_light_path(const LightSet& lights, const Scene& scene, SampleStream& u,
+                                const Distribution1D* selection = nullptr);
 
 }  // namespace igi

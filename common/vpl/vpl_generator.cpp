@@ -13,9 +13,12 @@ namespace igi {
 namespace {
 
 void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, uint32_t path,
-                      uint32_t seed, float inv_paths, std::vector<Vpl>& out) {
+                      uint32_t seed, float inv_paths, std::vector<Vpl>& out, const LightPathOptions& options) {
   SampleStream start_stream(path, seed, 0);
-  const LightPathStart start = start_light_path(ctx.lights, ctx.scene, start_stream);
+  const size_t first = out.size();
+  const LightPathStart start = start_light_path(ctx.lights, ctx.scene, start_stream, options.selection);
+  // The vertex the path leaves from: the Area VPL it leaves on the light, or the punctual light.
+  LightVertex previous{LightVertex::From::Punctual, start.light};
   // An area light leaves a VPL on itself. Point, spot and directional lights
   // leave none: the methods evaluate their light exactly (vpl/vpl.h); their
   // paths still carry it on.
@@ -26,6 +29,8 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
     v.normal = start.normal;
     v.flux = start.power * inv_paths;
     out.push_back(v);
+    if (options.vertices) options.vertices->push_back(LightVertex{});
+    previous = {LightVertex::From::Vpl, uint32_t(first)};
   }
   Ray ray = start.ray;
   glm::vec3 flux = start.flux;
@@ -37,11 +42,16 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
     const glm::vec3 wo = -ray.direction;
     // Mirrors and glass get no VPL; the path carries their light on. VPLs on
     // sharp GGX surfaces radiate through a widened lobe (VplShading::vpl_bsdf).
-    if (!sp.material->is_specular())
+    if (!sp.material->is_specular()) {
       // The VPL reflects towards the side the light arrived from.
       out.push_back(Vpl{sp.position, glm::dot(wo, sp.geometric_normal) >= 0.0f ? sp.shading_normal : -sp.shading_normal,
                         flux * inv_paths, wo, sp.albedo,
                         ctx.scene.triangle_material[hit.triangle], 0, VplKind::Surface});
+      if (options.vertices) options.vertices->push_back({previous.from, previous.index, depth});
+      previous = {LightVertex::From::Vpl, uint32_t(out.size() - 1)};
+    } else {
+      previous = {LightVertex::From::Specular, 0};
+    }
     SampleStream u(path, seed, kStartDims + kDimsPerBounce * uint32_t(depth));
     const glm::vec2 u_dir = u.next_2d();
     const float u_lobe = u.next_1d();
@@ -70,7 +80,8 @@ uint64_t hash_vpls(const std::vector<Vpl>& vpls) {
   return h;
 }
 
-VplSets generate_vpls(const SceneContext& context, const RenderSettings& settings, uint32_t seed) {
+VplSets generate_vpls(const SceneContext& context, const RenderSettings& settings, uint32_t seed,
+                      const LightPathOptions& options) {
   VplSets sets;
   sets.interleave = settings.interleave;
   sets.groups = settings.aa_samples;
@@ -85,7 +96,7 @@ VplSets generate_vpls(const SceneContext& context, const RenderSettings& setting
       sets.group_begin.push_back(uint32_t(sets.vpls.size()));
       // Paths i with floor(i G / M) = g.
       for (uint32_t i = (g * paths + groups - 1) / groups; i < ((g + 1) * paths + groups - 1) / groups; ++i)
-        trace_light_path(context, settings, uint32_t(k) * paths + i, path_seed, inv_paths, sets.vpls);
+        trace_light_path(context, settings, uint32_t(k) * paths + i, path_seed, inv_paths, sets.vpls, options);
     }
     sets.set_begin.push_back(uint32_t(sets.vpls.size()));
   }

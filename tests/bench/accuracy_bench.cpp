@@ -1,12 +1,15 @@
 // igi-accuracy: error against render time for every method on the accuracy
 // suite, all points measured in one run on one machine. Writes CSV rows
-//   scene,method,params,seconds,relmse,rmse,flip
+//   scene,method,params,seconds,relmse,rmse,flip,rays_per_pixel,cpu_seconds,vpls_seen
 // (relMSE with epsilon kRelMseEpsilon = 0.01; FLIP: mean LDR-FLIP at 67 pixels
 // per degree of the images tonemapped as the PNG output does; rays of every
-// kind over all passes, per pixel). Asserts nothing;
-// scripts/charts/plot_accuracy.py turns the CSV into charts and headline.md.
+// kind over all passes, per pixel; CPU time of the process, all threads;
+// vpls_seen: the share of the first pass's VPLs that landed in rooms where the
+// camera sees a point (scene/suite_scenes.h suite_room), -1 for pt). Asserts
+// nothing; scripts/charts/plot_accuracy.py turns the CSV into charts and headline.md.
 //
 //   igi-accuracy [--scenes a,b] [--size WxH] [--ref-spp N] [--refs DIR] [--out F.csv] [--quick]
+//                [--series pt,igi,ir,caustics,view,lightcuts]
 //
 // References: pt with --ref-spp samples, cached as
 // DIR/<scene>-<w>x<h>-<spp>-<hash of settings>.exr so reruns reuse them.
@@ -16,13 +19,18 @@
 // lightcuts (default 2 % error) over M, unclamped and at clamp 0.02; on
 // scenes with mirrors or glass, igi with the caustic photon map
 // ("igi+caustics", kCausticPhotons photon paths a frame, default radius and
-// glass branches, filtered, unclamped and at clamp 0.02) over igi's budgets.
+// glass branches, filtered, unclamped and at clamp 0.02) over igi's budgets;
+// "view": igi with light importance (method igi-importance), bidirectional IR
+// (igi-bidir, K = 2 M VPLs kept per set) and both (igi-both), with
+// anti-aliasing 4, per clamp, with and without compensation. --series picks
+// which of these families run (all by default).
 // Unclamped VPL errors have infinite variance: a single seed is one draw of
 // a heavy-tailed figure, so each VPL point is the median over three seeds,
 // with the median seed's time.
 #include <algorithm>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -31,9 +39,12 @@
 
 #include "image/flip.h"
 #include "image/metrics.h"
+#include "methods/vpl_method.h"
 #include "render/offline_render.h"
 #include "sampling/hash.h"
+#include "scene/camera_rays.h"
 #include "scene/load_scene.h"
+#include "scene/suite_scenes.h"
 
 namespace igi {
 namespace {
@@ -50,6 +61,8 @@ struct Options {
   std::string refs = "results/refs";
   std::string out = "results/accuracy/accuracy.csv";
   bool quick = false;  // fewer points, for a smoke run
+  std::vector<std::string> series = {"pt", "igi", "ir", "caustics", "view", "lightcuts"};
+  bool runs(const std::string& family) const { return std::find(series.begin(), series.end(), family) != series.end(); }
 };
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -77,6 +90,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--refs") o.refs = value();
     else if (a == "--out") o.out = value();
     else if (a == "--quick") o.quick = true;
+    else if (a == "--series") o.series = split(value(), ',');
     else throw std::invalid_argument("unknown option '" + a + "' (see the header of tests/bench/accuracy_bench.cpp)");
   }
   return o;
@@ -84,21 +98,56 @@ Options parse(int argc, char** argv) {
 
 // A scene with its BVH and lights, alive for one scene's sweep.
 struct Prepared {
+  std::string name;  // as on the command line (suite_room() knows rooms by it)
   Scene scene;
   Accel accel;
   LightSet lights;
-  explicit Prepared(Scene s) : scene(std::move(s)), accel(scene), lights(scene) {}
+  Prepared(std::string n, Scene s) : name(std::move(n)), scene(std::move(s)), accel(scene), lights(scene) {}
   SceneContext context() const { return {scene, accel, lights}; }
 };
 
-OfflineResult render(const Prepared& p, const RenderSettings& settings, const Options& o, int samples,
-                     uint32_t seed) {
+double cpu_seconds() {
+  timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+FrameSetup base_frame(const Prepared& p, const Options& o, uint32_t seed) {
   FrameSetup frame;
   frame.camera = p.scene.camera_or_auto();
   frame.width = o.width;
   frame.height = o.height;
   frame.seed = seed;
-  return render_offline(p.context(), settings, frame, samples, FrameOptions{});
+  return frame;
+}
+
+OfflineResult render(const Prepared& p, const RenderSettings& settings, const Options& o, int samples,
+                     uint32_t seed, double* cpu = nullptr) {
+  const double cpu0 = cpu_seconds();
+  OfflineResult r = render_offline(p.context(), settings, base_frame(p, o, seed), samples, FrameOptions{});
+  if (cpu) *cpu = cpu_seconds() - cpu0;
+  return r;
+}
+
+// Share of the VPLs of the frame with `seed` in rooms where the camera sees a
+// point (through a 32 x 32 grid of pixel centres).
+double vpls_seen(const Prepared& p, const RenderSettings& settings, const Options& o, uint32_t seed) {
+  const FrameSetup frame = base_frame(p, o, seed);
+  const CameraBasis camera(frame.camera, frame.width, frame.height);
+  std::vector<int> rooms;
+  for (int j = 0; j < 32; ++j)
+    for (int i = 0; i < 32; ++i) {
+      Ray ray = camera.ray((i + 0.5f) * float(frame.width) / 32.0f, (j + 0.5f) * float(frame.height) / 32.0f);
+      ray.mask = kCameraRayMask;
+      Hit hit;
+      if (p.accel.intersect(ray, hit)) rooms.push_back(suite_room(p.name, ray.origin + hit.t * ray.direction));
+    }
+  VplMethod method(p.context(), settings);
+  method.begin_frame(frame);
+  size_t seen = 0;
+  for (const Vpl& v : method.vpls().vpls)
+    seen += std::find(rooms.begin(), rooms.end(), suite_room(p.name, v.position)) != rooms.end();
+  return method.vpls().vpls.empty() ? 0.0 : double(seen) / double(method.vpls().vpls.size());
 }
 
 const Image& cached_reference(const Prepared& p, const std::string& name, const Options& o, Image& storage) {
@@ -123,19 +172,20 @@ const Image& cached_reference(const Prepared& p, const std::string& name, const 
 }
 
 struct Point {
-  double seconds, relmse, rmse, flip, rays_per_pixel;
+  double seconds, relmse, rmse, flip, rays_per_pixel, cpu_seconds = 0.0, vpls_seen = -1.0;
 };
 
-Point measure(const OfflineResult& r, const Image& ref) {
+Point measure(const OfflineResult& r, const Image& ref, double cpu = 0.0) {
   const double pixels = double(r.image.width) * r.image.height;
-  return {r.seconds, rel_mse(r.image, ref), rmse(r.image, ref), mean_flip(r.image, ref), double(r.rays.total()) / pixels};
+  return {r.seconds, rel_mse(r.image, ref), rmse(r.image, ref), mean_flip(r.image, ref), double(r.rays.total()) / pixels,
+          cpu};
 }
 
 void write_row(std::ofstream& csv, const std::string& scene, const char* method, const std::string& params,
                const Point& p) {
   char line[512];
-  std::snprintf(line, sizeof line, "%s,%s,%s,%.4f,%.6g,%.6g,%.6g,%.1f\n", scene.c_str(), method, params.c_str(),
-                p.seconds, p.relmse, p.rmse, p.flip, p.rays_per_pixel);
+  std::snprintf(line, sizeof line, "%s,%s,%s,%.4f,%.6g,%.6g,%.6g,%.1f,%.4f,%.4f\n", scene.c_str(), method,
+                params.c_str(), p.seconds, p.relmse, p.rmse, p.flip, p.rays_per_pixel, p.cpu_seconds, p.vpls_seen);
   csv << line;
   csv.flush();
   std::fputs(line, stderr);
@@ -146,8 +196,9 @@ void sweep_pt(const Prepared& p, const std::string& name, const Options& o, cons
   pt.method = MethodKind::PathTracer;
   const int max_spp = o.quick ? 16 : std::max(16, o.ref_spp / 16);
   for (int spp = 1; spp <= max_spp; spp *= 2) {
-    const OfflineResult r = render(p, pt, o, spp, 1);  // seed 1: independent of the reference's seed 7
-    write_row(csv, name, "pt", "spp=" + std::to_string(spp), measure(r, ref));
+    double cpu = 0.0;
+    const OfflineResult r = render(p, pt, o, spp, 1, &cpu);  // seed 1: independent of the reference's seed 7
+    write_row(csv, name, "pt", "spp=" + std::to_string(spp), measure(r, ref, cpu));
   }
 }
 
@@ -155,14 +206,25 @@ void sweep_pt(const Prepared& p, const std::string& name, const Options& o, cons
 Point median_point(const Prepared& p, const RenderSettings& s, const Options& o, int passes, const Image& ref) {
   std::vector<Point> points;
   for (uint32_t seed : {1u, 1001u, 2001u}) {
-    const OfflineResult r = render(p, s, o, passes, seed);
-    points.push_back(measure(r, ref));
+    double cpu = 0.0;
+    const OfflineResult r = render(p, s, o, passes, seed, &cpu);
+    points.push_back(measure(r, ref, cpu));
+    if (s.method != MethodKind::PathTracer && s.method != MethodKind::Lightcuts) points.back().vpls_seen = vpls_seen(p, s, o, seed);
   }
   std::sort(points.begin(), points.end(), [](const Point& a, const Point& b) { return a.relmse < b.relmse; });
   return points[1];
 }
 
-// One VPL series: every budget at one (method, filter, clamp, compensation, anti-aliasing, caustics).
+// The method column: igi, ir, or igi with the view's options.
+std::string method_label(const RenderSettings& s) {
+  if (s.importance_paths > 0 && s.bidir_vpls > 0) return "igi-both";
+  if (s.importance_paths > 0) return "igi-importance";
+  if (s.bidir_vpls > 0) return "igi-bidir";
+  return method_name(s.method);
+}
+
+// One VPL series: every budget at one (method, filter, clamp, compensation, anti-aliasing).
+// With bidirectional IR (s.bidir_vpls > 0) each budget keeps K = 2 M VPLs per set.
 void sweep_budgets(const Prepared& p, const std::string& name, const Options& o, const Image& ref,
                    RenderSettings s, std::ofstream& csv) {
   // (paths per set M, progressive passes): VPL budget up, then passes up.
@@ -174,17 +236,37 @@ void sweep_budgets(const Prepared& p, const std::string& name, const Options& o,
     if (ir && m * passes > 64) continue;
     if (m < s.aa_samples) continue;  // each sub-sample needs a group of paths
     s.paths_per_set = m;
-    char params[160];
-    std::snprintf(params, sizeof params, "M=%d;passes=%d;clamp=%g;filter=%s;bc=%s;aa=%d", m, passes, s.clamp,
-                  !ir && s.filter ? "on" : "off", s.compensation_samples > 0 ? "on" : "off", s.aa_samples);
-    std::string method = method_name(s.method);
-    if (s.caustics) {
-      method += "+caustics";
+    if (s.bidir_vpls > 0) s.bidir_vpls = 2 * m;
+    char params[200];
+    std::snprintf(params, sizeof params, "M=%d;passes=%d;clamp=%g;filter=%s;bc=%s;aa=%d;imp=%d;bidir=%d", m, passes,
+                  s.clamp, !ir && s.filter ? "on" : "off", s.compensation_samples > 0 ? "on" : "off", s.aa_samples,
+                  s.importance_paths, s.bidir_vpls);
+    if (s.caustics)
       std::snprintf(params + std::strlen(params), sizeof params - std::strlen(params), ";photons=%d",
                     s.caustic_photons);
-    }
-    write_row(csv, name, method.c_str(), params, median_point(p, s, o, passes, ref));
+    write_row(csv, name, method_label(s).c_str(), params, median_point(p, s, o, passes, ref));
   }
+}
+
+// The view's options: light importance (4096 estimate paths), bidirectional
+// IR and both, at anti-aliasing 4 (the default), per clamp, compensation on
+// where a clamp cut something.
+void sweep_view(const Prepared& p, const std::string& name, const Options& o, const Image& ref, std::ofstream& csv) {
+  const std::vector<float> clamps = o.quick ? std::vector<float>{0.05f} : std::vector<float>{0.02f, 0.05f, 0.1f};
+  for (float clamp : clamps)
+    for (int compensation : {0, kCompensationSamples}) {
+      if (o.quick && compensation > 0) continue;
+      for (auto [importance, bidir] : {std::pair{4096, 0}, std::pair{0, 1}, std::pair{4096, 1}}) {
+        RenderSettings s;
+        s.method = MethodKind::Igi;
+        s.clamp = clamp;
+        s.compensation_samples = compensation;
+        s.aa_samples = 4;
+        s.importance_paths = importance;
+        s.bidir_vpls = bidir;  // sweep_budgets sets K = 2 M
+        sweep_budgets(p, name, o, ref, s, csv);
+      }
+    }
 }
 
 // The series: igi over clamps, compensation and anti-aliasing with the
@@ -200,20 +282,24 @@ void sweep_vpl(const Prepared& p, const std::string& name, const Options& o, con
     s.aa_samples = aa;
     sweep_budgets(p, name, o, ref, s, csv);
   };
-  for (float clamp : clamps)
-    for (int aa : {1, 4}) {
-      series(MethodKind::Igi, true, clamp, 0, aa);
-      // Bias compensation (Kollig and Keller) only where a clamp cut something.
-      if (clamp > 0.0f) series(MethodKind::Igi, true, clamp, kCompensationSamples, aa);
-    }
-  series(MethodKind::Igi, false, 0.0f, 0, 1);
-  series(MethodKind::Igi, false, 0.05f, 0, 1);
-  series(MethodKind::InstantRadiosity, true, 0.0f, 0, 1);
-  series(MethodKind::InstantRadiosity, true, 0.05f, 0, 1);
+  if (o.runs("igi")) {
+    for (float clamp : clamps)
+      for (int aa : {1, 4}) {
+        series(MethodKind::Igi, true, clamp, 0, aa);
+        // Bias compensation (Kollig and Keller) only where a clamp cut something.
+        if (clamp > 0.0f) series(MethodKind::Igi, true, clamp, kCompensationSamples, aa);
+      }
+    series(MethodKind::Igi, false, 0.0f, 0, 1);
+    series(MethodKind::Igi, false, 0.05f, 0, 1);
+  }
+  if (o.runs("ir")) {
+    series(MethodKind::InstantRadiosity, true, 0.0f, 0, 1);
+    series(MethodKind::InstantRadiosity, true, 0.05f, 0, 1);
+  }
   // The caustic photon map where there are mirrors or glass to make caustics.
   const bool specular = std::any_of(p.scene.materials.begin(), p.scene.materials.end(),
                                     [](const Material& m) { return m.is_specular(); });
-  if (!specular) return;
+  if (!specular || !o.runs("caustics")) return;
   for (int photons : o.quick ? std::vector<int>{kCausticPhotons.front()} : kCausticPhotons)
     for (float clamp : {0.0f, 0.02f}) {
       RenderSettings s;
@@ -245,14 +331,15 @@ int run(const Options& o) {
   fs::create_directories(fs::path(o.out).parent_path().empty() ? fs::path(".") : fs::path(o.out).parent_path());
   std::ofstream csv(o.out);
   if (!csv) throw std::runtime_error(o.out + ": cannot write");
-  csv << "scene,method,params,seconds,relmse,rmse,flip,rays_per_pixel\n";
+  csv << "scene,method,params,seconds,relmse,rmse,flip,rays_per_pixel,cpu_seconds,vpls_seen\n";
   for (const std::string& name : o.scenes) {
-    const Prepared p(load_scene(name));
+    const Prepared p(name, load_scene(name));
     Image storage;
     const Image& ref = cached_reference(p, name, o, storage);
-    sweep_pt(p, name, o, ref, csv);
+    if (o.runs("pt")) sweep_pt(p, name, o, ref, csv);
     sweep_vpl(p, name, o, ref, csv);
-    sweep_lightcuts(p, name, o, ref, csv);
+    if (o.runs("view")) sweep_view(p, name, o, ref, csv);
+    if (o.runs("lightcuts")) sweep_lightcuts(p, name, o, ref, csv);
   }
   std::fprintf(stderr, "wrote %s\n", o.out.c_str());
   return 0;

@@ -25,6 +25,8 @@ RenderSettings settings() {
   s.caustics = true;
   s.caustic_photons = 5000;
   s.caustic_radius = 0.02f;
+  s.importance_paths = 256;
+  s.bidir_vpls = 32;
   return s;
 }
 

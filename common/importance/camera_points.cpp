@@ -1,0 +1,20 @@
+#include "importance/camera_points.h"
+
+#include "sampling/hash.h"
+#include "sampling/sobol.h"
+
+namespace igi::importance {
+
+GSample trace_camera_point(const Accel& accel, const CameraBasis& camera, const FrameSetup& frame, uint32_t index,
+                           uint32_t seed, int specular_depth, RayCounts& rays) {
+  GSample g;
+  const glm::vec2 film = sample_2d(index, 0, seed);
+  Ray ray = camera.ray(film.x * float(frame.width), film.y * float(frame.height));
+  ray.mask = kCameraRayMask;
+  ++rays.primary;
+  Hit hit;
+  if (accel.intersect(ray, hit)) follow_specular_chain(accel, ray, hit, hash(seed, index), specular_depth, g, rays);
+  return g;
+}
+
+}  // namespace igi::importance
