@@ -10,7 +10,10 @@
 #include "camera_bookmark.h"
 #include "display/settings_panel.h"
 #include "display/tile_overlay.h"
+#include "image/metrics.h"
+#include "scene/load_scene.h"
 #include "support/image_compare.h"
+#include "support/process.h"
 
 namespace igi {
 namespace {
@@ -116,6 +119,32 @@ TEST(CameraBookmark, RoundTripsAndNamesTheBadField) {
                 .find("vfov_degrees"), std::string::npos);
   EXPECT_NE(error_of("not json").find("not JSON"), std::string::npos);
   EXPECT_NE(error_of("{}").find(path), std::string::npos) << "the file is named";
+}
+
+// igi-master --camera FILE (headless here): the scene's own camera from a file
+// gives the scene's image; another camera another image; a bad file stops the run naming it.
+TEST(CameraBookmark, HeadlessMasterStartsFromTheFile) {
+  const std::string same = test::output_path("camera-same.json"), moved = test::output_path("camera-moved.json");
+  const Camera home = load_scene("cornell").camera_or_auto();
+  write_camera_file(same, home);
+  Camera other = home;
+  other.position += 0.3f * glm::normalize(home.forward);
+  write_camera_file(moved, other);
+  auto render = [](const std::string& extra, const std::string& out) {
+    return test::run(std::string(IGI_MASTER_BINARY) + " --workers 1 --worker-threads 1 --scene cornell --method igi" +
+                     " --vpl-paths 4 --size 48x36 --frames 1 --quiet -o " + test::output_path(out) + " " + extra, 60);
+  };
+  ASSERT_EQ(render("", "camera-none.png").exit_code, 0);
+  ASSERT_EQ(render("--camera " + same, "camera-same.png").exit_code, 0);
+  ASSERT_EQ(render("--camera " + moved, "camera-moved.png").exit_code, 0);
+  const Image none = read_image(test::output_path("camera-none.png"));
+  EXPECT_LT(max_abs_error(read_image(test::output_path("camera-same.png")), none), 0.01f);
+  EXPECT_GT(max_abs_error(read_image(test::output_path("camera-moved.png")), none), 0.1f);
+  const std::string bad = test::output_path("camera-bad.json");
+  std::ofstream(bad) << "{\"position\": [0, 0, 0]}";
+  const test::RunResult r = render("--camera " + bad, "camera-bad.png");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find(bad + ": \"forward\""), std::string::npos) << r.output;
 }
 
 }  // namespace
