@@ -8,6 +8,7 @@
 #include <imgui.h>
 
 #include "camera_bookmark.h"
+#include "display/cluster_panel.h"
 #include "display/settings_panel.h"
 #include "display/tile_overlay.h"
 #include "image/metrics.h"
@@ -92,6 +93,16 @@ TEST(WindowPanel, WorkerColoursDifferAcrossThePalette) {
       EXPECT_GE(most, 60) << i << " and " << j;
     }
   EXPECT_EQ(worker_colour(3), worker_colour(3 + kPaletteSize));
+}
+
+TEST(WindowPanel, WorkerLoadIsTilesPerSecondAndTheShareOfItsThreadsBusy) {
+  FrameRecord f;
+  f.seconds = 0.5;
+  f.workers["worker-3"] = {40, 1.5, 0, 0};  // 40 tiles, 1.5 s of rendering over 4 threads in 0.5 s
+  const WorkerLoad load = worker_load(PeerView{"worker-3", 3, 4, 0.0, 0.0}, f);
+  EXPECT_DOUBLE_EQ(load.tiles_per_second, 80.0);
+  EXPECT_DOUBLE_EQ(load.busy_share, 0.75);
+  EXPECT_EQ(worker_load(PeerView{"worker-4", 4, 4, 0.0, 0.0}, f).tiles_per_second, 0.0) << "no tiles in this frame";
 }
 
 TEST(CameraBookmark, RoundTripsAndNamesTheBadField) {

@@ -15,13 +15,13 @@ void FrameGraph::add(double milliseconds) {
 
 void FrameGraph::draw() const {
   if (count_ == 0) return ImGui::TextUnformatted("frame time: no frame yet");
-  const float top = *std::max_element(samples_.begin(), samples_.end());
-  const float last = samples_[(next_ + samples_.size() - 1) % samples_.size()];
+  // Oldest first: the last count_ samples of the ring, ending before next_.
+  std::vector<float> recent(count_);
+  for (size_t i = 0; i < count_; ++i) recent[i] = samples_[(next_ + samples_.size() - count_ + i) % samples_.size()];
+  const float top = *std::max_element(recent.begin(), recent.end());
   char label[64];
-  std::snprintf(label, sizeof label, "%.1f ms (max %.0f)", last, top);
-  // Oldest first: the ring read from next_.
-  ImGui::PlotLines("frame time", samples_.data(), int(samples_.size()), int(next_), label, 0.0f, 1.1f * top,
-                   ImVec2(0, 48));
+  std::snprintf(label, sizeof label, "%.1f ms (max %.0f)", recent.back(), top);
+  ImGui::PlotLines("frame time", recent.data(), int(recent.size()), 0, label, 0.0f, 1.1f * top, ImVec2(0, 48));
 }
 
 }  // namespace igi
