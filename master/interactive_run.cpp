@@ -3,9 +3,12 @@
 // The display thread owns the window and the camera; it publishes the camera
 // (with a generation that changes on every move) and takes completed frames.
 // The session thread plans frames for the latest camera (pass p: seed + p and
-// a new sub-pixel position, for accumulation), pumps the session, and hands
-// each finished frame over with the generation it was planned for. Frames of
-// an old generation are dropped on arrival. The hand-over queue is short: the
+// a new sub-pixel position, for accumulation) with the latest settings (the
+// panel's; they travel in each FrameSetup), pumps the session, and hands
+// each finished frame over with the generation it was planned for. A camera
+// move or a settings change starts a new generation; frames of an old one are
+// dropped on arrival. The display thread accumulates, uploads floats and lets
+// the GPU apply exposure and sRGB; the session thread only moves frames. The hand-over queue is short: the
 // session adds no frame while the display has frames it has not taken.
 #include <chrono>
 #include <condition_variable>
@@ -13,13 +16,17 @@
 #include <deque>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <utility>
 
+#include "camera_bookmark.h"
 #include "display/interactive_window.h"
+#include "display/window_panel.h"
 #include "frame_plan.h"
 #include "render/accumulator.h"
 #include "run_modes.h"
+#include "stats_writer.h"
 
 namespace igi {
 namespace {
@@ -28,19 +35,24 @@ struct Shown {
   CompletedFrame frame;
   uint64_t generation = 0;
   size_t workers = 0;  // when it completed (the display thread must not ask the session)
+  std::vector<PeerView> peers;
 };
 
 // What the two threads share, under one mutex.
 class Handover {
  public:
-  void publish(const Camera& camera, uint64_t generation) {
+  struct View {
+    Camera camera;
+    RenderSettings settings;
+    uint64_t generation = 0;
+  };
+  void publish(const View& view) {
     std::lock_guard lock(mutex_);
-    camera_ = camera;
-    generation_ = generation;
+    view_ = view;
   }
-  std::pair<Camera, uint64_t> view() {
+  View view() {
     std::lock_guard lock(mutex_);
-    return {camera_, generation_};
+    return view_;
   }
   void deliver(Shown shown) {
     {
@@ -79,8 +91,7 @@ class Handover {
  private:
   std::mutex mutex_;
   std::condition_variable arrived_;
-  Camera camera_;
-  uint64_t generation_ = 0;
+  View view_;
   std::deque<Shown> frames_;
   bool stop_ = false;
   std::string error_;
@@ -92,22 +103,24 @@ void session_loop(const MasterOptions& o, const Scene& scene, MasterSession& ses
   int pass = 0;
   try {
     while (!handover.stopped()) {
-      auto [camera, now_generation] = handover.view();
-      if (now_generation != generation) {  // the camera moved: start over
-        generation = now_generation;
+      const Handover::View view = handover.view();
+      if (view.generation != generation) {  // the camera moved or the settings changed: start over
+        generation = view.generation;
         pass = 0;
       }
       if (session.can_add_frame() && handover.waiting() < 2) {
-        FrameSetup f = plan_frame(o.render, o.camera_path, scene, pass++, true);
+        RenderOptions render = o.render;
+        render.settings = view.settings;  // pt's samples per pass depend on the method
+        FrameSetup f = plan_frame(render, o.camera_path, scene, pass++, true);
         f.frame_id = next_id++;
-        f.camera = camera;
+        f.camera = view.camera;
         generation_of_frame[f.frame_id] = generation;
-        session.add_frame(f);
+        session.add_frame(f, view.settings);
       }
       for (CompletedFrame& f : session.pump(5)) {
         const uint64_t g = generation_of_frame[f.setup.frame_id];
         generation_of_frame.erase(f.setup.frame_id);
-        handover.deliver({std::move(f), g, session.worker_count()});
+        handover.deliver({std::move(f), g, session.worker_count(), session.peer_views()});
       }
     }
   } catch (const std::exception& e) {
@@ -123,44 +136,124 @@ std::string status_line(const CompletedFrame& f, size_t workers, int accumulated
   return text;
 }
 
+// Camera file, or image files, named in the panel: a failure is shown there, the window goes on.
+std::string act(const PanelActions& a, const PanelOptions& p, CameraController& controller, float speed,
+                const Accumulator& accumulator, float exposure, int& shots) {
+  try {
+    if (a.save_camera) {
+      write_camera_file(p.bookmark, controller.camera());
+      return "camera saved to " + p.bookmark;
+    }
+    if (a.load_camera) {
+      controller = CameraController(read_camera_file(p.bookmark), speed);
+      return "camera loaded from " + p.bookmark;
+    }
+    if (a.save_image) {
+      char name[32];
+      std::snprintf(name, sizeof name, "-%04d", shots++);
+      const Image image = accumulator.resolve();
+      write_image(image, p.shot_prefix + name + ".exr");
+      write_image(image, p.shot_prefix + name + ".png", exposure);
+      return "saved " + p.shot_prefix + name + ".exr and .png (" + std::to_string(int(accumulator.weight())) +
+             " frames accumulated)";
+    }
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return {};
+}
+
+PanelOptions panel_options(const MasterOptions& o) {
+  PanelOptions p;
+  p.shown = o.panel;
+  p.overlay = *parse_overlay(o.overlay);  // checked with the options
+  if (!o.camera_file.empty()) p.bookmark = o.camera_file;
+  return p;
+}
+
 }  // namespace
 
 int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& session, LocalWorkers& workers,
                     std::atomic<bool>& interrupted) {
   InteractiveWindow window(o.render.width, o.render.height, "igi-master: " + o.render.scene);
-  CameraController controller(scene.camera_or_auto(), 0.25f * scene.bounds().diagonal());
+  WindowPanel panel(window.handle(), o.render.settings, o.render.exposure, panel_options(o));
+  const float speed = 0.25f * scene.bounds().diagonal();
+  CameraController controller(scene.camera_or_auto(), speed);
   Accumulator accumulator(o.render.width, o.render.height);
+  std::optional<StatsWriter> stats;  // the frames the window showed
+  if (!o.stats.empty()) stats.emplace(o.stats);
+  session.set_detailed_stats(true);  // the cluster panel
+  session.record_tile_sources(true);  // the tile overlay
   Handover handover;
-  handover.publish(controller.camera(), controller.generation());
+  uint64_t generation = 0, camera_generation = controller.generation();
+  handover.publish({controller.camera(), panel.settings().settings(), generation});
   std::thread session_thread([&] { session_loop(o, scene, session, handover); });
-  uint64_t generation = controller.generation();
-  auto last_frame = std::chrono::steady_clock::now();
+  auto last_frame = std::chrono::steady_clock::now(), last_draw = last_frame, wall_start = last_frame;
+  const double cpu_start = process_cpu_seconds();
+  bool edited = !o.test_panel_settings;  // the test hook edits once, after the first frame shown
+  int shots = 0;
   while (window.poll(controller) && !interrupted && !handover.stopped()) {
-    if (controller.generation() != generation) {
-      generation = controller.generation();
+    if (controller.generation() != camera_generation || panel.settings().take_change()) {
+      camera_generation = controller.generation();
       accumulator.reset();
-      handover.publish(controller.camera(), generation);
+      handover.publish({controller.camera(), panel.settings().settings(), ++generation});
     }
+    bool fresh = false;
     for (Shown& shown : handover.take(std::chrono::milliseconds(5))) {
-      if (shown.generation != generation) continue;  // rendered for an old camera
+      if (shown.generation != generation) continue;  // rendered for an old camera or old settings
       accumulator.add(shown.frame.pixels->to_image(), 1.0);
       shown.frame.pixels.reset();  // back to the pool
       const auto now = std::chrono::steady_clock::now();
       const double fps = 1.0 / std::max(1e-6, std::chrono::duration<double>(now - last_frame).count());
       last_frame = now;
-      window.show(accumulator.resolve(), o.render.exposure);
       window.set_status(status_line(shown.frame, shown.workers, int(accumulator.weight()), fps));
-      if (!o.render.screenshot.empty() && accumulator.weight() >= o.screenshot_after) {
-        window.screenshot(o.render.screenshot);
-        interrupted = true;
-      }
-      window.present();
+      FrameRecord& record = shown.frame.record;
+      std::vector<TileSource> sources = std::move(record.tile_sources);  // the overlay's, not the file's
+      if (stats) stats->add(record);
+      record.tile_sources = std::move(sources);
+      panel.frame_shown(record, std::move(shown.peers));
+      fresh = true;
     }
+    const auto now = std::chrono::steady_clock::now();
+    if (!fresh && now - last_draw < std::chrono::milliseconds(50)) continue;  // redraw for the panel at 20 Hz
+    last_draw = now;
+    if (fresh) window.upload(accumulator.resolve());
+    window.draw(panel.settings().exposure());
+    const PanelActions actions = panel.draw(int(accumulator.weight()));
+    window.set_input_captured(panel.wants_mouse(), panel.wants_keyboard());
+    if (std::string m = act(actions, panel.options(), controller, speed, accumulator, panel.settings().exposure(), shots);
+        !m.empty())
+      panel.set_message(m);
+    if (actions.load_camera) camera_generation = ~controller.generation();  // a new controller: a new view
+    if (fresh && edited && !o.render.screenshot.empty() && accumulator.weight() >= o.screenshot_after) {
+      window.screenshot(o.render.screenshot);
+      interrupted = true;
+    }
+    if (fresh && !edited) {  // as if the widgets had made this change: it shows from the next view on
+      panel.settings().commit(*o.test_panel_settings);
+      edited = true;
+    }
+    window.present();
   }
   handover.stop();
   session_thread.join();
   session.close("window closed");
   workers.stop_all();
+  if (stats) {  // the session thread has ended: its counts can be read here
+    RunTotals t;
+    t.bad_messages = session.bad_messages();
+    t.refused_keys = session.refused_keys();
+    t.failed_handshakes = session.failed_handshakes();
+    t.nonfinite_pixels = session.nonfinite_pixels();
+    t.quarantined = session.quarantined();
+    t.master_cpu_seconds = process_cpu_seconds() - cpu_start;  // the window's drawing included
+    t.session_cpu_seconds = session.session_cpu_seconds();
+    t.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    t.pixel_format = pixel_format_name(session.pixel_format());
+    t.io_threads = o.io_threads;
+    t.complete = true;
+    stats->write_final(t);
+  }
   if (const std::string error = handover.error(); !error.empty()) throw std::runtime_error(error);
   return 0;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <sstream>
 #include <stdexcept>
 
 #include "protocol/curve.h"
@@ -30,8 +31,13 @@ std::string master_usage(const std::string& program) {
          "  --stats FILE.json     per-frame statistics\n"
          "  --no-write            headless: write no images (benchmarks)\n"
          "  --screenshot FILE     window: save it after --screenshot-after N accumulated frames [4], then exit\n"
+         "  --camera FILE         start from this camera (JSON: position, forward, up, vfov_degrees); in the\n"
+         "                        window also the bookmark file F5 saves and F9 loads [camera.json]\n"
+         "  --panel on|off        window: the settings and cluster panel at start [on]\n"
+         "  --overlay MODE        window: tint tiles by the worker that rendered them: off, tint, solid [off]\n"
          "window: drag with the left button to look, W/A/S/D/Q/E to move, R to reset, Esc to quit;\n"
-         "  while the camera is still, frames accumulate (new seed and sub-pixel position each)\n"
+         "  F1 panel, F2 tile overlay, F5/F9 save/load camera, F12 save the accumulated image (EXR and PNG);\n"
+         "  while the camera and settings are still, frames accumulate (new seed and sub-pixel position each)\n"
          "  --credits K           jobs a worker holds at once [2]\n"
          "  --heartbeat-ms MS     [250]   --timeout-ms MS  silent worker declared dead [1500]\n"
          "  --pixels F            pixels on the wire: float, half (6 bytes a pixel, display frames) or auto:\n"
@@ -48,6 +54,19 @@ static int to_int(const std::string& option, const std::string& value) {
   } catch (const std::exception&) {
   }
   throw std::invalid_argument(option + ": expected a non-negative integer, got '" + value + "'");
+}
+
+static bool on_off(const std::string& option, const std::string& value) {
+  if (value == "on") return true;
+  if (value == "off") return false;
+  throw std::invalid_argument(option + ": expected on or off, got '" + value + "'");
+}
+
+// The render options as given, then the edit's words (e.g. "--vpl-paths 2 --clamp 0").
+static RenderSettings edited_settings(std::vector<std::string> render_args, const std::string& edit) {
+  std::istringstream words(edit);
+  for (std::string word; words >> word;) render_args.push_back(word);
+  return parse_render_options(render_args).settings;
 }
 
 // Refuses what would expose workers' jobs and pixels, before anything is bound.
@@ -78,6 +97,7 @@ PixelFormat session_pixel_format(const MasterOptions& o) {
 MasterOptions parse_master_options(const std::vector<std::string>& args) {
   MasterOptions o;
   std::vector<std::string> render_args;
+  std::optional<std::string> panel_edit;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string& {
@@ -108,9 +128,16 @@ MasterOptions parse_master_options(const std::vector<std::string>& args) {
     else if (a == "--test-send-hwm") o.send_hwm = to_int(a, value());
     else if (a == "--pixels") o.pixels = value();
     else if (a == "--io-threads") o.io_threads = std::clamp(to_int(a, value()), 1, 64);
+    else if (a == "--camera") o.camera_file = value();
+    else if (a == "--panel") o.panel = on_off(a, value());
+    else if (a == "--overlay") o.overlay = value();
+    else if (a == "--test-panel-edit") panel_edit = value();
     else render_args.push_back(a);
   }
   o.render = parse_render_options(render_args);
+  if (panel_edit) o.test_panel_settings = edited_settings(render_args, *panel_edit);
+  if (o.overlay != "off" && o.overlay != "tint" && o.overlay != "solid")
+    throw std::invalid_argument("--overlay: expected off, tint or solid, got '" + o.overlay + "'");
   if (!o.render.help) check_security(o);
   if (o.pixels != "auto" && o.pixels != "float" && o.pixels != "half")
     throw std::invalid_argument("--pixels: expected auto, float or half, got '" + o.pixels + "'");

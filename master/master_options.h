@@ -1,6 +1,7 @@
 #pragma once
 // igi-master's options: the renderer's (scene, method, size...) plus the
 // cluster's.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,11 +33,16 @@ struct MasterOptions {
   std::string pixels = "auto";    // pixel format on the wire: auto (float for float files, else half), float, half
   int io_threads = 1;             // ZeroMQ I/O threads (receive and send off the session thread)
   int screenshot_after = 4;       // window: save --screenshot after this many accumulated frames
+  std::string camera_file;        // start from this camera (JSON, camera_bookmark.h); the window's bookmark file
+  bool panel = true;              // window: the settings and cluster panel shown at start (F1 toggles)
+  std::string overlay = "off";    // window: tile overlay at start: off, tint or solid (F2 cycles)
   // Test hooks.
   int kill_worker_after = 0;      // SIGKILL local worker 0 after this many results (once all have joined)
   int force_duplicates = 0;       // hand this many jobs to two workers on purpose
   int stop_worker_after = 0;      // SIGSTOP local worker 0 after this many results (and never resume it)
   int send_hwm = 0;               // the master's ZMQ_SNDHWM per peer; 0: ZeroMQ's default (1000)
+  // Window: after the first frame shown, these settings go through the panel's commit (as if edited there).
+  std::optional<RenderSettings> test_panel_settings;
 };
 
 // The pixel format of the session: --pixels, or for "auto" float when the

@@ -114,17 +114,20 @@ size_t MasterSession::send(const std::string& identity, const protocol::Message&
 
 // ---- The loop.
 
-void MasterSession::add_frame(const FrameSetup& frame) {
+void MasterSession::add_frame(const FrameSetup& frame) { add_frame(frame, options_.render.settings); }
+
+void MasterSession::add_frame(const FrameSetup& frame, const RenderSettings& settings) {
   OpenFrame open;
   open.setup = frame;
+  open.settings = settings;
   open.pixels = pool_.acquire(frame.width, frame.height, pixel_format_);
   open.record.frame_id = frame.frame_id;
   frames_[frame.frame_id] = std::move(open);
-  if (tiles_.empty() || tiles_size_ != std::pair{frame.width, frame.height}) {  // cut once per size
-    const int border = tile_border(options_.render.settings);
+  const int border = tile_border(settings);
+  if (tiles_.empty() || tiles_cut_ != std::tuple{frame.width, frame.height, border}) {  // cut once per size and border
     const int tile = options_.render.tile_size;
     tiles_ = make_tiles(frame.width, frame.height, tile, tile, border);
-    tiles_size_ = {frame.width, frame.height};
+    tiles_cut_ = {frame.width, frame.height, border};
   }
   scheduler_.add_frame(frame.frame_id, tiles_);
 }
@@ -257,6 +260,10 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
     return;
   }
   Peer& peer = peers_[identity];
+  peer.number = uint32_t(next_peer_);
+  peer.threads = hello.threads;
+  peer.sent.clear();
+  peer.round_trip_ms = 0.0;
   peer.name = "worker-" + std::to_string(next_peer_++);
   peer.last_heard = peer.last_sent = Clock::now();
   peer.frames_sent.clear();
@@ -291,6 +298,7 @@ void MasterSession::on_result(const std::string& identity, std::span<const uint8
     return on_bad_message(identity, error);
   }
   const protocol::TileResult& r = view->fields;
+  if (detailed_stats_) note_round_trip(peer->second, r.job_id);
   switch (scheduler_.check_result(identity, r.job_id, r.frame_id, r.tile)) {
     case ResultCheck::Unknown:
       return scheduler_.drop_result(identity, r.job_id);  // from before a reconnect, or a frame long done
@@ -304,6 +312,25 @@ void MasterSession::on_result(const std::string& identity, std::span<const uint8
     case ResultCheck::Wanted:
       return use_result(identity, peer->second, *view, bytes.size());
   }
+}
+
+// Smoothed over about ten results: what the cluster panel shows.
+void MasterSession::note_round_trip(Peer& peer, uint64_t job_id) {
+  auto sent = peer.sent.find(job_id);
+  if (sent == peer.sent.end()) return;
+  const double ms = std::chrono::duration<double, std::milli>(Clock::now() - sent->second).count();
+  peer.round_trip_ms = peer.round_trip_ms > 0.0 ? 0.9 * peer.round_trip_ms + 0.1 * ms : ms;
+  peer.sent.erase(sent);
+}
+
+std::vector<PeerView> MasterSession::peer_views() const {
+  std::vector<PeerView> views;
+  const auto now = Clock::now();
+  for (const auto& [identity, p] : peers_)
+    views.push_back({p.name, p.number, p.threads, std::chrono::duration<double>(now - p.last_heard).count(),
+                     p.round_trip_ms});
+  std::sort(views.begin(), views.end(), [](const PeerView& a, const PeerView& b) { return a.number < b.number; });
+  return views;
 }
 
 // The job's first result: its pixels go straight into the frame, then the
@@ -334,6 +361,7 @@ void MasterSession::use_result(const std::string& identity, Peer& peer, const pr
     stats.busy_seconds += r.render_seconds;
     stats.bytes_in += bytes;
   }
+  if (tile_sources_) frame.record.tile_sources.push_back({r.tile, peer.number});
   ++accepted_;
   if (on_accepted) on_accepted(accepted_);
 }
@@ -414,9 +442,14 @@ void MasterSession::dispatch(const std::vector<JobAssignment>& jobs) {
     if (!f->second.started) f->second.started = Clock::now();
     size_t bytes = 0;
     if (peer->second.frames_sent.insert(job.frame_id).second)
-      bytes += send(job.worker, protocol::FrameSetupMsg{f->second.setup});
+      bytes += send(job.worker, protocol::FrameSetupMsg{f->second.setup, f->second.settings});
     bytes += send(job.worker, protocol::TileJobMsg{job.frame_id, job.job_id, job.tile});
-    if (detailed_stats_) f->second.record.workers[peer->second.name].bytes_out += bytes;
+    if (detailed_stats_) {
+      f->second.record.workers[peer->second.name].bytes_out += bytes;
+      std::map<uint64_t, Clock::time_point>& sent = peer->second.sent;
+      if (sent.size() > 1024) sent.clear();  // results that never came (reissued elsewhere): forget them
+      sent[job.job_id] = Clock::now();
+    }
   }
 }
 

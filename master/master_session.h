@@ -29,6 +29,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <zmq.hpp>
@@ -61,6 +62,12 @@ struct PeerStats {
   uint64_t bytes_in = 0, bytes_out = 0;
 };
 
+// Which worker's result filled a tile (the window's tile overlay).
+struct TileSource {
+  TileJob tile;
+  uint32_t worker = 0;  // the N of its peer name "worker-N"
+};
+
 struct FrameRecord {
   uint64_t frame_id = 0;
   double seconds = 0.0;  // from its first job out to its last result in
@@ -68,6 +75,7 @@ struct FrameRecord {
   RayCounts rays;
   uint64_t nonfinite_pixels = 0;  // zeroed by workers (they send finite pixels only)
   std::map<std::string, PeerStats> workers;  // by peer name; only with detailed statistics
+  std::vector<TileSource> tile_sources;      // one per used result; only with record_tile_sources()
   // Session totals when the frame completed.
   uint64_t reissued = 0, duplicated = 0, late_dropped = 0, verified = 0, failed_results = 0, quarantined = 0;
 };
@@ -76,6 +84,15 @@ struct CompletedFrame {
   FrameSetup setup;
   std::shared_ptr<FrameBuffer> pixels;  // back to the session's pool when the last copy goes
   FrameRecord record;
+};
+
+// A worker as the window's cluster panel shows it.
+struct PeerView {
+  std::string name;            // "worker-N"
+  uint32_t number = 0;         // N
+  uint32_t threads = 0;        // as its Hello said
+  double since_heard_s = 0.0;  // since its last message (heartbeat or result)
+  double round_trip_ms = 0.0;  // job sent to result back, smoothed; 0 before any (detailed statistics only)
 };
 
 // The run cannot go on (a job fails validation on every worker); what() says which and why.
@@ -92,8 +109,15 @@ class MasterSession {
   PixelFormat pixel_format() const { return pixel_format_; }
 
   // Queues a frame; jobs go out as workers have credit (at most two frames open).
+  // Its settings travel with its FrameSetup (default: the options').
   bool can_add_frame() const { return scheduler_.can_add_frame(); }
   void add_frame(const FrameSetup& frame);
+  void add_frame(const FrameSetup& frame, const RenderSettings& settings);
+  // Per-worker figures in each FrameRecord (on with --stats; the window turns them on).
+  void set_detailed_stats(bool on) { detailed_stats_ = on; }
+  // Which worker filled each tile, in each FrameRecord (the window's tile overlay).
+  void record_tile_sources(bool on) { tile_sources_ = on; }
+  std::vector<PeerView> peer_views() const;
   // Runs the loop for up to timeout_ms; returns the frames completed meanwhile, in order.
   // Throws SessionError when a frame can never complete.
   std::vector<CompletedFrame> pump(int timeout_ms);
@@ -121,9 +145,13 @@ class MasterSession {
     Clock::time_point last_heard, last_sent;
     std::set<uint64_t> frames_sent;  // open frames whose setup it has
     int failed_results = 0;
+    uint32_t number = 0, threads = 0;
+    std::map<uint64_t, Clock::time_point> sent;  // job id -> when (detailed statistics only)
+    double round_trip_ms = 0.0;
   };
   struct OpenFrame {
     FrameSetup setup;
+    RenderSettings settings;
     std::shared_ptr<FrameBuffer> pixels;
     FrameRecord record;
     std::optional<Clock::time_point> started;
@@ -138,6 +166,7 @@ class MasterSession {
   void handle(const std::string& identity, const protocol::Message& message);
   void on_hello(const std::string& identity, const protocol::Hello& hello);
   void on_result(const std::string& identity, std::span<const uint8_t> bytes);
+  void note_round_trip(Peer& peer, uint64_t job_id);
   void use_result(const std::string& identity, Peer& peer, const protocol::TileResultView& view, size_t bytes);
   void on_bad_result(const std::string& identity, uint64_t job_id, const std::string& error);
   void on_bad_message(const std::string& identity, const std::string& error);
@@ -157,6 +186,7 @@ class MasterSession {
   SceneSource scene_;
   PixelFormat pixel_format_;
   bool detailed_stats_;
+  bool tile_sources_ = false;
   std::unique_ptr<protocol::ZapHandler> zap_;  // bound before router_, or CURVE would let every key in
   zmq::socket_t router_;
   std::unique_ptr<protocol::SocketMonitor> monitor_;  // after router_: it watches it
@@ -167,8 +197,8 @@ class MasterSession {
   std::set<std::string> quarantined_ids_;        // their later messages are ignored
   std::vector<std::string> quarantined_names_;   // for the statistics (at most 1000)
   std::map<uint64_t, OpenFrame> frames_;
-  std::vector<TileJob> tiles_;             // the tiles of a frame of tiles_size_
-  std::pair<int, int> tiles_size_{0, 0};
+  std::vector<TileJob> tiles_;             // the tiles of a frame as tiles_cut_ says
+  std::tuple<int, int, int> tiles_cut_{0, 0, 0};  // width, height, border of tiles_
   std::vector<std::string> congested_;           // peers whose send queue was full: dropped after the batch
   Clock::time_point next_sweep_;
   uint64_t accepted_ = 0;

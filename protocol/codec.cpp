@@ -288,6 +288,7 @@ void write(Writer& w, const FrameSetupMsg& m) {
   w.u32(f.sample_count);
   w.f32(f.jitter_x);
   w.f32(f.jitter_y);
+  write(w, m.settings);
 }
 
 void read(Reader& r, FrameSetupMsg& m) {
@@ -311,6 +312,7 @@ void read(Reader& r, FrameSetupMsg& m) {
   check_closed(r, "frame.jitter_x", f.jitter_x, 0.0f, 1.0f);
   f.jitter_y = r.f32("frame.jitter_y");
   check_closed(r, "frame.jitter_y", f.jitter_y, 0.0f, 1.0f);
+  read(r, m.settings);
 }
 
 void write(Writer& w, const TileJobMsg& m) {

@@ -33,8 +33,9 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // the pixel format; TileResult its pixel format and count of non-finite pixels the worker zeroed;
 // Bye says why (leaving, quarantined, failed). 4: settings split path lengths, anti-aliasing,
 // glossy gather, lightcuts. 5: glass branches, caustic photons. 6: settings
-// carry light importance and bidirectional IR.
-inline constexpr uint16_t kVersion = 6;
+// carry light importance and bidirectional IR. 7: FrameSetup carries the
+// frame's settings (the window changes them live).
+inline constexpr uint16_t kVersion = 7;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;
@@ -93,8 +94,11 @@ struct SceneData {
   std::vector<uint8_t> bytes;
 };
 
+// A frame is rendered with its own settings (Welcome's are the session's
+// first): the window changes them between frames, no reconnect, no new BVH.
 struct FrameSetupMsg {
   igi::FrameSetup frame;
+  RenderSettings settings;
 };
 
 struct TileJobMsg {

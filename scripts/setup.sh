@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libembree-dev libtbb-dev
   libopenimageio-dev openimageio-tools
-  libglfw3-dev libgl-dev libglm-dev
+  libglfw3-dev libgl-dev libglm-dev libimgui-dev   # libimgui-dev: the window's panels (its GLFW and OpenGL 2 backends are in libimgui.a)
   libzmq3-dev cppzmq-dev
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libgtest-dev

@@ -63,7 +63,7 @@ bool same(const FrameSetupMsg& a, const FrameSetupMsg& b) {
          same(f.camera.forward, g.camera.forward) && same(f.camera.up, g.camera.up) &&
          same(f.camera.vfov, g.camera.vfov) && f.width == g.width && f.height == g.height && f.seed == g.seed &&
          f.sample_begin == g.sample_begin && f.sample_count == g.sample_count && same(f.jitter_x, g.jitter_x) &&
-         same(f.jitter_y, g.jitter_y);
+         same(f.jitter_y, g.jitter_y) && same(a.settings, b.settings);
 }
 bool same(const TileJobMsg& a, const TileJobMsg& b) {
   return a.frame_id == b.frame_id && a.job_id == b.job_id && same(a.tile, b.tile);
@@ -99,6 +99,12 @@ TileResult sample_half_tile_result() {
   return m;
 }
 
+// Another set than Welcome's, every field away from its default: a frame's own settings.
+RenderSettings frame_settings() {
+  return RenderSettings{MethodKind::Igi, 9, 6, 2, 5, 25, 25, 0.25f, 3, 0.2f, 4, true, 0.7f, 0.2f, 0.04f, 400, 5, 9,
+                        2, true, 2345, 0.03f};
+}
+
 std::vector<Message> samples() {
   RenderSettings settings{MethodKind::InstantRadiosity, 7, 5, 3, 4, 64, 9, 0.3f, 2, 0.05f, 3, false, 0.8f, 0.1f, 0.03f, 500, 6, 4,
                           5, true, 12345, 0.02f, 512, 0.3f, 64, 8};
@@ -112,7 +118,7 @@ std::vector<Message> samples() {
       Refuse{"build id mismatch: worker abc, master def"},
       SceneRequest{0xdeadbeefcafef00dull},
       SceneData{0x0123456789abcdefull, "scene.glb", scene},
-      FrameSetupMsg{FrameSetup{42, camera, 640, 480, 7, 16, 4, 0.25f, 0.75f}},
+      FrameSetupMsg{FrameSetup{42, camera, 640, 480, 7, 16, 4, 0.25f, 0.75f}, frame_settings()},
       TileJobMsg{9, 77, {64, 32, 16, 8, 2}},
       sample_tile_result(),
       Heartbeat{},
@@ -138,6 +144,11 @@ Message edited(void (*change)(T&)) {
 // The same, for a change inside Welcome::settings or FrameSetupMsg::frame.
 Message settings_edited(void (*change)(RenderSettings&)) {
   Welcome m = sample<Welcome>();
+  change(m.settings);
+  return m;
+}
+Message frame_settings_edited(void (*change)(RenderSettings&)) {
+  FrameSetupMsg m = sample<FrameSetupMsg>();
   change(m.settings);
   return m;
 }
@@ -411,6 +422,8 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {edited<SceneData>([](SceneData& m) { m.file_name = "dir/scene.glb"; }), "SceneData.file_name"},
       {edited<SceneData>([](SceneData& m) { m.file_name = ""; }), "SceneData.file_name"},
       {frame_edited([](auto& f) { f.width = 0; }), "FrameSetup.frame.width: 0"},
+      {frame_settings_edited([](auto& s) { s.paths_per_set = 0; }), "FrameSetup.settings.paths_per_set"},
+      {frame_settings_edited([](auto& s) { s.clamp = -0.5f; }), "FrameSetup.settings.clamp"},
       {frame_edited([](auto& f) { f.width = kMaxImageSide + 1; }), "FrameSetup.frame.width"},
       {frame_edited([](auto& f) { f.height = -1; }), "FrameSetup.frame.height"},
       {frame_edited([](auto& f) { f.sample_count = 0; }), "FrameSetup.frame.sample_count"},

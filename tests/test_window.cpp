@@ -1,6 +1,10 @@
 // The window shows what the renderer wrote: a screenshot of it under Xvfb
 // equals the PNG (both are 8-bit sRGB of the same image).
 #include <cstdlib>
+#include <fstream>
+#include <map>
+
+#include <nlohmann/json.hpp>
 #include <filesystem>
 #include <string>
 
@@ -9,6 +13,7 @@
 #include "image/image.h"
 #include "image/metrics.h"
 #include "support/image_compare.h"
+#include "display/tile_overlay.h"
 
 namespace igi {
 namespace {
@@ -42,7 +47,7 @@ TEST(Window, MasterWindowShowsTheAccumulatedFramesOfTheCluster) {
                              " --size 160x120 --quiet";
   std::filesystem::remove(shot);
   const std::string window = std::string("timeout -s KILL 60 xvfb-run -a -s '-screen 0 640x480x24' ") + IGI_MASTER_BINARY +
-                             common + " --screenshot " + shot + " --screenshot-after 4 >/dev/null 2>&1";
+                             common + " --panel off --screenshot " + shot + " --screenshot-after 4 >/dev/null 2>&1";
   ASSERT_EQ(std::system(window.c_str()), 0) << window;
   const std::string headless = std::string(IGI_MASTER_BINARY) + common + " --frames 4 --progressive -o " + frames +
                                " >/dev/null 2>&1";
@@ -50,6 +55,91 @@ TEST(Window, MasterWindowShowsTheAccumulatedFramesOfTheCluster) {
   // The window accumulates exactly the frames a progressive headless run writes.
   Image shown = read_image(shot), written = read_image(test::output_path("master-prog-0003.png"));
   EXPECT_LT(max_abs_error(shown, written), 0.01);
+}
+
+}  // namespace
+}  // namespace igi
+
+namespace igi {
+namespace {
+
+// The master's window under Xvfb (issue 18): 160x120, 2 workers of 1 thread, igi with 8 paths.
+std::string window_run(const std::string& shot, const std::string& extra) {
+  std::filesystem::remove(shot);
+  return std::string("timeout -s KILL 60 xvfb-run -a -s '-screen 0 640x480x24' ") + IGI_MASTER_BINARY +
+         " --workers 2 --worker-threads 1 --scene cornell --method igi --vpl-paths 8 --size 160x120 --quiet" +
+         " --screenshot " + shot + " " + extra + " >/dev/null 2>&1";
+}
+
+std::string headless_run(const std::string& output, const std::string& extra) {
+  return std::string(IGI_MASTER_BINARY) + " --workers 2 --worker-threads 1 --scene cornell --method igi" +
+         " --size 160x120 --quiet --progressive -o " + output + " " + extra + " >/dev/null 2>&1";
+}
+
+// Shown, the panel covers the image's top-left corner (its title bar at least); hidden, nothing does.
+TEST(Window, ThePanelShowsOverTheImageAndHidesWithTheOption) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run not installed";
+  const std::string shown = test::output_path("panel-shown.png"), hidden = test::output_path("panel-hidden.png");
+  ASSERT_EQ(std::system(window_run(shown, "--screenshot-after 1").c_str()), 0);
+  ASSERT_EQ(std::system(window_run(hidden, "--screenshot-after 1 --panel off").c_str()), 0);
+  const Image with = read_image(shown), without = read_image(hidden);
+  ASSERT_EQ(with.width, 160);
+  int differ = 0, corner = 0;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 120; ++x, ++corner) differ += glm::length(with.at(x, y) - without.at(x, y)) > 0.02f;
+  EXPECT_GT(differ, corner / 2) << "the panel's title bar should cover the top-left corner";
+  EXPECT_GT(without.mean().x, 0.02f) << "a lit Cornell box";
+}
+
+// A change made through the panel's commit (the widgets' path) after the first
+// frame reaches the running workers: the next frames are the new settings' frames.
+TEST(Window, ASettingsChangeThroughThePanelReachesTheWorkers) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run not installed";
+  const std::string shot = test::output_path("panel-edit.png");
+  ASSERT_EQ(std::system(window_run(shot, "--panel off --screenshot-after 2 --test-panel-edit '--vpl-paths 4 --no-filter'")
+                            .c_str()), 0);
+  const std::string edited = test::output_path("panel-edit-headless.png"), old = test::output_path("panel-old.png");
+  ASSERT_EQ(std::system(headless_run(edited, "--frames 2 --vpl-paths 4 --no-filter").c_str()), 0);
+  ASSERT_EQ(std::system(headless_run(old, "--frames 2 --vpl-paths 8").c_str()), 0);
+  const Image shown = read_image(shot);
+  const Image want = read_image(test::output_path("panel-edit-headless-0001.png"));
+  const Image before = read_image(test::output_path("panel-old-0001.png"));
+  EXPECT_LT(max_abs_error(shown, want), 0.01) << "the window shows the edited settings' frames";
+  EXPECT_GT(max_abs_error(shown, before), 0.05) << "and not the old settings' frames";
+}
+
+// Solid overlay: each tile painted in its worker's colour; counting tiles by
+// colour gives the per-worker tile counts of the statistics for the frame shown.
+TEST(Window, TileOverlayColoursMatchTheStatisticsTileCounts) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run not installed";
+  const std::string shot = test::output_path("overlay.png"), stats = test::output_path("overlay-stats.json");
+  std::filesystem::remove(stats);
+  ASSERT_EQ(std::system(window_run(shot, "--panel off --overlay solid --screenshot-after 1 --tile 32 --stats " + stats)
+                            .c_str()), 0);
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(stats));
+  ASSERT_FALSE(j["frames"].empty());
+  const nlohmann::json& last = j["frames"].back();
+  const Image image = read_image(shot);
+  std::map<int, uint64_t> by_colour;
+  for (int y = 0; y < 120; y += 32)
+    for (int x = 0; x < 160; x += 32) {
+      const glm::vec3 c = image.at(x + 8, y + 8);
+      int found = -1;
+      for (uint32_t w = 0; w < kPaletteSize && found < 0; ++w) {
+        const auto p = worker_colour(w);
+        const glm::vec3 want(srgb_to_linear(p[0] / 255.0f), srgb_to_linear(p[1] / 255.0f), srgb_to_linear(p[2] / 255.0f));
+        if (glm::length(c - want) < 0.01f) found = int(w);
+      }
+      ASSERT_GE(found, 0) << "tile (" << x << ", " << y << ") is in no worker's colour";
+      ++by_colour[found];
+    }
+  uint64_t total = 0;
+  for (const auto& [name, w] : last["workers"].items()) {
+    const int number = std::stoi(name.substr(name.find('-') + 1));
+    EXPECT_EQ(by_colour[number], w["tiles"].get<uint64_t>()) << name;
+    total += w["tiles"].get<uint64_t>();
+  }
+  EXPECT_EQ(total, 20u) << "5 x 4 tiles of 32 in 160x120";
 }
 
 }  // namespace

@@ -11,8 +11,8 @@
 
 namespace igi {
 
-RenderPool::RenderPool(const SceneContext& context, const RenderSettings& settings, PixelFormat format, int threads)
-    : context_(context), settings_(settings), format_(format), results_fd_(eventfd(0, EFD_NONBLOCK)) {
+RenderPool::RenderPool(const SceneContext& context, PixelFormat format, int threads)
+    : context_(context), format_(format), results_fd_(eventfd(0, EFD_NONBLOCK)) {
   for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { run(); });
 }
 
@@ -27,10 +27,10 @@ RenderPool::~RenderPool() {
   close(results_fd_);
 }
 
-void RenderPool::add_frame(const FrameSetup& frame) {
+void RenderPool::add_frame(const FrameSetup& frame, const RenderSettings& settings) {
   auto state = std::make_shared<FrameState>();
   state->setup = frame;
-  state->method = make_method(context_, settings_);
+  state->method = make_method(context_, settings);
   std::lock_guard lock(mutex_);
   frames_[frame.frame_id] = std::move(state);
   // Keep the newest few: results of older frames may still be in flight.

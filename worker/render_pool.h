@@ -17,12 +17,13 @@ namespace igi {
 class RenderPool {
  public:
   // Results carry their pixels in `format`, made sendable (protocol::wire_pixels: finite, in range).
-  RenderPool(const SceneContext& context, const RenderSettings& settings, PixelFormat format, int threads);
+  RenderPool(const SceneContext& context, PixelFormat format, int threads);
   ~RenderPool();  // finishes nothing further: pending jobs are dropped
 
-  // A frame's setup must be added before its jobs. Old frames are forgotten
-  // once a newer one is added and they have no queued jobs.
-  void add_frame(const FrameSetup& frame);
+  // A frame's setup must be added before its jobs; its method is made for the
+  // frame's own settings (they may change between frames). Old frames are
+  // forgotten once a newer one is added and they have no queued jobs.
+  void add_frame(const FrameSetup& frame, const RenderSettings& settings);
   void add_job(const protocol::TileJobMsg& job);
   std::vector<protocol::TileResult> take_results();
   // Readable (poll) whenever results are waiting; take_results() clears it.
@@ -38,7 +39,6 @@ class RenderPool {
   protocol::TileResult render(const protocol::TileJobMsg& job, FrameState& frame);
 
   SceneContext context_;
-  RenderSettings settings_;
   PixelFormat format_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;

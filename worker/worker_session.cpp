@@ -25,7 +25,7 @@ struct WorkerSession::Loaded {
   Scene scene;
   std::unique_ptr<Accel> accel;
   std::unique_ptr<LightSet> lights;
-  std::unique_ptr<RenderPool> pool;  // made for each connection's settings
+  std::unique_ptr<RenderPool> pool;  // made for each connection
 };
 
 WorkerSession::WorkerSession(WorkerOptions options)
@@ -202,7 +202,7 @@ std::optional<WorkerSession::Outcome> WorkerSession::handle(protocol::Message& m
   } else if (std::holds_alternative<protocol::FrameSetupMsg>(m) || std::holds_alternative<protocol::TileJobMsg>(m)) {
     if (!welcome_) return std::nullopt;  // not ours to render yet
     if (loaded_ && loaded_->pool) {
-      if (auto* f = std::get_if<protocol::FrameSetupMsg>(&m)) loaded_->pool->add_frame(f->frame);
+      if (auto* f = std::get_if<protocol::FrameSetupMsg>(&m)) loaded_->pool->add_frame(f->frame, f->settings);
       else loaded_->pool->add_job(std::get<protocol::TileJobMsg>(m));
     } else {
       waiting_.push_back(std::move(m));
@@ -281,13 +281,13 @@ std::optional<WorkerSession::Outcome> WorkerSession::poll_loading(zmq::socket_t&
   return std::nullopt;
 }
 
-// A fresh pool for this connection's settings; jobs that came early go in now.
+// A fresh pool for this connection (frames carry their settings); jobs that came early go in now.
 void WorkerSession::start_pool() {
   loaded_->pool.reset();
   loaded_->pool = std::make_unique<RenderPool>(SceneContext{loaded_->scene, *loaded_->accel, *loaded_->lights},
-                                               welcome_->settings, welcome_->pixel_format, options_.threads);
+                                               welcome_->pixel_format, options_.threads);
   for (protocol::Message& m : waiting_) {
-    if (auto* f = std::get_if<protocol::FrameSetupMsg>(&m)) loaded_->pool->add_frame(f->frame);
+    if (auto* f = std::get_if<protocol::FrameSetupMsg>(&m)) loaded_->pool->add_frame(f->frame, f->settings);
     else loaded_->pool->add_job(std::get<protocol::TileJobMsg>(m));
   }
   waiting_.clear();

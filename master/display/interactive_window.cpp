@@ -22,9 +22,17 @@ InteractiveWindow::InteractiveWindow(int width, int height, const std::string& t
   glfwMakeContextCurrent(window_);
   glfwSwapInterval(0);
   last_time_ = glfwGetTime();
+  try {
+    view_ = std::make_unique<ImageView>();
+  } catch (...) {
+    glfwDestroyWindow(window_);
+    glfwTerminate();
+    throw;
+  }
 }
 
 InteractiveWindow::~InteractiveWindow() {
+  view_.reset();  // its GL objects go while the context lives
   glfwDestroyWindow(window_);
   glfwTerminate();
 }
@@ -33,14 +41,14 @@ bool InteractiveWindow::poll(CameraController& camera) {
   glfwPollEvents();
   const double now = glfwGetTime(), dt = now - last_time_;
   last_time_ = now;
-  auto key = [&](int k) { return glfwGetKey(window_, k) == GLFW_PRESS ? 1.0f : 0.0f; };
+  auto key = [&](int k) { return !keyboard_captured_ && glfwGetKey(window_, k) == GLFW_PRESS ? 1.0f : 0.0f; };
   if (key(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(window_, GLFW_TRUE);
   if (key(GLFW_KEY_R)) camera.reset();
   camera.move(key(GLFW_KEY_W) - key(GLFW_KEY_S), key(GLFW_KEY_D) - key(GLFW_KEY_A), key(GLFW_KEY_E) - key(GLFW_KEY_Q),
               float(dt));
   double x, y;
   glfwGetCursorPos(window_, &x, &y);
-  const bool pressed = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  const bool pressed = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && (dragging_ || !mouse_captured_);
   if (pressed && dragging_) camera.look(float(x - last_x_), float(y - last_y_));
   dragging_ = pressed;
   last_x_ = x;
@@ -49,8 +57,13 @@ bool InteractiveWindow::poll(CameraController& camera) {
 }
 
 void InteractiveWindow::show(const Image& image, float exposure) {
-  draw_srgb8(to_srgb8(image, exposure), image.width, image.height);
+  upload(image);
+  draw(exposure);
 }
+
+void InteractiveWindow::upload(const Image& image) { view_->upload(image); }
+
+void InteractiveWindow::draw(float exposure) { view_->draw(width_, height_, exposure); }
 
 void InteractiveWindow::present() { glfwSwapBuffers(window_); }
 

@@ -1,10 +1,12 @@
 #pragma once
 // The master's window: shows the latest (accumulated) frame, turns keyboard
 // and mouse into camera moves, and shows a status line in its title bar.
+// The image goes up as floats; the GPU applies exposure and sRGB (image_view.h).
 #include <memory>
 #include <string>
 
 #include "display/camera_controller.h"
+#include "display/image_view.h"
 #include "image/image.h"
 
 struct GLFWwindow;
@@ -20,6 +22,11 @@ class InteractiveWindow {
   bool poll(CameraController& camera);
   // Draws into the back buffer; present() makes it visible.
   void show(const Image& image, float exposure);
+  void upload(const Image& image);  // show() in two steps: upload once, draw as often as needed
+  void draw(float exposure);
+  // While a panel has the pointer or the keys, they do not move the camera.
+  void set_input_captured(bool mouse, bool keyboard) { mouse_captured_ = mouse, keyboard_captured_ = keyboard; }
+  GLFWwindow* handle() const { return window_; }
   void present();
   void set_status(const std::string& status);
   // Saves what the window shows (the back buffer) as an image file.
@@ -29,8 +36,9 @@ class InteractiveWindow {
   GLFWwindow* window_ = nullptr;
   std::string title_;
   double last_time_ = 0.0, last_x_ = 0.0, last_y_ = 0.0;
-  bool dragging_ = false;
+  bool dragging_ = false, mouse_captured_ = false, keyboard_captured_ = false;
   int width_, height_;
+  std::unique_ptr<ImageView> view_;
 };
 
 }  // namespace igi

@@ -1,0 +1,45 @@
+#pragma once
+// The settings panel: the method and its settings, as RenderSettings, and the
+// display's exposure. Every widget bounds its value (a VPL count below 1 or a
+// clamp below 0 cannot be entered); settings that fit each field but not each
+// other (anti-aliasing samples above the paths per set...) are shown as an
+// error and not sent. A valid change is what the window sends with the next
+// frame (protocol FrameSetup); no worker reconnects.
+#include <optional>
+#include <string>
+
+#include "methods/settings.h"
+
+namespace igi {
+
+// Each field held inside the range its widget offers (the wire's own bounds or tighter).
+RenderSettings bounded(RenderSettings settings);
+// What is wrong with the set as a whole (the command line's and the wire's checks), or nothing.
+std::optional<std::string> panel_settings_error(const RenderSettings& settings);
+
+class SettingsPanel {
+ public:
+  SettingsPanel(const RenderSettings& settings, float exposure);
+  // Draws the widgets (inside an ImGui window the caller opened).
+  void draw();
+  // The working copy, bounded, becomes the committed settings when valid (the
+  // widgets call this; so does the test hook). True when the committed set changed.
+  bool commit(const RenderSettings& edited);
+  // Settings changed since the last call: the caller starts a new view with them.
+  bool take_change();
+  const RenderSettings& settings() const { return committed_; }
+  float exposure() const { return exposure_; }
+  const std::string& error() const { return error_; }
+
+ private:
+  void draw_method(RenderSettings& s);
+  void draw_vpls(RenderSettings& s);
+  void draw_filter(RenderSettings& s);
+  void draw_extras(RenderSettings& s);
+  RenderSettings committed_, editing_;
+  float exposure_;
+  std::string error_;
+  bool changed_ = false;
+};
+
+}  // namespace igi

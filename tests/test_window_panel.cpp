@@ -1,0 +1,162 @@
+// The window's panel without a window (issue 18): widgets bound what can be
+// entered, a set that does not fit together is not sent, the panel draws in a
+// headless ImGui context, and camera bookmarks round-trip and name bad fields.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <imgui.h>
+
+#include "camera_bookmark.h"
+#include "display/cluster_panel.h"
+#include "display/settings_panel.h"
+#include "display/tile_overlay.h"
+#include "image/metrics.h"
+#include "scene/load_scene.h"
+#include "support/image_compare.h"
+#include "support/process.h"
+
+namespace igi {
+namespace {
+
+TEST(WindowPanel, BoundedSettingsCannotHoldAZeroVplCountOrANegativeClamp) {
+  RenderSettings s;
+  s.paths_per_set = 0;
+  s.clamp = -1.0f;
+  s.interleave = 0;
+  s.aa_samples = 8;  // not a square
+  s.compensation_samples = 100000;
+  s.filter_normal_cos = 3.0f;
+  const RenderSettings b = bounded(s);
+  EXPECT_EQ(b.paths_per_set, 1);
+  EXPECT_EQ(b.clamp, 0.0f);
+  EXPECT_EQ(b.interleave, 1);
+  EXPECT_EQ(b.aa_samples, 1) << "a square no larger than the paths per set";
+  EXPECT_EQ(b.compensation_samples, kMaxCompensationSamples);
+  EXPECT_EQ(b.filter_normal_cos, 1.0f);
+  EXPECT_FALSE(panel_settings_error(b)) << *panel_settings_error(b);
+}
+
+TEST(WindowPanel, CommitSendsValidChangesOnceAndHoldsBackSetsThatDoNotFit) {
+  RenderSettings start;
+  SettingsPanel panel(start, 1.0f);
+  EXPECT_FALSE(panel.commit(start)) << "no change";
+  EXPECT_FALSE(panel.take_change());
+  RenderSettings pt_caustics = start;
+  pt_caustics.method = MethodKind::PathTracer;
+  pt_caustics.caustics = true;
+  EXPECT_FALSE(panel.commit(pt_caustics));
+  EXPECT_NE(panel.error().find("caustic"), std::string::npos) << panel.error();
+  EXPECT_EQ(panel.settings().method, start.method) << "an invalid set is not sent";
+  RenderSettings fewer = start;
+  fewer.paths_per_set = 0;  // bounded to 1; anti-aliasing follows
+  EXPECT_TRUE(panel.commit(fewer));
+  EXPECT_TRUE(panel.error().empty());
+  EXPECT_EQ(panel.settings().paths_per_set, 1);
+  EXPECT_EQ(panel.settings().aa_samples, 1);
+  EXPECT_TRUE(panel.take_change());
+  EXPECT_FALSE(panel.take_change()) << "taken once";
+}
+
+// The widgets themselves, in an ImGui context with no window: every method's page draws.
+TEST(WindowPanel, EveryMethodsPageDrawsHeadless) {
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;
+  io.DisplaySize = ImVec2(640, 480);
+  unsigned char* pixels;
+  int w, h;
+  io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+  for (MethodKind m : {MethodKind::PathTracer, MethodKind::InstantRadiosity, MethodKind::Igi, MethodKind::Lightcuts}) {
+    RenderSettings s;
+    s.method = m;
+    SettingsPanel panel(s, 2.0f);
+    for (int frame = 0; frame < 2; ++frame) {  // ImGui sizes a new window in its first frame and draws it in the second
+      ImGui::NewFrame();
+      ImGui::Begin("panel");
+      panel.draw();
+      ImGui::End();
+      ImGui::Render();
+    }
+    EXPECT_GT(ImGui::GetDrawData()->TotalVtxCount, 100) << method_name(m);
+    EXPECT_FALSE(panel.take_change()) << "drawing alone changes nothing";
+  }
+  ImGui::DestroyContext();
+}
+
+TEST(WindowPanel, WorkerColoursDifferAcrossThePalette) {
+  for (uint32_t i = 0; i < kPaletteSize; ++i)
+    for (uint32_t j = i + 1; j < kPaletteSize; ++j) {
+      const auto a = worker_colour(i), b = worker_colour(j);
+      int most = 0;
+      for (int c = 0; c < 3; ++c) most = std::max(most, std::abs(int(a[c]) - int(b[c])));
+      EXPECT_GE(most, 60) << i << " and " << j;
+    }
+  EXPECT_EQ(worker_colour(3), worker_colour(3 + kPaletteSize));
+}
+
+TEST(WindowPanel, WorkerLoadIsTilesPerSecondAndTheShareOfItsThreadsBusy) {
+  FrameRecord f;
+  f.seconds = 0.5;
+  f.workers["worker-3"] = {40, 1.5, 0, 0};  // 40 tiles, 1.5 s of rendering over 4 threads in 0.5 s
+  const WorkerLoad load = worker_load(PeerView{"worker-3", 3, 4, 0.0, 0.0}, f);
+  EXPECT_DOUBLE_EQ(load.tiles_per_second, 80.0);
+  EXPECT_DOUBLE_EQ(load.busy_share, 0.75);
+  EXPECT_EQ(worker_load(PeerView{"worker-4", 4, 4, 0.0, 0.0}, f).tiles_per_second, 0.0) << "no tiles in this frame";
+}
+
+TEST(CameraBookmark, RoundTripsAndNamesTheBadField) {
+  const std::string path = test::output_path("bookmark.json");
+  Camera c{{1, 2, 3}, glm::normalize(glm::vec3(0.2f, -0.1f, -1)), {0, 1, 0}, 0.7f};
+  write_camera_file(path, c);
+  const Camera r = read_camera_file(path);
+  EXPECT_LT(glm::length(r.position - c.position), 1e-5f);
+  EXPECT_LT(glm::length(r.forward - c.forward), 1e-5f);
+  EXPECT_NEAR(r.vfov, c.vfov, 1e-5f);
+  auto error_of = [&](const std::string& text) {
+    std::ofstream(path) << text;
+    try {
+      read_camera_file(path);
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error_of("{\"position\": [0, 0], \"forward\": [0, 0, -1], \"up\": [0, 1, 0], \"vfov_degrees\": 40}")
+                .find("\"position\""), std::string::npos);
+  EXPECT_NE(error_of("{\"position\": [0, 0, 0], \"forward\": [0, 1, 0], \"up\": [0, 2, 0], \"vfov_degrees\": 40}")
+                .find("\"up\""), std::string::npos);
+  EXPECT_NE(error_of("{\"position\": [0, 0, 0], \"forward\": [0, 0, -1], \"up\": [0, 1, 0], \"vfov_degrees\": 0}")
+                .find("vfov_degrees"), std::string::npos);
+  EXPECT_NE(error_of("not json").find("not JSON"), std::string::npos);
+  EXPECT_NE(error_of("{}").find(path), std::string::npos) << "the file is named";
+}
+
+// igi-master --camera FILE (headless here): the scene's own camera from a file
+// gives the scene's image; another camera another image; a bad file stops the run naming it.
+TEST(CameraBookmark, HeadlessMasterStartsFromTheFile) {
+  const std::string same = test::output_path("camera-same.json"), moved = test::output_path("camera-moved.json");
+  const Camera home = load_scene("cornell").camera_or_auto();
+  write_camera_file(same, home);
+  Camera other = home;
+  other.position += 0.3f * glm::normalize(home.forward);
+  write_camera_file(moved, other);
+  auto render = [](const std::string& extra, const std::string& out) {
+    return test::run(std::string(IGI_MASTER_BINARY) + " --workers 1 --worker-threads 1 --scene cornell --method igi" +
+                     " --vpl-paths 4 --size 48x36 --frames 1 --quiet -o " + test::output_path(out) + " " + extra, 60);
+  };
+  ASSERT_EQ(render("", "camera-none.png").exit_code, 0);
+  ASSERT_EQ(render("--camera " + same, "camera-same.png").exit_code, 0);
+  ASSERT_EQ(render("--camera " + moved, "camera-moved.png").exit_code, 0);
+  const Image none = read_image(test::output_path("camera-none.png"));
+  EXPECT_LT(max_abs_error(read_image(test::output_path("camera-same.png")), none), 0.01f);
+  EXPECT_GT(max_abs_error(read_image(test::output_path("camera-moved.png")), none), 0.1f);
+  const std::string bad = test::output_path("camera-bad.json");
+  std::ofstream(bad) << "{\"position\": [0, 0, 0]}";
+  const test::RunResult r = render("--camera " + bad, "camera-bad.png");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find(bad + ": \"forward\""), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace igi
