@@ -9,6 +9,7 @@ packages=(
   libopenimageio-dev openimageio-tools
   libglfw3-dev libgl-dev libglm-dev
   libzmq3-dev cppzmq-dev
+  libxxhash-dev                        # XXH3 content hashes (scenes, VPL sets)
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libgtest-dev
   xvfb xauth libgl1-mesa-dri

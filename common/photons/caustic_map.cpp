@@ -5,15 +5,14 @@
 
 #include "methods/vpl_contribution.h"
 #include "photons/photon_paths.h"
-#include "sampling/hash.h"
+#include "sampling/content_hash.h"
 #include "sampling/warp.h"
 
 namespace igi {
 
 uint64_t hash_photons(const std::vector<Photon>& photons) {
-  uint64_t h = 0xcbf29ce484222325ull;
-  for (const Photon& p : photons) h = fnv1a64(&p, sizeof p, h);  // four vec3 and a uint32: no padding
-  return h;
+  static_assert(sizeof(Photon) == 13 * 4, "four vec3 and a uint32: no padding for the hash to read");
+  return content_hash(photons.data(), photons.size() * sizeof(Photon));
 }
 
 CausticMap::CausticMap(const SceneContext& context, const RenderSettings& settings)

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "sampling/hash.h"
+#include "sampling/content_hash.h"
 
 namespace igi {
 
@@ -16,7 +16,7 @@ std::optional<std::vector<uint8_t>> read_file_bytes(const std::string& path) {
   return bytes;
 }
 
-uint64_t content_hash(const std::vector<uint8_t>& bytes) { return fnv1a64(bytes.data(), bytes.size()); }
+uint64_t content_hash(const std::vector<uint8_t>& bytes) { return content_hash(bytes.data(), bytes.size()); }
 
 std::string hash_hex(uint64_t hash) {
   char text[17];
