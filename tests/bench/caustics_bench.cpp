@@ -29,15 +29,14 @@
 //     per-pixel choice of reflection or refraction shows as salt and pepper)
 //     -> DIR/branches.csv.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench/bench_clock.h"
 #include "image/flip.h"
 #include "image/metrics.h"
 #include "methods/vpl_method.h"
@@ -48,6 +47,9 @@
 
 namespace igi {
 namespace {
+
+using bench::Clock;
+using bench::median;
 
 namespace fs = std::filesystem;
 
@@ -109,22 +111,6 @@ Options parse(int argc, char** argv) {
   if ((o.reach || o.branches) && o.ref.empty())
     throw std::invalid_argument("--ref: the converged reference is needed (or --skip-reach --skip-branches)");
   return o;
-}
-
-struct Clock {
-  double wall, cpu;
-  static Clock now() {
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return {std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(),
-            double(t.tv_sec) + 1e-9 * double(t.tv_nsec)};
-  }
-  Clock operator-(const Clock& o) const { return {wall - o.wall, cpu - o.cpu}; }
-};
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
 struct Prepared {

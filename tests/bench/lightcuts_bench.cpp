@@ -22,15 +22,14 @@
 // Per-pixel relative difference to ir: |Y - Y_ir| / Y_ir of luminance Y,
 // over pixels with Y_ir above 1 % of the image's mean.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench/bench_clock.h"
 #include "image/flip.h"
 #include "image/metrics.h"
 #include "lightcuts/lightcuts_method.h"
@@ -42,6 +41,8 @@
 
 namespace igi {
 namespace {
+
+using bench::Clock;
 
 namespace fs = std::filesystem;
 
@@ -110,17 +111,6 @@ struct Prepared {
     f.seed = 1;
     return f;
   }
-};
-
-struct Clock {
-  double wall, cpu;
-  static Clock now() {
-    timespec t;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return {std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(),
-            double(t.tv_sec) + 1e-9 * double(t.tv_nsec)};
-  }
-  Clock operator-(const Clock& o) const { return {wall - o.wall, cpu - o.cpu}; }
 };
 
 struct Run {
