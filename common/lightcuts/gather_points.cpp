@@ -31,9 +31,8 @@ GatherPoint GatherPointTracer::trace(int x, int y, int k, RayCounts& rays) const
   g.surface = sp;
   g.wo = chain.wo;
   g.depth = chain.depth;
-  const bool front = glm::dot(g.wo, sp.geometric_normal) >= 0.0f;
-  g.shading_normal = front ? sp.shading_normal : -sp.shading_normal;
-  g.geometric_normal = front ? sp.geometric_normal : -sp.geometric_normal;
+  g.shading_normal = sp.shading_normal_facing(g.wo);
+  g.geometric_normal = sp.geometric_normal_facing(g.wo);
   g.cos_o = glm::dot(g.wo, g.shading_normal);
   g.shading_frame = Frame(g.shading_normal);
   g.geometric_frame = Frame(g.geometric_normal);

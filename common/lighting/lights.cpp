@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "sampling/warp.h"
+#include "scene/triangle.h"
 
 namespace igi {
 
@@ -33,9 +34,7 @@ LightSet::LightSet(const Scene& scene) : scene_(scene), light_of_triangle_(scene
 }
 
 float LightSet::triangle_area(uint32_t triangle) const {
-  const glm::uvec3& t = scene_.triangles[triangle];
-  return 0.5f * glm::length(glm::cross(scene_.positions[t[1]] - scene_.positions[t[0]],
-                                       scene_.positions[t[2]] - scene_.positions[t[0]]));
+  return 0.5f * glm::length(triangle_cross(scene_, triangle));
 }
 
 float LightSet::power(const Light& light) const {
@@ -63,7 +62,7 @@ LightSample LightSet::sample(glm::vec3 p, float u_select, glm::vec2 u) const {
     glm::vec3 p0 = scene_.positions[t[0]], p1 = scene_.positions[t[1]], p2 = scene_.positions[t[2]];
     glm::vec2 b = uniform_triangle(u);
     glm::vec3 q = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
-    glm::vec3 n = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    glm::vec3 n = triangle_normal(p0, p1, p2);
     glm::vec3 d = q - p;
     float dist2 = glm::dot(d, d);
     s.distance = std::sqrt(dist2);
@@ -95,9 +94,7 @@ LightSample LightSet::sample(glm::vec3 p, float u_select, glm::vec2 u) const {
 float LightSet::pdf_area(uint32_t triangle, glm::vec3 p, glm::vec3 hit_point) const {
   int32_t light = light_of_triangle_[triangle];
   if (light < 0) return 0.0f;
-  const glm::uvec3& t = scene_.triangles[triangle];
-  glm::vec3 n = glm::normalize(glm::cross(scene_.positions[t[1]] - scene_.positions[t[0]],
-                                          scene_.positions[t[2]] - scene_.positions[t[0]]));
+  glm::vec3 n = triangle_normal(scene_, triangle);
   glm::vec3 d = hit_point - p;
   float dist2 = glm::dot(d, d);
   float cos_light = std::abs(glm::dot(n, d)) / std::sqrt(dist2);
@@ -117,7 +114,7 @@ EmissionSample LightSet::sample_emission(float u_select, glm::vec2 u) const {
     glm::vec3 p0 = scene_.positions[t[0]], p1 = scene_.positions[t[1]], p2 = scene_.positions[t[2]];
     glm::vec2 b = uniform_triangle(u);
     e.position = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
-    e.normal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    e.normal = triangle_normal(p0, p1, p2);
     // Radiance times area: the VPL's emitted radiance per unit projected solid angle.
     e.power = scene_.materials[scene_.triangle_material[light.index]].emission *
               (triangle_area(light.index) / select);

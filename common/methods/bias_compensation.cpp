@@ -35,9 +35,7 @@ glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int l, int
   // skipped, they keep the clamp's loss.
   if (sp.material->type != MaterialType::Diffuse) return glm::vec3(0.0f);
   // The hemisphere on the viewer's side, as VPL shading uses it.
-  const bool front = glm::dot(g.wo, sp.geometric_normal) >= 0.0f;
-  const glm::vec3 n = front ? sp.shading_normal : -sp.shading_normal;
-  const glm::vec3 ng = front ? sp.geometric_normal : -sp.geometric_normal;
+  const glm::vec3 n = sp.shading_normal_facing(g.wo), ng = sp.geometric_normal_facing(g.wo);
   const Frame frame(n);
   // The pixel's n rays are one stratified sequence shared out over its S
   // sub-samples (at least one each): sub-sample k takes indices [k r, (k+1) r);

@@ -34,7 +34,7 @@ void CausticMap::build(uint32_t frame_seed, int threads) {
 
 glm::vec3 CausticMap::radiance(const GSample& g) const {
   const SurfacePoint& sp = g.surface;
-  const glm::vec3 n = glm::dot(g.wo, sp.geometric_normal) >= 0.0f ? sp.geometric_normal : -sp.geometric_normal;
+  const glm::vec3 n = sp.geometric_normal_facing(g.wo);
   // A Lambertian receiver's demodulated BSDF is 1 / pi for every photon that
   // passes the normal test (it arrived on the viewer's side): summed once.
   const bool lambert = sp.material->type == MaterialType::Diffuse;

@@ -1,12 +1,13 @@
 #pragma once
 // Maps from the unit square to directions and points, with their densities.
 #include <cmath>
+#include <numbers>
 
 #include <glm/glm.hpp>
 
 namespace igi {
 
-inline constexpr float kPi = 3.14159265358979323846f;
+inline constexpr float kPi = std::numbers::pi_v<float>;
 inline constexpr float kInvPi = 1.0f / kPi;
 
 // Orthonormal basis around a unit normal (Duff et al. 2017).

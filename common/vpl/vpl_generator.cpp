@@ -40,7 +40,7 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
     // sharp GGX surfaces radiate through a widened lobe (VplShading::vpl_bsdf).
     if (!sp.material->is_specular())
       // The VPL reflects towards the side the light arrived from.
-      out.push_back(Vpl{sp.position, glm::dot(wo, sp.geometric_normal) >= 0.0f ? sp.shading_normal : -sp.shading_normal,
+      out.push_back(Vpl{sp.position, sp.shading_normal_facing(wo),
                         flux * inv_paths, wo, sp.albedo,
                         ctx.scene.triangle_material[hit.triangle], 0, VplKind::Surface});
     SampleStream u(path, seed, kStartDims + kDimsPerBounce * uint32_t(depth));
