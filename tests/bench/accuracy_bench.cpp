@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_scene.h"
 #include "image/flip.h"
 #include "image/metrics.h"
 #include "render/offline_render.h"
@@ -82,14 +83,7 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-// A scene with its BVH and lights, alive for one scene's sweep.
-struct Prepared {
-  Scene scene;
-  Accel accel;
-  LightSet lights;
-  explicit Prepared(Scene s) : scene(std::move(s)), accel(scene), lights(scene) {}
-  SceneContext context() const { return {scene, accel, lights}; }
-};
+using Prepared = bench::PreparedScene;
 
 OfflineResult render(const Prepared& p, const RenderSettings& settings, const Options& o, int samples,
                      uint32_t seed) {
@@ -262,10 +256,5 @@ int run(const Options& o) {
 }  // namespace igi
 
 int main(int argc, char** argv) {
-  try {
-    return igi::run(igi::parse(argc, argv));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "igi-accuracy: %s\n", e.what());
-    return 1;
-  }
+  return igi::bench::run_main("igi-accuracy", [&] { return igi::run(igi::parse(argc, argv)); });
 }

@@ -36,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_scene.h"
 #include "bench/bench_clock.h"
 #include "image/flip.h"
 #include "image/metrics.h"
@@ -113,21 +114,7 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-struct Prepared {
-  Scene scene;
-  Accel accel;
-  LightSet lights;
-  explicit Prepared(Scene s) : scene(std::move(s)), accel(scene), lights(scene) {}
-  SceneContext context() const { return {scene, accel, lights}; }
-  FrameSetup frame(int w, int h, uint32_t seed) const {
-    FrameSetup f;
-    f.camera = scene.camera_or_auto();
-    f.width = w;
-    f.height = h;
-    f.seed = seed;
-    return f;
-  }
-};
+using Prepared = bench::PreparedScene;
 
 RenderSettings igi_settings(const Options& o, int photons) {
   RenderSettings s;
@@ -359,10 +346,5 @@ int run(const Options& o) {
 }  // namespace igi
 
 int main(int argc, char** argv) {
-  try {
-    return igi::run(igi::parse(argc, argv));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "igi-caustics-bench: %s\n", e.what());
-    return 1;
-  }
+  return igi::bench::run_main("igi-caustics-bench", [&] { return igi::run(igi::parse(argc, argv)); });
 }

@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_scene.h"
 #include "bench/bench_clock.h"
 #include "image/flip.h"
 #include "image/metrics.h"
@@ -97,21 +98,7 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-struct Prepared {
-  Scene scene;
-  Accel accel;
-  LightSet lights;
-  explicit Prepared(Scene s) : scene(std::move(s)), accel(scene), lights(scene) {}
-  SceneContext context() const { return {scene, accel, lights}; }
-  FrameSetup frame(const Options& o) const {
-    FrameSetup f;
-    f.camera = scene.camera_or_auto();
-    f.width = o.width;
-    f.height = o.height;
-    f.seed = 1;
-    return f;
-  }
-};
+using Prepared = bench::PreparedScene;
 
 struct Run {
   Image image;
@@ -123,7 +110,7 @@ struct Run {
 
 Run run(const Prepared& p, const RenderSettings& s, const Options& o, int frames) {
   auto method = make_method(p.context(), s);
-  const FrameSetup frame = p.frame(o);
+  const FrameSetup frame = p.frame(o.width, o.height);
   std::vector<Run> runs;
   for (int f = 0; f < frames; ++f) {
     Run r;
@@ -155,7 +142,7 @@ const Image& reference(const Prepared& p, const std::string& name, const Options
   const fs::path path = fs::path(o.refs) / file;
   if (fs::exists(path)) return storage = read_image(path.string());
   fs::create_directories(o.refs);
-  FrameSetup frame = p.frame(o);
+  FrameSetup frame = p.frame(o.width, o.height);
   frame.seed = seed;
   storage = render_offline(p.context(), pt, frame, o.ref_spp, FrameOptions{}).image;
   write_image(storage, path.string());
@@ -260,10 +247,5 @@ int run_all(const Options& o) {
 }  // namespace igi
 
 int main(int argc, char** argv) {
-  try {
-    return igi::run_all(igi::parse(argc, argv));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "igi-lightcuts-bench: %s\n", e.what());
-    return 1;
-  }
+  return igi::bench::run_main("igi-lightcuts-bench", [&] { return igi::run_all(igi::parse(argc, argv)); });
 }
