@@ -130,7 +130,7 @@ Scene tilted_cornell() {
   for (size_t t = 0; t < s.triangles.size(); ++t) {
     const glm::uvec3 tri = s.triangles[t];
     const glm::vec3 n = triangle_normal(s, uint32_t(t));
-    const Frame f(n);
+    const Onb f(n);
     for (int k = 0; k < 3; ++k) {
       const float phi = 2.1f * float(tri[k]);
       s.normals[tri[k]] = glm::normalize(n + std::tan(0.21f) * (std::cos(phi) * f.t + std::sin(phi) * f.b));

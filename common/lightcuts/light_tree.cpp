@@ -209,7 +209,7 @@ void fill_cones(LightTree& tree, const std::vector<Range>& ranges, size_t first,
     const float length = glm::length(sum);
     float theta = kPi;
     if (length > 1e-6f) {
-      node.cone.frame = Frame(sum / length);
+      node.cone.frame = Onb(sum / length);
       float cos_min = 1.0f;
       for (uint32_t i = ranges[n].begin; i < ranges[n].end; ++i)
         cos_min = std::min(cos_min, glm::dot(node.cone.axis(), tree.leaves[i].normal));

@@ -124,7 +124,7 @@ EmissionSample LightSet::sample_emission(float u_select, glm::vec2 u) const {
   if (light.kind == LightKind::Directional) {
     // A point on a disc of the scene's radius facing the light, outside the scene.
     glm::vec3 dir = glm::normalize(pl.direction);
-    Frame frame(dir);
+    Onb frame(dir);
     float r = std::sqrt(u.x) * scene_radius_, phi = 2.0f * kPi * u.y;
     e.position = scene_center_ - dir * scene_radius_ + frame.to_world({r * std::cos(phi), r * std::sin(phi), 0.0f});
     e.normal = dir;

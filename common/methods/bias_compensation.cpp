@@ -36,7 +36,7 @@ glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int l, int
   if (sp.material->type != MaterialType::Diffuse) return glm::vec3(0.0f);
   // The hemisphere on the viewer's side, as VPL shading uses it.
   const glm::vec3 n = sp.shading_normal_facing(g.wo), ng = sp.geometric_normal_facing(g.wo);
-  const Frame frame(n);
+  const Onb frame(n);
   // The pixel's n rays are one stratified sequence shared out over its S
   // sub-samples (at least one each): sub-sample k takes indices [k r, (k+1) r);
   // each glass branch b = l / S of the pixel has a sequence of its own.
