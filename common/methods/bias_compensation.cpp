@@ -58,7 +58,7 @@ glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int l, int
     hit_sample.surface = surface_at(accel_.scene(), hit, wi);
     if (hit_sample.surface.material->is_specular()) continue;
     hit_sample.wo = -wi;
-    hit_sample.depth = 0.0f;
+    hit_sample.has_surface = true;  // no camera path leads here: depth stays unset
     const float d2 = glm::dot(hit_sample.surface.position - sp.position, hit_sample.surface.position - sp.position);
     const float cos_y = std::abs(glm::dot(wi, hit_sample.surface.shading_normal));
     const float geometry_term = cos_x * cos_y / d2;

@@ -62,6 +62,7 @@ int follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, in
         g.surface = sp;
         g.wo = -b.ray.direction;
         g.depth = b.travelled;
+        g.has_surface = true;
         break;
       }
       if (b.depth + 1 >= specular_depth) break;
