@@ -16,6 +16,7 @@
 
 #include "io/file_bytes.h"
 #include "scene/gltf_loader.h"
+#include "support/image_compare.h"
 
 namespace igi {
 namespace {
@@ -26,13 +27,7 @@ using json = nlohmann::json;
 constexpr int kFloat = 5126, kUnsignedInt = 5125;
 
 // A fresh folder per test, under the build tree.
-fs::path test_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::path(IGI_TEST_OUTPUT_DIR) / "gltf_loader" / info->name();
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path test_dir() { return test::fresh_test_dir("gltf_loader"); }
 
 void write_bytes(const fs::path& path, const std::vector<unsigned char>& bytes) {
   std::ofstream out(path, std::ios::binary);
