@@ -4,10 +4,13 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <thread>
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <xmmintrin.h>
@@ -96,6 +99,12 @@ Image render_frame(const Method& method, const FrameSetup& frame, int border,
     }
   };
   const int threads = options.threads > 0 ? options.threads : default_thread_count();
+  // TBB keeps one thread a core unless told otherwise; more threads than
+  // cores, when asked for, are allowed for this frame (never fewer for
+  // others: a lower limit would hold back Embree's builds elsewhere).
+  std::optional<tbb::global_control> allow_more;
+  if (threads > tbb::info::default_concurrency())
+    allow_more.emplace(tbb::global_control::max_allowed_parallelism, size_t(threads));
   tbb::task_arena arena(threads);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), render_tiles, tbb::simple_partitioner());

@@ -16,7 +16,7 @@ std::vector<TileJob> make_tiles(int width, int height, int tile_w, int tile_h, i
 
 struct FrameOptions {
   int tile_size = 32;
-  int threads = 0;  // 0: all hardware threads (TBB uses no more than the machine has)
+  int threads = 0;  // 0: all hardware threads
   // Called from the calling thread, between the tiles it renders, at most
   // every 250 ms, with the fraction of tiles done; last with 1.
   std::function<void(float)> progress;
