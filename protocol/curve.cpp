@@ -10,6 +10,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "io/file_bytes.h"
+
 namespace igi::protocol {
 namespace {
 
@@ -71,14 +73,9 @@ std::string public_of(const std::string& secret_key) {
   return public_key;
 }
 
-// Creates `path` with `mode`, failing if it exists (never overwrites a key).
-void write_new_file(const std::string& path, const std::string& text, mode_t mode) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, mode);
-  if (fd < 0) throw std::runtime_error(path + ": cannot create (" + std::strerror(errno) + ")");
-  const bool ok = ::fchmod(fd, mode) == 0 && ::write(fd, text.data(), text.size()) == ssize_t(text.size());
-  const int error = errno;
-  ::close(fd);
-  if (!ok) throw std::runtime_error(path + ": cannot write (" + std::strerror(error) + ")");
+// Creates `path` with exactly `mode`, failing if it exists (never overwrites a key).
+void write_key_file(const std::string& path, const std::string& text, mode_t mode) {
+  write_new_file(path, text.data(), text.size(), mode, Umask::ignored);
 }
 
 std::string certificate(const char* kind, const std::string& lines) {
@@ -111,12 +108,12 @@ void write_key_files(const std::string& name, const CurveKeyPair& keys) {
   for (const std::string& path : {secret_path, public_path})
     if (fs::exists(fs::symlink_status(path)))
       throw std::runtime_error(path + " exists: not overwritten (remove it or choose another name)");
-  write_new_file(secret_path,
+  write_key_file(secret_path,
                  certificate("**Secret**", "#   Keep it on this machine, readable only by you (mode 0600).\n\n"
                                            "metadata\ncurve\n    public-key = \"" + keys.public_key +
                                            "\"\n    secret-key = \"" + keys.secret_key + "\"\n"),
                  0600);
-  write_new_file(public_path,
+  write_key_file(public_path,
                  certificate("Public", "#   Give it to the other side: a master's to its workers (--master-key),\n"
                                        "#   a worker's to the master (--authorized-keys).\n\n"
                                        "metadata\ncurve\n    public-key = \"" + keys.public_key + "\"\n"),

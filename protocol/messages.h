@@ -69,7 +69,7 @@ struct Hello {
 struct Welcome {
   uint64_t session = 0;
   std::string scene_name;   // built-in scene name, or the file's name (no directories)
-  uint64_t scene_hash = 0;  // FNV-1a 64 of the file's bytes; 0 for built-in scenes
+  uint64_t scene_hash = 0;  // XXH3-64 of the file's bytes (scene/scene_file.h); 0 for built-in scenes
   uint64_t scene_size = 0;  // bytes of the file; 0 for built-in scenes
   RenderSettings settings;
   uint32_t credits = 2;         // jobs the worker may hold at once

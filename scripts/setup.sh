@@ -9,6 +9,7 @@ packages=(
   libopenimageio-dev openimageio-tools
   libglfw3-dev libgl-dev libglm-dev libimgui-dev   # libimgui-dev: the window's panels (its GLFW and OpenGL 2 backends are in libimgui.a)
   libzmq3-dev cppzmq-dev
+  libxxhash-dev                        # XXH3 content hashes (scenes, VPL sets)
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libgtest-dev
   xvfb xauth libgl1-mesa-dri

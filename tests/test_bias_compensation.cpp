@@ -26,6 +26,7 @@ namespace igi {
 namespace {
 
 using test::luminance;
+using test::render_tiled;
 using test::vpl_settings;
 
 constexpr int kWidth = 48, kHeight = 36;
@@ -93,24 +94,6 @@ TEST(BiasCompensation, FurnaceHoldsAndOneLevelIsExactlyOneLevel) {
   EXPECT_NEAR(mild, exact, 0.02 * exact) << "bound: 2 %, the VPL estimate's spread at this size";
   EXPECT_NEAR(clamped, le + c * reflected, 0.03 * exact) << "bound: 3 %, the tessellated sphere's G is not constant";
   EXPECT_NEAR(compensated, one_level, 0.03 * exact) << "bound: 3 %, as above";
-}
-
-// Renders the frame tile by tile with the given tile size and origin offset
-// (as tests/test_igi.cpp does).
-Image render_tiled(const Method& method, const FrameSetup& frame, int border, int tw, int th, int ox, int oy) {
-  Image image(frame.width, frame.height);
-  RayCounts rays;
-  for (int y = -oy; y < frame.height; y += th)
-    for (int x = -ox; x < frame.width; x += tw) {
-      const int x0 = std::max(0, x), y0 = std::max(0, y);
-      const int w = std::min(frame.width, x + tw) - x0, h = std::min(frame.height, y + th) - y0;
-      if (w <= 0 || h <= 0) continue;
-      std::vector<glm::vec3> pixels(size_t(w) * h);
-      method.render_tile(TileJob{x0, y0, w, h, border}, pixels, rays);
-      for (int j = 0; j < h; ++j)
-        for (int i = 0; i < w; ++i) image.at(x0 + i, y0 + j) = pixels[size_t(j) * w + i];
-    }
-  return image;
 }
 
 // c. Per-pixel random numbers hash the GLOBAL pixel and frame seed only.

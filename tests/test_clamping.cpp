@@ -20,7 +20,7 @@ std::vector<bool> crease_mask(const test::Prepared& p, const FrameSetup& frame, 
   for (size_t i = 0; i < gbuffer.size(); ++i) {
     const GSample& g = gbuffer[i];
     if (!g.valid()) continue;
-    Frame f(glm::dot(g.wo, g.surface.geometric_normal) >= 0 ? g.surface.geometric_normal : -g.surface.geometric_normal);
+    const Onb f(g.surface.geometric_normal_facing(g.wo));
     for (int k = 0; k < 64 && !mask[i]; ++k) {
       glm::vec3 d = f.to_world(cosine_hemisphere({(k + 0.5f) / 64.0f, (k * 0.618034f) - std::floor(k * 0.618034f)}));
       mask[i] = p.accel->occluded(Ray{offset_origin(g.surface, d), d, 0.0f, distance});

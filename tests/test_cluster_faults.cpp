@@ -63,17 +63,6 @@ bool wait_for_text(const std::string& path, const std::string& what, double seco
   return false;
 }
 
-int wait_exit(pid_t pid, double seconds) {
-  const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-  while (Clock::now() < end) {
-    int status = 0;
-    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  test::stop(pid);
-  return -2;
-}
-
 TEST(ClusterFaults, AMasterRestartCostsTheWorkerNoSceneReload) {
   const std::string endpoint = endpoint_here(), log = fresh_log("restart-worker.log");
   pid_t first = test::start(master(endpoint, "--frames 100000 --no-write -o " + test::output_path("restart.exr")));
@@ -81,8 +70,8 @@ TEST(ClusterFaults, AMasterRestartCostsTheWorkerNoSceneReload) {
   ASSERT_TRUE(wait_for_text(log, "ready", 20 * test::kSlowdown)) << read_text(log);
   test::stop(first);  // kill -9: the worker notices the closed connection
   pid_t second = test::start(master(endpoint, "--frames 3 -o " + test::output_path("restart.exr")));
-  EXPECT_EQ(wait_exit(second, 30 * test::kSlowdown), 0) << "the new master got its frames from the old worker";
-  EXPECT_EQ(wait_exit(worker, 10 * test::kSlowdown), 0);
+  EXPECT_EQ(test::wait_exit(second, 30 * test::kSlowdown), 0) << "the new master got its frames from the old worker";
+  EXPECT_EQ(test::wait_exit(worker, 10 * test::kSlowdown), 0);
   const std::string text = read_text(log);
   EXPECT_EQ(count(text, " ready: "), 1u) << "loaded once:\n" << text;
   EXPECT_NE(text.find("keeping scene cornell and its BVH (no reload)"), std::string::npos) << text;
@@ -115,8 +104,8 @@ TEST(ClusterFaults, AWorkerThatCannotLoadTheSceneLeavesWithStatus6AndTheFramesCo
   EXPECT_EQ(failing.exit_code, 6) << failing.output;
   EXPECT_NE(failing.output.find("cannot load the scene cornell"), std::string::npos) << failing.output;
   pid_t good = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --quiet");
-  EXPECT_EQ(wait_exit(m, 30 * test::kSlowdown), 0);
-  EXPECT_EQ(wait_exit(good, 10 * test::kSlowdown), 0);
+  EXPECT_EQ(test::wait_exit(m, 30 * test::kSlowdown), 0);
+  EXPECT_EQ(test::wait_exit(good, 10 * test::kSlowdown), 0);
 }
 
 TEST(ClusterFaults, AStoppedLocalWorkerDoesNotHoldUpTheMastersExit) {

@@ -49,16 +49,6 @@ nlohmann::json read_json(const std::string& path) {
   return nlohmann::json::parse(in);
 }
 
-int wait_for(pid_t pid, int seconds) {
-  for (int i = 0; i < seconds * 10; ++i) {
-    int status = 0;
-    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  test::stop(pid);
-  return -2;
-}
-
 TEST(Distributed, TwoWorkersMatchTheSingleProcessRenderBitForBit) {
   const std::string out = test::output_path("dist-two.exr");
   auto r = test::run(master("--workers 2 --frames 1 -o " + out));
@@ -187,8 +177,8 @@ TEST(Distributed, WorkerJoiningMidSessionGetsWork) {
   pid_t m = test::start(master("--workers 1 --frames 60 --listen " + endpoint + " --quiet -o " + out + " --stats " + stats));
   std::this_thread::sleep_for(std::chrono::milliseconds(800));
   pid_t w = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --quiet");
-  EXPECT_EQ(wait_for(m, 120), 0);
-  EXPECT_EQ(wait_for(w, 20), 0) << "the joined worker leaves cleanly on the master's bye";
+  EXPECT_EQ(test::wait_exit(m, 120), 0);
+  EXPECT_EQ(test::wait_exit(w, 20), 0) << "the joined worker leaves cleanly on the master's bye";
   nlohmann::json s = read_json(stats);
   EXPECT_EQ(s["frames"].back()["workers"].size(), 2u) << "both workers rendered the last frame";
 }
@@ -236,7 +226,7 @@ TEST(Distributed, WorkerWithoutTheSceneFileReceivesItFromTheMaster) {
   pid_t m = test::start(master("--workers 0 --frames 1 --quiet --listen " + endpoint + " -o " + out, scene));
   auto r = test::run(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --scene-dir " +
                      (dir / "nowhere").string() + " --cache " + (dir / "cache").string(), 60);
-  EXPECT_EQ(wait_for(m, 60), 0);
+  EXPECT_EQ(test::wait_exit(m, 60), 0);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("asking the master"), std::string::npos) << r.output;
   ASSERT_TRUE(fs::exists(dir / "cache"));

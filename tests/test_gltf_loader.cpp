@@ -6,7 +6,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -15,7 +14,9 @@
 #include <nlohmann/json.hpp>
 #include <OpenImageIO/imageio.h>
 
+#include "io/file_bytes.h"
 #include "scene/gltf_loader.h"
+#include "support/image_compare.h"
 
 namespace igi {
 namespace {
@@ -26,13 +27,7 @@ using json = nlohmann::json;
 constexpr int kFloat = 5126, kUnsignedInt = 5125;
 
 // A fresh folder per test, under the build tree.
-fs::path test_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::path(IGI_TEST_OUTPUT_DIR) / "gltf_loader" / info->name();
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path test_dir() { return test::fresh_test_dir("gltf_loader"); }
 
 void write_bytes(const fs::path& path, const std::vector<unsigned char>& bytes) {
   std::ofstream out(path, std::ios::binary);
@@ -382,9 +377,7 @@ TEST(GltfLoader, BaseColorTextureFromFileIsLinear) {
 
 TEST(GltfLoader, BaseColorTextureInGlbBufferView) {
   const fs::path dir = test_dir();
-  std::ifstream in(write_png(dir / "texture.png"), std::ios::binary);
-  const std::vector<unsigned char> png((std::istreambuf_iterator<char>(in)),
-                                       std::istreambuf_iterator<char>());
+  const std::vector<unsigned char> png = read_file_bytes(write_png(dir / "texture.png").string()).value();
   GltfBuilder b = lit_quad();
   b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", textured_material()))}});
   b.add("images", {{"bufferView", b.add_view(png.data(), png.size())}, {"mimeType", "image/png"}});
@@ -539,8 +532,7 @@ TEST(GltfLoader, UndecodableTextureIsAnError) {
   write_bytes(dir / "texture.png", {'n', 'o', 't', ' ', 'a', 'n', ' ', 'i', 'm', 'a', 'g', 'e'});
   expect_scene_error(b.write_gltf(dir, "garbage"), {"images[0]", "'texture.png'", "neither a PNG nor a JPEG"});
   // A PNG header over broken data.
-  std::ifstream in(write_png(dir / "texture.png"), std::ios::binary);
-  std::vector<unsigned char> png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<unsigned char> png = read_file_bytes(write_png(dir / "texture.png").string()).value();
   png.resize(40);
   write_bytes(dir / "texture.png", png);
   expect_scene_error(b.write_gltf(dir, "cut"), {"images[0]", "'texture.png'", "cannot be decoded"});
@@ -548,8 +540,7 @@ TEST(GltfLoader, UndecodableTextureIsAnError) {
 
 TEST(GltfLoader, TextureHeaderTooLargeIsRejectedBeforeDecoding) {
   const fs::path dir = test_dir();
-  std::ifstream in(write_png(dir / "texture.png"), std::ios::binary);
-  std::vector<unsigned char> png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<unsigned char> png = read_file_bytes(write_png(dir / "texture.png").string()).value();
   for (int at : {16, 20}) png[size_t(at)] = 0x7f;  // IHDR width and height: about 2^31
   write_bytes(dir / "texture.png", png);
   GltfBuilder b = lit_quad();
@@ -575,8 +566,7 @@ TEST(GltfLoader, ExternalFileOutsideTheSceneFolderIsRefused) {
 TEST(GltfLoader, MemoryLoadResolvesExternalFilesOnlyInItsFolder) {
   const fs::path dir = test_dir();
   const fs::path path = lit_quad().write_gltf(dir, "quad");
-  std::ifstream in(path, std::ios::binary);
-  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::vector<uint8_t> bytes = read_file_bytes(path.string()).value();
   EXPECT_EQ(load_gltf_memory(bytes, "quad.gltf", dir.string()).scene.triangles.size(), 2u);
   try {
     load_gltf_memory(bytes, "quad.gltf");

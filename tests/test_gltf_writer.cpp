@@ -12,19 +12,14 @@
 
 #include "scene/gltf_loader.h"
 #include "scene/gltf_writer.h"
+#include "support/image_compare.h"
 
 namespace igi {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path test_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::path(IGI_TEST_OUTPUT_DIR) / "gltf_writer" / info->name();
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path test_dir() { return test::fresh_test_dir("gltf_writer"); }
 
 // A quad per material at depth z, triangles grouped by material as the
 // writer emits them.

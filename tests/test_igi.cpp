@@ -15,31 +15,12 @@ namespace igi {
 namespace {
 
 using test::luminance;
+using test::render_tiled;
 using test::vpl_settings;
 
 const test::Prepared& cornell() {
   static test::Prepared p(make_cornell_box());
   return p;
-}
-
-// Renders the frame tile by tile with the given tile size and origin offset.
-Image render_tiled(const Method& method, const FrameSetup& frame, int border, int tw, int th, int ox, int oy) {
-  Image image(frame.width, frame.height);
-  RayCounts rays;
-  auto cover = [&](int x, int y, int w, int h) {
-    if (w <= 0 || h <= 0) return;
-    TileJob job{x, y, w, h, border};
-    std::vector<glm::vec3> pixels(size_t(w) * h);
-    method.render_tile(job, pixels, rays);
-    for (int j = 0; j < h; ++j)
-      for (int i = 0; i < w; ++i) image.at(x + i, y + j) = pixels[size_t(j) * w + i];
-  };
-  for (int y = -oy; y < frame.height; y += th)
-    for (int x = -ox; x < frame.width; x += tw) {
-      int x0 = std::max(0, x), y0 = std::max(0, y);
-      cover(x0, y0, std::min(frame.width, x + tw) - x0, std::min(frame.height, y + th) - y0);
-    }
-  return image;
 }
 
 struct TileCase {

@@ -34,23 +34,6 @@ RenderSettings lightcuts_settings(int paths, int spacing = 0, int samples = 1, f
   return s;
 }
 
-// The frame tile by tile, tiles of tw x th from origin offset (ox, oy).
-Image render_tiled(const Method& method, const FrameSetup& frame, int tw, int th, int ox, int oy) {
-  Image image(frame.width, frame.height);
-  RayCounts rays;
-  for (int y = -oy; y < frame.height; y += th)
-    for (int x = -ox; x < frame.width; x += tw) {
-      const int x0 = std::max(0, x), y0 = std::max(0, y);
-      const int w = std::min(frame.width, x + tw) - x0, h = std::min(frame.height, y + th) - y0;
-      if (w <= 0 || h <= 0) continue;
-      std::vector<glm::vec3> pixels(size_t(w) * h);
-      method.render_tile({x0, y0, w, h, 0}, pixels, rays);
-      for (int j = 0; j < h; ++j)
-        for (int i = 0; i < w; ++i) image.at(x0 + i, y0 + j) = pixels[size_t(j) * w + i];
-    }
-  return image;
-}
-
 struct Rendered {
   Image image;
   RayCounts rays;
@@ -88,11 +71,11 @@ TEST_P(LightcutsTiles, AnyTilingAndThreadCountGiveTheWholeFrameBitForBit) {
   // 47 x 35: the last sample column and row are clamped to the image for spacings 4 and 5.
   const FrameSetup frame = cornell().frame(47, 35, 3);
   method->begin_frame(frame);
-  const Image whole = render_tiled(*method, frame, frame.width, frame.height, 0, 0);
+  const Image whole = test::render_tiled(*method, frame, 0, frame.width, frame.height, 0, 0);
   const std::string name = std::string("lightcuts-tiles-") + v.name;
-  EXPECT_TRUE(test::images_identical(name + "-7x5", render_tiled(*method, frame, 7, 5, 0, 0), whole));
-  EXPECT_TRUE(test::images_identical(name + "-37x23", render_tiled(*method, frame, 37, 23, 5, 11), whole));
-  EXPECT_TRUE(test::images_identical(name + "-1x1", render_tiled(*method, frame, 1, 1, 0, 0), whole));
+  EXPECT_TRUE(test::images_identical(name + "-7x5", test::render_tiled(*method, frame, 0, 7, 5, 0, 0), whole));
+  EXPECT_TRUE(test::images_identical(name + "-37x23", test::render_tiled(*method, frame, 0, 37, 23, 5, 11), whole));
+  EXPECT_TRUE(test::images_identical(name + "-1x1", test::render_tiled(*method, frame, 0, 1, 1, 0, 0), whole));
   EXPECT_TRUE(test::images_identical(name + "-threads", cornell().render(s, 47, 35, 1, 3, 2, 16), whole));
 }
 

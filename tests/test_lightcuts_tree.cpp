@@ -12,6 +12,7 @@
 #include "sampling/hash.h"
 #include "scene/builtin_scenes.h"
 #include "scene/suite_scenes.h"
+#include "scene/triangle.h"
 #include "support/render_fixture.h"
 #include "vpl/vpl_generator.h"
 
@@ -128,9 +129,8 @@ Scene tilted_cornell() {
   s.normals.assign(s.positions.size(), glm::vec3(0.0f));
   for (size_t t = 0; t < s.triangles.size(); ++t) {
     const glm::uvec3 tri = s.triangles[t];
-    const glm::vec3 n = glm::normalize(glm::cross(s.positions[tri[1]] - s.positions[tri[0]],
-                                                  s.positions[tri[2]] - s.positions[tri[0]]));
-    const Frame f(n);
+    const glm::vec3 n = triangle_normal(s, uint32_t(t));
+    const Onb f(n);
     for (int k = 0; k < 3; ++k) {
       const float phi = 2.1f * float(tri[k]);
       s.normals[tri[k]] = glm::normalize(n + std::tan(0.21f) * (std::cos(phi) * f.t + std::sin(phi) * f.b));

@@ -24,16 +24,6 @@ std::string worker(const std::string& endpoint) {
   return std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --quiet";
 }
 
-int exit_code(pid_t pid, int seconds) {
-  for (int i = 0; i < seconds * 10; ++i) {
-    int status = 0;
-    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  test::stop(pid);
-  return -2;
-}
-
 nlohmann::json read_json(const std::string& path) {
   std::ifstream in(path);
   return nlohmann::json::parse(in);
@@ -48,9 +38,9 @@ TEST(MinWorkers, FirstFrameWaitsForEveryWorker) {
   pid_t first = test::start(worker(endpoint));
   std::this_thread::sleep_for(std::chrono::seconds(1));
   pid_t second = test::start(worker(endpoint));
-  EXPECT_EQ(exit_code(m, 60), 0);
-  EXPECT_EQ(exit_code(first, 20), 0);
-  EXPECT_EQ(exit_code(second, 20), 0);
+  EXPECT_EQ(test::wait_exit(m, 60), 0);
+  EXPECT_EQ(test::wait_exit(first, 20), 0);
+  EXPECT_EQ(test::wait_exit(second, 20), 0);
   const nlohmann::json s = read_json(stats);
   ASSERT_EQ(s["frames"].size(), 3u);
   EXPECT_EQ(s["frames"][0]["workers"].size(), 2u) << "both workers rendered frame 0: " << s["frames"][0]["workers"];
@@ -62,7 +52,7 @@ TEST(MinWorkers, StartsWithThoseThereAfterTheWait) {
   const auto start = std::chrono::steady_clock::now();
   auto r = test::run(master(endpoint, "--frames 2 --min-workers 3 --min-workers-wait 1"), 60);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_EQ(exit_code(w, 20), 0);
+  EXPECT_EQ(test::wait_exit(w, 20), 0);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("only 1 of 3 workers joined in 1 s"), std::string::npos) << r.output;
   EXPECT_GE(seconds, 1.0) << "it waited for the missing workers";

@@ -81,16 +81,6 @@ std::string worker(const std::string& endpoint, const std::string& extra) {
 
 std::string loopback() { return "tcp://127.0.0.1:" + std::to_string(test::free_port()); }
 
-int wait_for(pid_t pid, int seconds) {
-  for (int i = 0; i < seconds * 20; ++i) {
-    int status = 0;
-    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  test::stop(pid);
-  return -2;
-}
-
 const Image& single_process() {
   static const Image reference = [] {
     test::Prepared p(load_scene("cornell"));
@@ -271,7 +261,7 @@ TEST(Security, AuthorisedWorkerOverCurveMatchesTheSingleProcessRender) {
                                (dir / "out.exr").string()));
   auto w = test::run(worker(endpoint, "--master-key " + (dir / "master.pub").string() + " --key " +
                                           (dir / "workers" / "render01.key").string()), 60);
-  EXPECT_EQ(wait_for(m, 30), 0);
+  EXPECT_EQ(test::wait_exit(m, 30), 0);
   EXPECT_EQ(w.exit_code, 0) << w.output;
   expect_frames_match(dir, 3, "security-authorised");
 }
@@ -292,7 +282,7 @@ TEST(Security, WorkerWithAnUnknownKeyIsRefusedAndTheFramesStillComplete) {
   EXPECT_NE(refused.output.find("refused this worker's key"), std::string::npos) << refused.output;
   auto accepted = test::run(worker(endpoint, "--quiet --master-key " + (dir / "master.pub").string() + " --key " +
                                                  (dir / "workers" / "render01.key").string()), 60);
-  EXPECT_EQ(wait_for(m, 30), 0);
+  EXPECT_EQ(test::wait_exit(m, 30), 0);
   EXPECT_EQ(accepted.exit_code, 0) << accepted.output;
   const std::string master_log = read_text(log);
   EXPECT_NE(master_log.find("refused worker key " + stranger.public_key + " from 127.0.0.1"), std::string::npos)
@@ -408,7 +398,7 @@ std::string recorded_session(const fs::path& dir, bool curve) {
   const std::string worker_keys =
       " --master-key " + (dir / "master.pub").string() + " --key " + (dir / "workers" / "render01.key").string();
   auto w = test::run(worker(recorder.endpoint(), "--quiet" + (curve ? worker_keys : "")), 60);
-  EXPECT_EQ(wait_for(m, 30), 0);
+  EXPECT_EQ(test::wait_exit(m, 30), 0);
   EXPECT_EQ(w.exit_code, 0) << w.output;
   return recorder.bytes();
 }
@@ -443,7 +433,7 @@ TEST(Security, OversizedMessagesAreDroppedWithoutHarm) {
   dealer.send(zmq::buffer(flood), zmq::send_flags::none);
   std::this_thread::sleep_for(std::chrono::milliseconds(500));  // it arrives before any work is done
   auto w = test::run(worker(endpoint, "--quiet"), 60);
-  EXPECT_EQ(wait_for(m, 30), 0) << "the master went on";
+  EXPECT_EQ(test::wait_exit(m, 30), 0) << "the master went on";
   EXPECT_EQ(w.exit_code, 0) << w.output;
   std::ifstream in(stats);
   EXPECT_EQ(nlohmann::json::parse(in)["bad_messages"].get<int>(), 0) << "zmq dropped it before it was decoded";
@@ -484,7 +474,7 @@ int serve_scene(const fs::path& dir, uint64_t hash, const std::vector<uint8_t>& 
       break;
     }
   }
-  return wait_for(w, 10);
+  return test::wait_exit(w, 10);
 }
 
 std::vector<std::string> files_under(const fs::path& dir) {

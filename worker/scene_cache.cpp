@@ -1,12 +1,10 @@
 #include "scene_cache.h"
 
-#include <cerrno>
-#include <cstring>
-#include <fcntl.h>
 #include <filesystem>
 #include <stdexcept>
 #include <unistd.h>
 
+#include "io/file_bytes.h"
 #include "scene/scene_file.h"
 
 namespace igi {
@@ -18,22 +16,6 @@ namespace {
 bool is_plain_file_name(const std::string& name) {
   return !name.empty() && name != "." && name != ".." &&
          name.find_first_of(std::string("/\\\0", 3)) == std::string::npos;
-}
-
-// Creates `path` afresh (never through a link someone left there) and writes all of `bytes`.
-void write_new_file(const std::string& path, const std::vector<uint8_t>& bytes) {
-  std::filesystem::remove(path);  // a leftover of a killed worker; remove() does not follow links
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::runtime_error("cannot create " + path + ": " + std::strerror(errno));
-  size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n <= 0) break;
-    done += size_t(n);
-  }
-  const int error = errno;
-  ::close(fd);
-  if (done != bytes.size()) throw std::runtime_error("cannot write " + path + ": " + std::strerror(error));
 }
 
 }  // namespace
@@ -65,7 +47,8 @@ std::string SceneCache::store(const protocol::SceneData& data) const {
   std::filesystem::create_directories(cache_dir_);
   const std::string path = cached_path(data.file_name, data.scene_hash);
   const std::string temporary = path + ".part-" + std::to_string(getpid());
-  write_new_file(temporary, data.bytes);
+  std::filesystem::remove(temporary);  // a leftover of a killed worker; remove() does not follow links
+  write_new_file(temporary, data.bytes.data(), data.bytes.size(), 0644, Umask::applies);
   std::filesystem::rename(temporary, path);  // atomic: readers never see half a file
   return path;
 }

@@ -197,7 +197,7 @@ class Builder {
       const CameraPoint& p = points[size_t(i)];
       if (!p.x.valid()) continue;
       const glm::vec2 u = sample_2d(uint32_t(k * camera_paths_ + i), 2, camera_seed_);
-      const glm::vec3 w = Frame(p.facing).to_world(cosine_hemisphere(u));
+      const glm::vec3 w = Onb(p.facing).to_world(cosine_hemisphere(u));
       Ray ray{offset_origin(p.x.surface, w), w};
       ++rays.secondary;
       Hit hit;

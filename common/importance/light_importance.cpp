@@ -6,6 +6,7 @@
 #include "importance/camera_points.h"
 #include "importance/parallel.h"
 #include "material/bsdf.h"
+#include "sampling/content_hash.h"
 #include "sampling/hash.h"
 #include "sampling/sobol.h"
 #include "sampling/warp.h"
@@ -235,7 +236,7 @@ LightSelection estimate_light_importance(const SceneContext& context, const Rend
   const float floor = std::max(settings.importance_floor, float(lights) / float(lights + credited));
   const std::vector<float> weights = selection_weights(out.contribution, power, floor);
   out.distribution = Distribution1D(weights);
-  out.hash = fnv1a64(weights.data(), weights.size() * sizeof(float));
+  out.hash = content_hash(weights.data(), weights.size() * sizeof(float));
   return out;
 }
 

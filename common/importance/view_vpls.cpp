@@ -4,7 +4,7 @@
 
 #include "importance/bidirectional.h"
 #include "importance/light_importance.h"
-#include "sampling/hash.h"
+#include "sampling/content_hash.h"
 #include "vpl/vpl_generator.h"
 
 namespace igi::importance {
@@ -20,7 +20,7 @@ VplSets generate_view_vpls(const SceneContext& context, const RenderSettings& se
   }
   VplSets sets = settings.bidir_vpls > 0 ? generate_bidirectional(context, settings, frame, options, rays)
                                          : generate_vpls(context, settings, frame.seed, options);
-  if (selection) sets.hash = fnv1a64(&selection->hash, sizeof selection->hash, sets.hash);
+  if (selection) sets.hash = combine_content_hashes(sets.hash, selection->hash);
   return sets;
 }
 

@@ -39,7 +39,7 @@ inline float distance2(const Box& b) {
 // its rotated corners; there, for fixed (x, y), z / |v| grows with z, so
 //   cos <= z_max / sqrt(min x^2 + min y^2 + z_max^2)   (z_max > 0)
 //   cos <= z_max / sqrt(max x^2 + max y^2 + z_max^2)   (z_max <= 0).
-inline float max_cos(const Frame& f, const Box& b) {
+inline float max_cos(const Onb& f, const Box& b) {
   const glm::vec3 c = 0.5f * (b.lo + b.hi), e = 0.5f * (b.hi - b.lo);
   const glm::vec3 lc = f.to_local(c);
   const glm::vec3 le(glm::dot(glm::abs(f.t), e), glm::dot(glm::abs(f.b), e), glm::dot(glm::abs(f.n), e));
@@ -54,11 +54,11 @@ inline float max_cos(const Frame& f, const Box& b) {
   const float xy = max_sq(lo.x, hi.x) + max_sq(lo.y, hi.y);
   return xy + z * z > 0.0f ? z / std::sqrt(xy + z * z) : 1.0f;
 }
-inline float max_cos(glm::vec3 axis, const Box& b) { return max_cos(Frame(axis), b); }
+inline float max_cos(glm::vec3 axis, const Box& b) { return max_cos(Onb(axis), b); }
 
 // A cone of unit directions: every member within half-angle theta of axis.
 struct Cone {
-  Frame frame{glm::vec3(0.0f, 0.0f, 1.0f)};  // around the axis, frame.n
+  Onb frame{glm::vec3(0.0f, 0.0f, 1.0f)};  // around the axis, frame.n
   float cos_theta = 1.0f, sin_theta = 0.0f;  // theta >= pi: cos -1, sin 0
   glm::vec3 axis() const { return frame.n; }
 };
@@ -74,7 +74,7 @@ inline float max_cos(const Cone& cone, const Box& b) {
 
 // Whether some v in B lies within angle (theta + spread) of the axis, given
 // cos_reach = cos(theta + spread) (-1 when that reaches pi).
-inline bool within_reach(const Frame& axis, float cos_reach, const Box& b) {
+inline bool within_reach(const Onb& axis, float cos_reach, const Box& b) {
   return cos_reach <= -1.0f || max_cos(axis, b) >= cos_reach;
 }
 

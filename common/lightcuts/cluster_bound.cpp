@@ -39,7 +39,7 @@ ReceiverTerms receiver_terms(const GatherPoint& g, const Box& directions) {
 ReceiverTerms receiver_terms(const GatherNode& node, const Box& directions) {
   ReceiverTerms t;
   Cone below = node.cone;
-  below.frame = Frame(-node.cone.axis());
+  below.frame = Onb(-node.cone.axis());
   t.cos_x = std::max(max_cos(node.cone, directions), max_cos(below, directions));
   if (t.cos_x <= 0.0f) return t;
   t.diffuse = node.diffuse;

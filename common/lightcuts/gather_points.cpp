@@ -31,13 +31,12 @@ GatherPoint GatherPointTracer::trace(int x, int y, int k, RayCounts& rays) const
   g.surface = sp;
   g.wo = chain.wo;
   g.depth = chain.depth;
-  const bool front = glm::dot(g.wo, sp.geometric_normal) >= 0.0f;
-  g.shading_normal = front ? sp.shading_normal : -sp.shading_normal;
-  g.geometric_normal = front ? sp.geometric_normal : -sp.geometric_normal;
+  g.shading_normal = sp.shading_normal_facing(g.wo);
+  g.geometric_normal = sp.geometric_normal_facing(g.wo);
   g.cos_o = glm::dot(g.wo, g.shading_normal);
-  g.shading_frame = Frame(g.shading_normal);
-  g.geometric_frame = Frame(g.geometric_normal);
-  g.back_frame = Frame(-g.wo);
+  g.shading_frame = Onb(g.shading_normal);
+  g.geometric_frame = Onb(g.geometric_normal);
+  g.back_frame = Onb(-g.wo);
   const float cos_tilt = std::min(1.0f, glm::dot(g.shading_normal, g.geometric_normal));
   g.tilt_sin = g.shading_normal == g.geometric_normal ? 0.0f : std::sqrt(std::max(0.0f, 1.0f - cos_tilt * cos_tilt)) * 1.0001f;
   return g;

@@ -33,8 +33,8 @@ struct GatherPoint {
   float cos_o = 0.0f;           // dot(wo, shading_normal)
   // Frames around the shading normal, the geometric normal and -wo: the bounds (lightcuts/cluster_bound.h) ask
   // for cosines against these at every cluster.
-  Frame shading_frame{glm::vec3(0.0f, 0.0f, 1.0f)}, geometric_frame{glm::vec3(0.0f, 0.0f, 1.0f)};
-  Frame back_frame{glm::vec3(0.0f, 0.0f, 1.0f)};
+  Onb shading_frame{glm::vec3(0.0f, 0.0f, 1.0f)}, geometric_frame{glm::vec3(0.0f, 0.0f, 1.0f)};
+  Onb back_frame{glm::vec3(0.0f, 0.0f, 1.0f)};
   float tilt_sin = 0.0f;        // sin of the angle between shading and geometric normal
   bool valid() const { return depth < INFINITY; }
 };

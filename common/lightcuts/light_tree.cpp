@@ -1,10 +1,10 @@
 #include "lightcuts/light_tree.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <thread>
 
+#include "sampling/content_hash.h"
 #include "sampling/hash.h"
 
 namespace igi::lightcuts {
@@ -209,7 +209,7 @@ void fill_cones(LightTree& tree, const std::vector<Range>& ranges, size_t first,
     const float length = glm::length(sum);
     float theta = kPi;
     if (length > 1e-6f) {
-      node.cone.frame = Frame(sum / length);
+      node.cone.frame = Onb(sum / length);
       float cos_min = 1.0f;
       for (uint32_t i = ranges[n].begin; i < ranges[n].end; ++i)
         cos_min = std::min(cos_min, glm::dot(node.cone.axis(), tree.leaves[i].normal));
@@ -277,10 +277,10 @@ LightTree build_light_tree(std::vector<LightLeaf> leaves, float scene_diagonal, 
 }
 
 uint64_t hash_light_tree(const LightTree& tree) {
-  // FNV-1a over 32-bit words of every field that shading reads.
-  uint64_t h = 0xcbf29ce484222325ull;
-  auto word = [&h](uint32_t w) { h = (h ^ w) * 0x100000001b3ull; };
-  auto real = [&word](float f) { word(std::bit_cast<uint32_t>(f)); };
+  // Every field that shading reads.
+  ContentHasher h;
+  auto word = [&h](uint32_t w) { h.add(w); };
+  auto real = [&h](float f) { h.add(f); };
   for (const LightNode& n : tree.nodes) {
     for (int a = 0; a < 3; ++a) real(n.box.lo[a]), real(n.box.hi[a]), real(n.cone.frame.n[a]);
     real(n.cone.cos_theta);
@@ -290,7 +290,7 @@ uint64_t hash_light_tree(const LightTree& tree) {
     word(n.right);
     word(n.leaf);
   }
-  return h;
+  return h.value();
 }
 
 }  // namespace igi::lightcuts

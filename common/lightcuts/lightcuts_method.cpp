@@ -4,6 +4,7 @@
 
 #include "lightcuts/lightcuts_settings.h"
 #include "lightcuts/reconstruction.h"
+#include "sampling/content_hash.h"
 #include "sampling/hash.h"
 #include "vpl/vpl_generator.h"
 
@@ -22,7 +23,7 @@ void LightcutsMethod::begin_frame(const FrameSetup& frame) {
   frame_ = frame;
   vpls_ = generate_vpls(context_, settings_, frame.seed);
   tree_ = build_light_tree(make_light_leaves(context_.scene, vpls_), context_.scene.bounds().diagonal(), frame.seed);
-  state_hash_ = fnv1a64(&tree_.hash, sizeof tree_.hash, vpls_.hash);
+  state_hash_ = combine_content_hashes(vpls_.hash, tree_.hash);
   for (auto* counter : {&cuts_, &cut_nodes_, &reused_, &interpolated_, &reconstructed_}) counter->store(0);
 }
 

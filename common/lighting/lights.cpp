@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "sampling/warp.h"
+#include "scene/triangle.h"
 
 namespace igi {
 
@@ -33,9 +34,7 @@ LightSet::LightSet(const Scene& scene) : scene_(scene), light_of_triangle_(scene
 }
 
 float LightSet::triangle_area(uint32_t triangle) const {
-  const glm::uvec3& t = scene_.triangles[triangle];
-  return 0.5f * glm::length(glm::cross(scene_.positions[t[1]] - scene_.positions[t[0]],
-                                       scene_.positions[t[2]] - scene_.positions[t[0]]));
+  return 0.5f * glm::length(triangle_cross(scene_, triangle));
 }
 
 float LightSet::power(const Light& light) const {
@@ -66,7 +65,7 @@ LightSample LightSet::sample_light(uint32_t index, float select, glm::vec3 p, gl
     glm::vec3 p0 = scene_.positions[t[0]], p1 = scene_.positions[t[1]], p2 = scene_.positions[t[2]];
     glm::vec2 b = uniform_triangle(u);
     glm::vec3 q = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
-    glm::vec3 n = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    glm::vec3 n = triangle_normal(p0, p1, p2);
     glm::vec3 d = q - p;
     float dist2 = glm::dot(d, d);
     s.distance = std::sqrt(dist2);
@@ -98,9 +97,7 @@ LightSample LightSet::sample_light(uint32_t index, float select, glm::vec3 p, gl
 float LightSet::pdf_area(uint32_t triangle, glm::vec3 p, glm::vec3 hit_point) const {
   int32_t light = light_of_triangle_[triangle];
   if (light < 0) return 0.0f;
-  const glm::uvec3& t = scene_.triangles[triangle];
-  glm::vec3 n = glm::normalize(glm::cross(scene_.positions[t[1]] - scene_.positions[t[0]],
-                                          scene_.positions[t[2]] - scene_.positions[t[0]]));
+  glm::vec3 n = triangle_normal(scene_, triangle);
   glm::vec3 d = hit_point - p;
   float dist2 = glm::dot(d, d);
   float cos_light = std::abs(glm::dot(n, d)) / std::sqrt(dist2);
@@ -124,7 +121,7 @@ EmissionSample LightSet::sample_emission(const Distribution1D& selection, float 
     glm::vec3 p0 = scene_.positions[t[0]], p1 = scene_.positions[t[1]], p2 = scene_.positions[t[2]];
     glm::vec2 b = uniform_triangle(u);
     e.position = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
-    e.normal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    e.normal = triangle_normal(p0, p1, p2);
     // Radiance times area: the VPL's emitted radiance per unit projected solid angle.
     e.power = scene_.materials[scene_.triangle_material[light.index]].emission *
               (triangle_area(light.index) / select);
@@ -134,7 +131,7 @@ EmissionSample LightSet::sample_emission(const Distribution1D& selection, float 
   if (light.kind == LightKind::Directional) {
     // A point on a disc of the scene's radius facing the light, outside the scene.
     glm::vec3 dir = glm::normalize(pl.direction);
-    Frame frame(dir);
+    Onb frame(dir);
     float r = std::sqrt(u.x) * scene_radius_, phi = 2.0f * kPi * u.y;
     e.position = scene_center_ - dir * scene_radius_ + frame.to_world({r * std::cos(phi), r * std::sin(phi), 0.0f});
     e.normal = dir;

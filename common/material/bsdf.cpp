@@ -7,11 +7,6 @@
 namespace igi {
 namespace {
 
-// Shading normal on wo's side of the geometric surface.
-glm::vec3 facing_normal(const SurfacePoint& sp, glm::vec3 wo) {
-  return glm::dot(wo, sp.geometric_normal) >= 0.0f ? sp.shading_normal : -sp.shading_normal;
-}
-
 // Both directions on the same side of the geometric surface: reflection.
 bool same_hemisphere(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi) {
   return glm::dot(wo, sp.geometric_normal) * glm::dot(wi, sp.geometric_normal) > 0.0f;
@@ -101,13 +96,13 @@ DielectricBranches dielectric_branches(const SurfacePoint& sp, glm::vec3 wo) {
 }
 
 glm::vec3 ggx_reflection(glm::vec3 n, glm::vec3 wo, glm::vec3 wi, glm::vec3 f0, float alpha) {
-  const Frame frame(glm::dot(wo, n) >= 0.0f ? n : -n);
+  const Onb frame(glm::dot(wo, n) >= 0.0f ? n : -n);
   return conductor_eval_local(frame.to_local(wo), frame.to_local(wi), f0, alpha);
 }
 
 glm::vec3 bsdf_eval(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi) {
   if (sp.material->is_specular() || !same_hemisphere(sp, wo, wi)) return glm::vec3(0.0f);
-  Frame frame(facing_normal(sp, wo));
+  Onb frame(sp.shading_normal_facing(wo));
   glm::vec3 lo = frame.to_local(wo), li = frame.to_local(wi);
   if (sp.material->type == MaterialType::Diffuse)
     return li.z > 0.0f && lo.z > 0.0f ? sp.albedo * kInvPi : glm::vec3(0.0f);
@@ -116,7 +111,7 @@ glm::vec3 bsdf_eval(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi) {
 
 float bsdf_pdf(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi) {
   if (sp.material->is_specular() || !same_hemisphere(sp, wo, wi)) return 0.0f;
-  Frame frame(facing_normal(sp, wo));
+  Onb frame(sp.shading_normal_facing(wo));
   glm::vec3 lo = frame.to_local(wo), li = frame.to_local(wi);
   if (sp.material->type == MaterialType::Diffuse) return li.z > 0.0f ? li.z * kInvPi : 0.0f;
   return conductor_pdf_local(lo, li, sp.material->alpha);
@@ -125,7 +120,7 @@ float bsdf_pdf(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi) {
 std::optional<BsdfSample> bsdf_sample(const SurfacePoint& sp, glm::vec3 wo, glm::vec2 u, float u_lobe) {
   const Material& m = *sp.material;
   if (m.type == MaterialType::Glass) return sample_glass(sp, wo, u_lobe);
-  Frame frame(facing_normal(sp, wo));
+  Onb frame(sp.shading_normal_facing(wo));
   if (m.type == MaterialType::Mirror)
     return BsdfSample{reflect(wo, frame.n), sp.albedo, 1.0f, true};
   glm::vec3 lo = frame.to_local(wo);

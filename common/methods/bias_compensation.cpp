@@ -35,10 +35,8 @@ glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int l, int
   // skipped, they keep the clamp's loss.
   if (sp.material->type != MaterialType::Diffuse) return glm::vec3(0.0f);
   // The hemisphere on the viewer's side, as VPL shading uses it.
-  const bool front = glm::dot(g.wo, sp.geometric_normal) >= 0.0f;
-  const glm::vec3 n = front ? sp.shading_normal : -sp.shading_normal;
-  const glm::vec3 ng = front ? sp.geometric_normal : -sp.geometric_normal;
-  const Frame frame(n);
+  const glm::vec3 n = sp.shading_normal_facing(g.wo), ng = sp.geometric_normal_facing(g.wo);
+  const Onb frame(n);
   // The pixel's n rays are one stratified sequence shared out over its S
   // sub-samples (at least one each): sub-sample k takes indices [k r, (k+1) r);
   // each glass branch b = l / S of the pixel has a sequence of its own.
@@ -60,7 +58,7 @@ glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int l, int
     hit_sample.surface = surface_at(accel_.scene(), hit, wi);
     if (hit_sample.surface.material->is_specular()) continue;
     hit_sample.wo = -wi;
-    hit_sample.depth = 0.0f;
+    hit_sample.has_surface = true;  // no camera path leads here: depth stays unset
     const float d2 = glm::dot(hit_sample.surface.position - sp.position, hit_sample.surface.position - sp.position);
     const float cos_y = std::abs(glm::dot(wi, hit_sample.surface.shading_normal));
     const float geometry_term = cos_x * cos_y / d2;

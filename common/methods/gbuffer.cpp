@@ -62,6 +62,7 @@ int follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, in
         g.surface = sp;
         g.wo = -b.ray.direction;
         g.depth = b.travelled;
+        g.has_surface = true;
         break;
       }
       if (b.depth + 1 >= specular_depth) break;
@@ -112,10 +113,7 @@ void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis&
     const int x = bx + (i & 3), y = by + (i >> 2);
     valid[i] = x < region.width && y < region.height ? -1 : 0;
     glm::vec3 d = glm::normalize(camera.direction(float(region.x0 + x) + offset.x, float(region.y0 + y) + offset.y));
-    packet.ray.org_x[i] = camera.origin.x; packet.ray.org_y[i] = camera.origin.y; packet.ray.org_z[i] = camera.origin.z;
-    packet.ray.dir_x[i] = d.x; packet.ray.dir_y[i] = d.y; packet.ray.dir_z[i] = d.z;
-    packet.ray.tnear[i] = 0.0f; packet.ray.tfar[i] = INFINITY;
-    packet.ray.mask[i] = kCameraRayMask; packet.ray.flags[i] = 0; packet.ray.time[i] = 0.0f;
+    set_rtc_lane(packet.ray, i, Ray{camera.origin, d, 0.0f, INFINITY, kCameraRayMask});
     packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
     packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     rays.primary += valid[i] ? 1 : 0;

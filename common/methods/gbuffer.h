@@ -14,12 +14,13 @@
 namespace igi {
 
 struct GSample {
-  SurfacePoint surface;           // valid only when depth is finite
+  SurfacePoint surface;           // meaningful only when valid()
   glm::vec3 wo{0.0f};             // towards the viewer (the last specular vertex)
   glm::vec3 throughput{1.0f};     // product of specular weights along the chain
   glm::vec3 emitted{0.0f};        // emission seen along the chain, weighted
-  float depth = INFINITY;         // path length from the camera; infinite: nothing diffuse seen
-  bool valid() const { return depth < INFINITY; }
+  float depth = INFINITY;         // path length from the camera (the filter's depth); infinite where not valid()
+  bool has_surface = false;       // a non-specular surface was found: surface and wo hold it
+  bool valid() const { return has_surface; }
 };
 
 struct Region {

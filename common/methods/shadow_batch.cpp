@@ -16,9 +16,7 @@ void PixelBatch::clear() {
 
 void PixelBatch::add(uint32_t id, const GSample& g) {
   const SurfacePoint& sp = g.surface;
-  const bool front = glm::dot(g.wo, sp.geometric_normal) >= 0.0f;
-  const glm::vec3 n = front ? sp.shading_normal : -sp.shading_normal;
-  const glm::vec3 ng = front ? sp.geometric_normal : -sp.geometric_normal;
+  const glm::vec3 n = sp.shading_normal_facing(g.wo), ng = sp.geometric_normal_facing(g.wo);
   const glm::vec3 o = offset_origin(sp, ng);
   index.push_back(id);
   sample.push_back(&g);
@@ -123,10 +121,7 @@ void fill_shadow_packet(const PixelBatch& batch, size_t first, const Vpl& vpl, c
     glm::vec3 c = shading.contribution(*batch.sample[i], vpl, q);
     packet.r[k] = c.x; packet.g[k] = c.y; packet.b[k] = c.z;
     packet.valid[k] = c.x > 0.0f || c.y > 0.0f || c.z > 0.0f ? -1 : 0;
-    packet.rays.org_x[k] = q.origin.x; packet.rays.org_y[k] = q.origin.y; packet.rays.org_z[k] = q.origin.z;
-    packet.rays.dir_x[k] = q.direction.x; packet.rays.dir_y[k] = q.direction.y; packet.rays.dir_z[k] = q.direction.z;
-    packet.rays.tnear[k] = 0.0f; packet.rays.tfar[k] = q.tfar;
-    packet.rays.mask[k] = kOpaqueRayMask; packet.rays.flags[k] = 0; packet.rays.time[k] = 0.0f;
+    set_rtc_lane(packet.rays, k, Ray{q.origin, q.direction, 0.0f, q.tfar, kOpaqueRayMask});
   }
   if (!fast_vpl)
     for (size_t k = batch.count > first ? batch.count - first : 0; k < 16; ++k) packet.valid[k] = 0;

@@ -10,6 +10,8 @@
 #include "methods/direct_lights.h"
 #include "methods/subpixel.h"
 #include "methods/vpl_contribution.h"
+#include "sampling/content_hash.h"
+#include "vpl/vpl_generator.h"
 
 namespace igi {
 
@@ -53,8 +55,7 @@ void VplMethod::begin_frame(const FrameSetup& frame) {
 
 uint64_t VplMethod::frame_state_hash() const {
   if (!caustics_) return vpls_.hash;
-  const uint64_t h = vpls_.hash;
-  return h ^ (caustics_->hash() + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2));
+  return combine_content_hashes(vpls_.hash, caustics_->hash());
 }
 
 // The valid sub-samples of set s (all pixels for ir) that connect to `group`,

@@ -5,15 +5,14 @@
 
 #include "methods/vpl_contribution.h"
 #include "photons/photon_paths.h"
-#include "sampling/hash.h"
+#include "sampling/content_hash.h"
 #include "sampling/warp.h"
 
 namespace igi {
 
 uint64_t hash_photons(const std::vector<Photon>& photons) {
-  uint64_t h = 0xcbf29ce484222325ull;
-  for (const Photon& p : photons) h = fnv1a64(&p, sizeof p, h);  // four vec3 and a uint32: no padding
-  return h;
+  static_assert(sizeof(Photon) == 13 * 4, "four vec3 and a uint32: no padding for the hash to read");
+  return content_hash(photons.data(), photons.size() * sizeof(Photon));
 }
 
 CausticMap::CausticMap(const SceneContext& context, const RenderSettings& settings)
@@ -35,7 +34,7 @@ void CausticMap::build(uint32_t frame_seed, int threads) {
 
 glm::vec3 CausticMap::radiance(const GSample& g) const {
   const SurfacePoint& sp = g.surface;
-  const glm::vec3 n = glm::dot(g.wo, sp.geometric_normal) >= 0.0f ? sp.geometric_normal : -sp.geometric_normal;
+  const glm::vec3 n = sp.geometric_normal_facing(g.wo);
   // A Lambertian receiver's demodulated BSDF is 1 / pi for every photon that
   // passes the normal test (it arrived on the viewer's side): summed once.
   const bool lambert = sp.material->type == MaterialType::Diffuse;

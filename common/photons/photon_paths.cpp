@@ -33,8 +33,7 @@ void trace_path(const SceneContext& ctx, const RenderSettings& settings, uint32_
     const glm::vec3 wo = -ray.direction;
     if (!sp.material->is_specular()) {
       if (after_specular && receives_vpls(*sp.material, settings.glossy_threshold)) {
-        const glm::vec3 n = glm::dot(wo, sp.geometric_normal) >= 0.0f ? sp.geometric_normal : -sp.geometric_normal;
-        out.push_back(Photon{sp.position, wo, n, flux * inv_paths, bounced ? 1u : 0u});
+        out.push_back(Photon{sp.position, wo, sp.geometric_normal_facing(wo), flux * inv_paths, bounced ? 1u : 0u});
         if (++stored == photons::kMaxPhotonsPerPath) return;
       }
       bounced = true;

@@ -3,8 +3,7 @@
 // tile jobs it streams. No pointers, so both travel over the wire unchanged.
 #include <cstdint>
 
-#include "scene/scene.h"
-
+#include "scene/camera.h"
 
 namespace igi {
 

@@ -1,6 +1,7 @@
 #pragma once
-// Renders a whole frame in one process: cuts it into tiles and lets a pool
-// of threads pull them. The distributed master uses the same TileJob list.
+// Renders a whole frame in one process: cuts it into tiles and renders them
+// on TBB's threads (a task arena of the requested size, the calling thread
+// one of them). The distributed master uses the same TileJob list.
 #include <functional>
 #include <vector>
 
@@ -16,7 +17,8 @@ std::vector<TileJob> make_tiles(int width, int height, int tile_w, int tile_h, i
 struct FrameOptions {
   int tile_size = 32;
   int threads = 0;  // 0: all hardware threads
-  // Called from the calling thread with the fraction of tiles done.
+  // Called from the calling thread, between the tiles it renders, at most
+  // every 250 ms, with the fraction of tiles done; last with 1.
   std::function<void(float)> progress;
 };
 

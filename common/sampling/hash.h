@@ -20,11 +20,4 @@ constexpr uint32_t hash_combine(uint32_t seed, uint32_t value) {
 constexpr uint32_t hash(uint32_t a, uint32_t b) { return hash_combine(mix32(a), b); }
 constexpr uint32_t hash(uint32_t a, uint32_t b, uint32_t c) { return hash_combine(hash(a, b), c); }
 
-// FNV-1a over bytes, 64-bit: content hashes (VPL sets, scene files).
-inline uint64_t fnv1a64(const void* data, size_t size, uint64_t h = 0xcbf29ce484222325ull) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (size_t i = 0; i < size; ++i) { h ^= p[i]; h *= 0x100000001b3ull; }
-  return h;
-}
-
 }  // namespace igi

@@ -1,18 +1,19 @@
 #pragma once
 // Maps from the unit square to directions and points, with their densities.
 #include <cmath>
+#include <numbers>
 
 #include <glm/glm.hpp>
 
 namespace igi {
 
-inline constexpr float kPi = 3.14159265358979323846f;
+inline constexpr float kPi = std::numbers::pi_v<float>;
 inline constexpr float kInvPi = 1.0f / kPi;
 
-// Orthonormal basis around a unit normal (Duff et al. 2017).
-struct Frame {
+// Orthonormal basis (t, b, n) around a unit normal n (Duff et al. 2017).
+struct Onb {
   glm::vec3 t, b, n;
-  explicit Frame(glm::vec3 normal) : n(normal) {
+  explicit Onb(glm::vec3 normal) : n(normal) {
     float sign = std::copysign(1.0f, n.z);
     float a = -1.0f / (sign + n.z);
     float c = n.x * n.y * a;

@@ -7,6 +7,8 @@
 #include <pmmintrin.h>
 #include <xmmintrin.h>
 
+#include "scene/triangle.h"
+
 namespace igi {
 
 void enable_flush_to_zero() {
@@ -86,9 +88,7 @@ bool Accel::rejects(uint32_t triangle, glm::vec2 b, glm::vec3 direction, bool ca
   const Material& m = scene_.materials[scene_.triangle_material[triangle]];
   const glm::uvec3& t = scene_.triangles[triangle];
   if (!m.double_sided && camera_ray) {
-    glm::vec3 ng = glm::cross(scene_.positions[t[1]] - scene_.positions[t[0]],
-                              scene_.positions[t[2]] - scene_.positions[t[0]]);
-    if (glm::dot(ng, direction) > 0.0f) return true;  // the back of a single-sided face
+    if (glm::dot(triangle_cross(scene_, triangle), direction) > 0.0f) return true;  // the back of a single-sided face
   }
   if (m.alpha_mask) {
     float alpha = m.base_alpha;
@@ -105,13 +105,7 @@ bool Accel::intersect(const Ray& ray, Hit& hit) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
-  rh.ray.org_x = ray.origin.x; rh.ray.org_y = ray.origin.y; rh.ray.org_z = ray.origin.z;
-  rh.ray.dir_x = ray.direction.x; rh.ray.dir_y = ray.direction.y; rh.ray.dir_z = ray.direction.z;
-  rh.ray.tnear = ray.tnear;
-  rh.ray.tfar = ray.tfar;
-  rh.ray.mask = ray.mask;
-  rh.ray.flags = 0;
-  rh.ray.time = 0.0f;
+  set_rtc_ray(rh.ray, ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_handle_, &context, &rh);
@@ -126,13 +120,7 @@ bool Accel::occluded(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r;
-  r.org_x = ray.origin.x; r.org_y = ray.origin.y; r.org_z = ray.origin.z;
-  r.dir_x = ray.direction.x; r.dir_y = ray.direction.y; r.dir_z = ray.direction.z;
-  r.tnear = ray.tnear;
-  r.tfar = ray.tfar;
-  r.mask = ray.mask;
-  r.flags = 0;
-  r.time = 0.0f;
+  set_rtc_ray(r, ray);
   rtcOccluded1(scene_handle_, &context, &r);
   return r.tfar < 0.0f;
 }

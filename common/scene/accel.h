@@ -41,6 +41,21 @@ struct Hit {
   glm::vec2 barycentric{0.0f};  // Embree's (u, v): p = (1-u-v) p0 + u p1 + v p2
 };
 
+// A ray as Embree takes it: alone, or as lane k of a 16-wide packet (flags
+// and time 0: no motion blur).
+inline void set_rtc_ray(RTCRay& r, const Ray& ray) {
+  r.org_x = ray.origin.x; r.org_y = ray.origin.y; r.org_z = ray.origin.z;
+  r.dir_x = ray.direction.x; r.dir_y = ray.direction.y; r.dir_z = ray.direction.z;
+  r.tnear = ray.tnear; r.tfar = ray.tfar;
+  r.mask = ray.mask; r.flags = 0; r.time = 0.0f;
+}
+inline void set_rtc_lane(RTCRay16& r, int k, const Ray& ray) {
+  r.org_x[k] = ray.origin.x; r.org_y[k] = ray.origin.y; r.org_z[k] = ray.origin.z;
+  r.dir_x[k] = ray.direction.x; r.dir_y[k] = ray.direction.y; r.dir_z[k] = ray.direction.z;
+  r.tnear[k] = ray.tnear; r.tfar[k] = ray.tfar;
+  r.mask[k] = ray.mask; r.flags[k] = 0; r.time[k] = 0.0f;
+}
+
 void enable_flush_to_zero();
 
 class Accel {

@@ -8,6 +8,7 @@
 
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_materials.h"
+#include "scene/triangle.h"
 
 namespace igi {
 namespace {
@@ -69,7 +70,7 @@ std::optional<int> attribute(const tinygltf::Primitive& primitive, const char* n
 // renderer's float arithmetic (LightSet::triangle_area) rounds to zero, as
 // for tiny coordinates: no area to hit or to sample.
 bool zero_area(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2) {
-  if (!(0.5f * glm::length(glm::cross(p1 - p0, p2 - p0)) > 0.0f)) return true;
+  if (!(0.5f * glm::length(triangle_cross(p0, p1, p2)) > 0.0f)) return true;
   const glm::dvec3 e1 = glm::dvec3(p1) - glm::dvec3(p0), e2 = glm::dvec3(p2) - glm::dvec3(p0);
   const double twice_area = glm::length(glm::cross(e1, e2));
   return !(twice_area > 1e-7 * glm::length(e1) * glm::length(e2));
@@ -256,7 +257,7 @@ void GeometryBuilder::append_flat(const PrimitiveGeometry& geometry, const glm::
       ++zero_area_;
       continue;
     }
-    const glm::vec3 normal = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
+    const glm::vec3 normal = triangle_normal(p[0], p[1], p[2]);
     const uint32_t first = uint32_t(scene_.positions.size());
     for (int k = 0; k < 3; ++k) {
       scene_.positions.push_back(p[k]);
@@ -279,8 +280,7 @@ void GeometryBuilder::repair_normals(size_t first_vertex, size_t first_triangle)
   std::vector<glm::vec3> sum(normals.size() - first_vertex, glm::vec3(0.0f));
   for (size_t t = first_triangle; t < scene_.triangles.size(); ++t) {
     const glm::uvec3 tri = scene_.triangles[t];
-    const glm::vec3 face = glm::cross(scene_.positions[tri.y] - scene_.positions[tri.x],
-                                      scene_.positions[tri.z] - scene_.positions[tri.x]);
+    const glm::vec3 face = triangle_cross(scene_, uint32_t(t));  // area-weighted
     for (int k = 0; k < 3; ++k) sum[tri[k] - first_vertex] += face;
   }
   for (size_t v : broken) {

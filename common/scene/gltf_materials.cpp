@@ -10,6 +10,7 @@
 
 #include <tiny_gltf.h>
 
+#include "image/image.h"
 #include "scene/gltf_accessors.h"
 
 namespace igi {
@@ -29,10 +30,6 @@ double number_or(const tinygltf::Value* object, const char* key, double fallback
 glm::vec3 rgb_or(const std::vector<double>& values, glm::vec3 fallback) {
   if (values.size() < 3) return fallback;
   return glm::vec3(float(values[0]), float(values[1]), float(values[2]));
-}
-
-float srgb_to_linear(float c) {
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
 // stb decodes to 4 channels of 8 or 16 bits, row 0 at the top (as Texture).

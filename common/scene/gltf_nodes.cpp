@@ -1,6 +1,7 @@
 #include "scene/gltf_nodes.h"
 
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <utility>
 
@@ -11,8 +12,6 @@
 
 namespace igi {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Column-major matrix if given, else translation * rotation * scale.
 glm::dmat4 local_transform(const tinygltf::Node& node) {
@@ -171,7 +170,7 @@ std::optional<PunctualLight> NodeWalker::to_punctual(const tinygltf::Light& ligh
     out.type = LightType::Spot;
     out.inner_cone = float(light.spot.innerConeAngle);
     out.outer_cone = float(light.spot.outerConeAngle);
-    if (!(0.0f <= out.inner_cone && out.inner_cone < out.outer_cone && out.outer_cone <= kPi / 2 + 1e-6))
+    if (!(0.0f <= out.inner_cone && out.inner_cone < out.outer_cone && out.outer_cone <= std::numbers::pi / 2 + 1e-6))
       diag_.fail(name, "spot cone angles inner " + std::to_string(out.inner_cone) + ", outer " +
                            std::to_string(out.outer_cone) + ": expected 0 <= inner < outer <= pi/2");
   } else if (light.type == "directional") {
@@ -206,7 +205,7 @@ void NodeWalker::add_camera(const tinygltf::Node& node, const std::string& name,
   if (camera.perspective.aspectRatio > 0.0)
     diag_.warn_once("aspectRatio", "camera aspectRatio ignored: the image's width and height set it");
   const double yfov = camera.perspective.yfov;
-  if (!(yfov > 0.0 && yfov < kPi))
+  if (!(yfov > 0.0 && yfov < std::numbers::pi))
     diag_.fail(camera_name, "yfov " + std::to_string(yfov) + ", expected in (0, pi)");
   const glm::dvec3 forward = world_axis(world, glm::dvec3(0.0, 0.0, -1.0));
   const glm::dvec3 up = world_axis(world, glm::dvec3(0.0, 1.0, 0.0));

@@ -18,6 +18,8 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/camera.h"
+
 namespace igi {
 
 enum class MaterialType : uint8_t {
@@ -64,15 +66,6 @@ struct PunctualLight {
   glm::vec3 intensity{1.0f};               // W/sr (point, spot) or W/m^2 (directional)
   float inner_cone = 0.0f;                 // radians, spot only
   float outer_cone = 0.785398f;            // radians, spot only
-};
-
-// Pinhole camera. The image plane's vertical field of view is vfov radians;
-// the horizontal extent follows from the image's aspect ratio.
-struct Camera {
-  glm::vec3 position{0.0f};
-  glm::vec3 forward{0.0f, 0.0f, -1.0f};
-  glm::vec3 up{0.0f, 1.0f, 0.0f};
-  float vfov = 0.6859f;  // 39.3 degrees
 };
 
 struct Bounds {

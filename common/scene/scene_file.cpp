@@ -1,22 +1,12 @@
 #include "scene/scene_file.h"
 
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 
-#include "sampling/hash.h"
+#include "sampling/content_hash.h"
 
 namespace igi {
 
-std::optional<std::vector<uint8_t>> read_file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) return std::nullopt;
-  return bytes;
-}
-
-uint64_t content_hash(const std::vector<uint8_t>& bytes) { return fnv1a64(bytes.data(), bytes.size()); }
+uint64_t content_hash(const std::vector<uint8_t>& bytes) { return content_hash(bytes.data(), bytes.size()); }
 
 std::string hash_hex(uint64_t hash) {
   char text[17];

@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "scene/builtin_scenes.h"
+#include "scene/triangle.h"
 
 namespace igi {
 namespace {
@@ -245,7 +246,7 @@ namespace {
 void add_face_normals(Scene& s) {
   s.normals.assign(s.positions.size(), glm::vec3(0.0f));
   for (const glm::uvec3& t : s.triangles) {
-    const glm::vec3 n = glm::normalize(glm::cross(s.positions[t[1]] - s.positions[t[0]], s.positions[t[2]] - s.positions[t[0]]));
+    const glm::vec3 n = triangle_normal(s.positions[t[0]], s.positions[t[1]], s.positions[t[2]]);
     for (int k = 0; k < 3; ++k) s.normals[t[k]] = n;
   }
 }

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "scene/triangle.h"
+
 namespace igi {
 
 SurfacePoint surface_at(const Scene& scene, const Hit& hit, glm::vec3 ray_direction) {
@@ -10,7 +12,7 @@ SurfacePoint surface_at(const Scene& scene, const Hit& hit, glm::vec3 ray_direct
   const glm::vec3 p0 = scene.positions[t[0]], p1 = scene.positions[t[1]], p2 = scene.positions[t[2]];
   const float b1 = hit.barycentric.x, b2 = hit.barycentric.y, b0 = 1.0f - b1 - b2;
   sp.position = b0 * p0 + b1 * p1 + b2 * p2;
-  sp.geometric_normal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+  sp.geometric_normal = triangle_normal(p0, p1, p2);
   sp.shading_normal = sp.geometric_normal;
   if (!scene.normals.empty()) {
     glm::vec3 n = b0 * scene.normals[t[0]] + b1 * scene.normals[t[1]] + b2 * scene.normals[t[2]];

@@ -19,6 +19,12 @@ struct SurfacePoint {
 
   // Radiance leaving the surface towards -ray_direction (front face only).
   glm::vec3 emitted() const { return front_face ? material->emission : glm::vec3(0.0f); }
+
+  // The normals turned to the side of the geometric surface that `wo` leaves
+  // from (the viewer's side, for a camera hit): the hemisphere shading uses.
+  bool faces(glm::vec3 wo) const { return glm::dot(wo, geometric_normal) >= 0.0f; }
+  glm::vec3 shading_normal_facing(glm::vec3 wo) const { return faces(wo) ? shading_normal : -shading_normal; }
+  glm::vec3 geometric_normal_facing(glm::vec3 wo) const { return faces(wo) ? geometric_normal : -geometric_normal; }
 };
 
 SurfacePoint surface_at(const Scene& scene, const Hit& hit, glm::vec3 ray_direction);

@@ -21,7 +21,7 @@ LightPathStart start_light_path(const LightSet& lights, const Scene& scene, Samp
       start.position = e.position;
       start.normal = e.normal;
       start.power = e.power;
-      Frame frame(e.normal);
+      Onb frame(e.normal);
       glm::vec3 d = frame.to_world(cosine_hemisphere(u_dir));
       start.ray = Ray{e.position + 1e-5f * lights.scene_radius() * e.normal, d};
       start.flux = e.power * kPi;  // Le A cos / (pdf = cos / pi)
@@ -36,7 +36,7 @@ LightPathStart start_light_path(const LightSet& lights, const Scene& scene, Samp
       glm::vec3 d;
       if (e.kind == LightKind::Spot) {
         float cos_max = std::cos(pl.outer_cone);
-        d = Frame(glm::normalize(pl.direction)).to_world(uniform_cone(u_dir, cos_max));
+        d = Onb(glm::normalize(pl.direction)).to_world(uniform_cone(u_dir, cos_max));
         float pdf = 1.0f / (2.0f * kPi * (1.0f - cos_max));
         start.flux = e.power * (spot_attenuation(pl, d) / pdf);
       } else {

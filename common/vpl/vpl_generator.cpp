@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "material/bsdf.h"
+#include "sampling/content_hash.h"
 #include "sampling/hash.h"
 #include "sampling/sobol.h"
 #include "sampling/warp.h"
@@ -44,7 +45,7 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
     // sharp GGX surfaces radiate through a widened lobe (VplShading::vpl_bsdf).
     if (!sp.material->is_specular()) {
       // The VPL reflects towards the side the light arrived from.
-      out.push_back(Vpl{sp.position, glm::dot(wo, sp.geometric_normal) >= 0.0f ? sp.shading_normal : -sp.shading_normal,
+      out.push_back(Vpl{sp.position, sp.shading_normal_facing(wo),
                         flux * inv_paths, wo, sp.albedo,
                         ctx.scene.triangle_material[hit.triangle], 0, VplKind::Surface});
       if (options.vertices) options.vertices->push_back({previous.from, previous.index, depth});
@@ -69,15 +70,15 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
 }  // namespace
 
 uint64_t hash_vpls(const std::vector<Vpl>& vpls) {
-  uint64_t h = 0xcbf29ce484222325ull;
+  ContentHasher h;
   for (const Vpl& v : vpls) {
-    h = fnv1a64(&v.position, sizeof(v.position), h);
-    h = fnv1a64(&v.normal, sizeof(v.normal), h);
-    h = fnv1a64(&v.flux, sizeof(v.flux), h);
-    h = fnv1a64(&v.incident, sizeof(v.incident), h);
-    h = fnv1a64(&v.kind, sizeof(v.kind), h);
+    h.add(v.position);
+    h.add(v.normal);
+    h.add(v.flux);
+    h.add(v.incident);
+    h.add(v.kind);
   }
-  return h;
+  return h.value();
 }
 
 VplSets generate_vpls(const SceneContext& context, const RenderSettings& settings, uint32_t seed,

@@ -37,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_scene.h"
 #include "image/flip.h"
 #include "image/metrics.h"
 #include "methods/vpl_method.h"
@@ -96,14 +97,11 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-// A scene with its BVH and lights, alive for one scene's sweep.
-struct Prepared {
-  std::string name;  // as on the command line (suite_room() knows rooms by it)
-  Scene scene;
-  Accel accel;
-  LightSet lights;
-  Prepared(std::string n, Scene s) : name(std::move(n)), scene(std::move(s)), accel(scene), lights(scene) {}
-  SceneContext context() const { return {scene, accel, lights}; }
+// A scene with its BVH and lights, and its name as on the command line
+// (suite_room() knows rooms by it), alive for one scene's sweep.
+struct Prepared : bench::PreparedScene {
+  std::string name;
+  Prepared(std::string n, Scene s) : PreparedScene(std::move(s)), name(std::move(n)) {}
 };
 
 double cpu_seconds() {
@@ -349,10 +347,5 @@ int run(const Options& o) {
 }  // namespace igi
 
 int main(int argc, char** argv) {
-  try {
-    return igi::run(igi::parse(argc, argv));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "igi-accuracy: %s\n", e.what());
-    return 1;
-  }
+  return igi::bench::run_main("igi-accuracy", [&] { return igi::run(igi::parse(argc, argv)); });
 }

@@ -29,15 +29,15 @@
 //     per-pixel choice of reflection or refraction shows as salt and pepper)
 //     -> DIR/branches.csv.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench/bench_scene.h"
+#include "bench/bench_clock.h"
 #include "image/flip.h"
 #include "image/metrics.h"
 #include "methods/vpl_method.h"
@@ -48,6 +48,9 @@
 
 namespace igi {
 namespace {
+
+using bench::Clock;
+using bench::median;
 
 namespace fs = std::filesystem;
 
@@ -111,37 +114,7 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-struct Clock {
-  double wall, cpu;
-  static Clock now() {
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return {std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(),
-            double(t.tv_sec) + 1e-9 * double(t.tv_nsec)};
-  }
-  Clock operator-(const Clock& o) const { return {wall - o.wall, cpu - o.cpu}; }
-};
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
-struct Prepared {
-  Scene scene;
-  Accel accel;
-  LightSet lights;
-  explicit Prepared(Scene s) : scene(std::move(s)), accel(scene), lights(scene) {}
-  SceneContext context() const { return {scene, accel, lights}; }
-  FrameSetup frame(int w, int h, uint32_t seed) const {
-    FrameSetup f;
-    f.camera = scene.camera_or_auto();
-    f.width = w;
-    f.height = h;
-    f.seed = seed;
-    return f;
-  }
-};
+using Prepared = bench::PreparedScene;
 
 RenderSettings igi_settings(const Options& o, int photons) {
   RenderSettings s;
@@ -373,10 +346,5 @@ int run(const Options& o) {
 }  // namespace igi
 
 int main(int argc, char** argv) {
-  try {
-    return igi::run(igi::parse(argc, argv));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "igi-caustics-bench: %s\n", e.what());
-    return 1;
-  }
+  return igi::bench::run_main("igi-caustics-bench", [&] { return igi::run(igi::parse(argc, argv)); });
 }

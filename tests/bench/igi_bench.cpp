@@ -10,12 +10,11 @@
 // time the process actually received (the machine is shared), "wall" by
 // elapsed time.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <string>
 #include <vector>
 
+#include "bench/bench_clock.h"
 #include "methods/vpl_method.h"
 #include "render/offline_render.h"
 #include "render/frame_renderer.h"
@@ -25,21 +24,8 @@
 namespace igi {
 namespace {
 
-struct Clock {
-  double wall, cpu;
-  static Clock now() {
-    timespec t;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return {std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(),
-            double(t.tv_sec) + 1e-9 * double(t.tv_nsec)};
-  }
-  Clock operator-(const Clock& o) const { return {wall - o.wall, cpu - o.cpu}; }
-};
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using bench::Clock;
+using bench::median;
 
 struct Timing {
   double wall, cpu;

@@ -22,15 +22,15 @@
 // Per-pixel relative difference to ir: |Y - Y_ir| / Y_ir of luminance Y,
 // over pixels with Y_ir above 1 % of the image's mean.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench/bench_scene.h"
+#include "bench/bench_clock.h"
 #include "image/flip.h"
 #include "image/metrics.h"
 #include "lightcuts/lightcuts_method.h"
@@ -42,6 +42,8 @@
 
 namespace igi {
 namespace {
+
+using bench::Clock;
 
 namespace fs = std::filesystem;
 
@@ -96,32 +98,7 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-struct Prepared {
-  Scene scene;
-  Accel accel;
-  LightSet lights;
-  explicit Prepared(Scene s) : scene(std::move(s)), accel(scene), lights(scene) {}
-  SceneContext context() const { return {scene, accel, lights}; }
-  FrameSetup frame(const Options& o) const {
-    FrameSetup f;
-    f.camera = scene.camera_or_auto();
-    f.width = o.width;
-    f.height = o.height;
-    f.seed = 1;
-    return f;
-  }
-};
-
-struct Clock {
-  double wall, cpu;
-  static Clock now() {
-    timespec t;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return {std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(),
-            double(t.tv_sec) + 1e-9 * double(t.tv_nsec)};
-  }
-  Clock operator-(const Clock& o) const { return {wall - o.wall, cpu - o.cpu}; }
-};
+using Prepared = bench::PreparedScene;
 
 struct Run {
   Image image;
@@ -133,7 +110,7 @@ struct Run {
 
 Run run(const Prepared& p, const RenderSettings& s, const Options& o, int frames) {
   auto method = make_method(p.context(), s);
-  const FrameSetup frame = p.frame(o);
+  const FrameSetup frame = p.frame(o.width, o.height);
   std::vector<Run> runs;
   for (int f = 0; f < frames; ++f) {
     Run r;
@@ -165,7 +142,7 @@ const Image& reference(const Prepared& p, const std::string& name, const Options
   const fs::path path = fs::path(o.refs) / file;
   if (fs::exists(path)) return storage = read_image(path.string());
   fs::create_directories(o.refs);
-  FrameSetup frame = p.frame(o);
+  FrameSetup frame = p.frame(o.width, o.height);
   frame.seed = seed;
   storage = render_offline(p.context(), pt, frame, o.ref_spp, FrameOptions{}).image;
   write_image(storage, path.string());
@@ -270,10 +247,5 @@ int run_all(const Options& o) {
 }  // namespace igi
 
 int main(int argc, char** argv) {
-  try {
-    return igi::run_all(igi::parse(argc, argv));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "igi-lightcuts-bench: %s\n", e.what());
-    return 1;
-  }
+  return igi::bench::run_main("igi-lightcuts-bench", [&] { return igi::run_all(igi::parse(argc, argv)); });
 }

@@ -8,6 +8,8 @@
 // (accepted and consistent, or rejected with a proper error), otherwise what
 // broke. Crashes and sanitizer reports need no return value: they end the run.
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <span>
 #include <string>
 #include <vector>
@@ -25,6 +27,15 @@ std::string check_decode(std::span<const uint8_t> bytes);
 // textures, and goes through what a renderer builds first (bounds, the
 // automatic camera, the light set, texture lookups).
 std::string check_scene(std::span<const uint8_t> bytes);
+
+// A libFuzzer target's verdict on a check's result: 0 when it is "", else the
+// failure goes to stderr after `target` and the run aborts, so that libFuzzer
+// keeps the input as a crash.
+inline int fail_unless_handled(const char* target, const std::string& failure) {
+  if (failure.empty()) return 0;
+  std::fprintf(stderr, "%s: %s\n", target, failure.c_str());
+  std::abort();
+}
 
 // The name the scene target gives its input: no extension, so the bytes
 // decide between .glb and .gltf.

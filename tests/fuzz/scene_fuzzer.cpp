@@ -1,14 +1,6 @@
 // libFuzzer target for the glTF loader (load_gltf_memory) (built with -DIGI_FUZZ=ON; scripts/fuzz.sh).
-#include <cstdio>
-#include <cstdlib>
-
 #include "fuzz/harness.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const std::string failure = igi::fuzz::check_scene({data, size});
-  if (!failure.empty()) {
-    std::fprintf(stderr, "igi-fuzz-scene: %s\n", failure.c_str());
-    std::abort();  // libFuzzer keeps the input as a crash
-  }
-  return 0;
+  return igi::fuzz::fail_unless_handled("igi-fuzz-scene", igi::fuzz::check_scene({data, size}));
 }

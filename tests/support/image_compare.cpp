@@ -12,6 +12,14 @@ std::string output_path(const std::string& file_name) {
   return std::string(IGI_TEST_OUTPUT_DIR) + "/" + file_name;
 }
 
+std::filesystem::path fresh_test_dir(const std::string& group) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::filesystem::path dir = std::filesystem::path(IGI_TEST_OUTPUT_DIR) / group / info->name();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
 void write_failure_images(const std::string& name, const Image& image, const Image& reference) {
   write_image(image, output_path(name + ".exr"));
   write_image(image, output_path(name + ".png"));

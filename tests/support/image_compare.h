@@ -1,6 +1,7 @@
 #pragma once
 // Image assertions for tests: on failure they write the image, the reference
 // and their difference under IGI_TEST_OUTPUT_DIR so a person can look.
+#include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -10,6 +11,8 @@
 namespace igi::test {
 
 std::string output_path(const std::string& file_name);
+// A fresh, empty folder IGI_TEST_OUTPUT_DIR/group/<the running test's name>.
+std::filesystem::path fresh_test_dir(const std::string& group);
 // Writes NAME.exr/.png, NAME-reference.* and NAME-diff.png.
 void write_failure_images(const std::string& name, const Image& image, const Image& reference);
 // Bit-for-bit equality; on failure reports the first differing pixel.

@@ -1,6 +1,8 @@
 #pragma once
 // A scene with its BVH and lights, ready to render in tests.
+#include <algorithm>
 #include <memory>
+#include <vector>
 
 #include "image/image.h"
 #include "methods/gbuffer.h"
@@ -27,6 +29,16 @@ inline RenderSettings vpl_settings(MethodKind kind, int paths, float clamp = 0.0
 // Luminance in double, for sums over many pixels.
 inline double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
+// A frame of width x height from the scene's camera.
+inline FrameSetup camera_frame(const Scene& scene, int width, int height, uint32_t seed = 1) {
+  FrameSetup f;
+  f.camera = scene.camera_or_auto();
+  f.width = width;
+  f.height = height;
+  f.seed = seed;
+  return f;
+}
+
 struct Prepared {
   Scene scene;
   std::unique_ptr<Accel> accel;
@@ -36,14 +48,7 @@ struct Prepared {
                                lights(std::make_unique<LightSet>(scene)) {}
   SceneContext context() const { return {scene, *accel, *lights}; }
 
-  FrameSetup frame(int width, int height, uint32_t seed = 1) const {
-    FrameSetup f;
-    f.camera = scene.camera_or_auto();
-    f.width = width;
-    f.height = height;
-    f.seed = seed;
-    return f;
-  }
+  FrameSetup frame(int width, int height, uint32_t seed = 1) const { return camera_frame(scene, width, height, seed); }
 
   // The surface seen through each pixel centre, row-major.
   std::vector<GSample> visible_points(int width, int height) const {
@@ -61,5 +66,23 @@ struct Prepared {
     return render_offline(context(), settings, frame(width, height, seed), samples, options).image;
   }
 };
+
+// The frame rendered tile by tile on this thread, tiles of tw x th with
+// `border` from origin offset (ox, oy): the first row and column of tiles are
+// cut short, so tile edges fall elsewhere than in a whole-frame render.
+inline Image render_tiled(const Method& method, const FrameSetup& frame, int border, int tw, int th, int ox, int oy) {
+  Image image(frame.width, frame.height);
+  RayCounts rays;
+  for (int y = -oy; y < frame.height; y += th)
+    for (int x = -ox; x < frame.width; x += tw) {
+      const int x0 = std::max(0, x), y0 = std::max(0, y);
+      const int w = std::min(frame.width, x + tw) - x0, h = std::min(frame.height, y + th) - y0;
+      if (w <= 0 || h <= 0) continue;
+      std::vector<glm::vec3> pixels(size_t(w) * h);
+      method.render_tile(TileJob{x0, y0, w, h, border}, pixels, rays);
+      image.paste(pixels, x0, y0, w, h);
+    }
+  return image;
+}
 
 }  // namespace igi::test
