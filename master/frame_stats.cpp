@@ -40,6 +40,21 @@ double process_cpu_seconds() {
   return double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) + 1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
+RunTotals run_totals(const MasterSession& session, int io_threads, double cpu_start, double wall_seconds) {
+  RunTotals t;
+  t.bad_messages = session.bad_messages();
+  t.refused_keys = session.refused_keys();
+  t.failed_handshakes = session.failed_handshakes();
+  t.nonfinite_pixels = session.nonfinite_pixels();
+  t.quarantined = session.quarantined();
+  t.master_cpu_seconds = process_cpu_seconds() - cpu_start;
+  t.session_cpu_seconds = session.session_cpu_seconds();
+  t.wall_seconds = wall_seconds;
+  t.pixel_format = pixel_format_name(session.pixel_format());
+  t.io_threads = io_threads;
+  return t;
+}
+
 void write_stats_json(const std::string& path, const std::vector<FrameRecord>& frames, const RunTotals& totals) {
   const std::string temporary = path + ".part";
   std::ofstream out(temporary);

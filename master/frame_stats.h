@@ -21,6 +21,10 @@ struct RunTotals {
   bool complete = false;           // false while the run goes on (the file is rewritten now and then)
 };
 
+// The session's counts for the statistics file: CPU since `cpu_start`
+// (process_cpu_seconds() when the run began) and the run's wall time.
+RunTotals run_totals(const MasterSession& session, int io_threads, double cpu_start, double wall_seconds);
+
 // Replaces `path` atomically (a reader never sees half a file).
 void write_stats_json(const std::string& path, const std::vector<FrameRecord>& frames, const RunTotals& totals);
 // CPU time this process has used (user + system), all threads.

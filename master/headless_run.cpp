@@ -73,18 +73,7 @@ int run_headless(const MasterOptions& o, const Scene& scene, MasterSession& sess
   const auto wall_start = Clock::now();
   const double cpu_start = process_cpu_seconds();
   auto totals_now = [&] {
-    RunTotals t;
-    t.bad_messages = session.bad_messages();
-    t.refused_keys = session.refused_keys();
-    t.failed_handshakes = session.failed_handshakes();
-    t.nonfinite_pixels = session.nonfinite_pixels();
-    t.quarantined = session.quarantined();
-    t.master_cpu_seconds = process_cpu_seconds() - cpu_start;
-    t.session_cpu_seconds = session.session_cpu_seconds();
-    t.wall_seconds = std::chrono::duration<double>(Clock::now() - wall_start).count();
-    t.pixel_format = pixel_format_name(session.pixel_format());
-    t.io_threads = o.io_threads;
-    return t;
+    return run_totals(session, o.io_threads, cpu_start, std::chrono::duration<double>(Clock::now() - wall_start).count());
   };
   // The statistics so far, so a master that is killed leaves them: once a
   // second, and a second more per 1000 frames (each rewrite holds every frame).

@@ -240,17 +240,9 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
   session.close("window closed");
   workers.stop_all();
   if (stats) {  // the session thread has ended: its counts can be read here
-    RunTotals t;
-    t.bad_messages = session.bad_messages();
-    t.refused_keys = session.refused_keys();
-    t.failed_handshakes = session.failed_handshakes();
-    t.nonfinite_pixels = session.nonfinite_pixels();
-    t.quarantined = session.quarantined();
-    t.master_cpu_seconds = process_cpu_seconds() - cpu_start;  // the window's drawing included
-    t.session_cpu_seconds = session.session_cpu_seconds();
-    t.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    t.pixel_format = pixel_format_name(session.pixel_format());
-    t.io_threads = o.io_threads;
+    // The window's drawing is in the master's CPU time.
+    RunTotals t = run_totals(session, o.io_threads, cpu_start,
+                             std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
     t.complete = true;
     stats->write_final(t);
   }
