@@ -11,6 +11,7 @@ packages=(
   libzmq3-dev cppzmq-dev
   libxxhash-dev                        # XXH3 content hashes (scenes, VPL sets)
   libtinygltf-dev nlohmann-json3-dev libstb-dev
+  libcli11-dev                         # command-line options of every program
   libgtest-dev
   xvfb xauth libgl1-mesa-dri
   python3-venv
