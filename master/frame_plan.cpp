@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "sampling/sobol.h"
+#include "scene/animation.h"
 
 namespace igi {
 
@@ -26,6 +27,8 @@ FrameSetup plan_frame(const RenderOptions& render, const std::string& camera_pat
       f.jitter_y = j.y;
     }
   }
+  if (scene.animation && scene.animation->animated())
+    f.pose.time = scene_time(render.time, render.time_step, uint64_t(i), render.loop, scene.animation->duration);
   if (camera_path == "orbit") {  // turn about the vertical axis through the scene's centre
     const glm::vec3 c = scene.bounds().center();
     const float angle = 0.02f * float(i);

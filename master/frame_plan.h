@@ -15,7 +15,8 @@ namespace igi {
 // pass i of one estimate, exactly as igi-render's passes: ir/igi take seed + i
 // and sub-pixel position sample_2d(i, 0, seed) (pass 0 included, so the
 // positions are one stratified set); pt keeps the seed and takes samples
-// [i x spp, (i + 1) x spp) of its sequence.
+// [i x spp, (i + 1) x spp) of its sequence. An animated scene's frame i
+// stands at render.time + i x render.time_step (wrapped with render.loop).
 FrameSetup plan_frame(const RenderOptions& render, const std::string& camera_path, const Scene& scene, int i,
                       bool progressive);
 

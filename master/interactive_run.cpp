@@ -24,6 +24,7 @@
 #include "display/interactive_window.h"
 #include "display/window_panel.h"
 #include "frame_plan.h"
+#include "scene/animation.h"
 #include "render/accumulator.h"
 #include "run_modes.h"
 #include "stats_writer.h"
@@ -45,6 +46,7 @@ class Handover {
     Camera camera;
     RenderSettings settings;
     uint64_t generation = 0;
+    glm::vec3 light_offset{0.0f};  // where the keys moved the lights
   };
   void publish(const View& view) {
     std::lock_guard lock(mutex_);
@@ -99,8 +101,9 @@ class Handover {
 
 void session_loop(const MasterOptions& o, const Scene& scene, MasterSession& session, Handover& handover) {
   std::map<uint64_t, uint64_t> generation_of_frame;  // open frames only
-  uint64_t generation = ~uint64_t(0), next_id = 0;
+  uint64_t generation = ~uint64_t(0), next_id = 0, animation_frame = 0;
   int pass = 0;
+  const bool animated = scene.animation && scene.animation->animated();
   try {
     while (!handover.stopped()) {
       const Handover::View view = handover.view();
@@ -111,7 +114,11 @@ void session_loop(const MasterOptions& o, const Scene& scene, MasterSession& ses
       if (session.can_add_frame() && handover.waiting() < 2) {
         RenderOptions render = o.render;
         render.settings = view.settings;  // pt's samples per pass depend on the method
-        FrameSetup f = plan_frame(render, o.camera_path, scene, pass++, true);
+        FrameSetup f = plan_frame(render, o.camera_path, scene, animated ? 0 : pass++, true);
+        if (animated)  // every frame a new time, a fresh estimate with the same seed: nothing accumulates
+          f.pose.time = scene_time(o.render.time, o.render.time_step, animation_frame++, o.render.loop,
+                                   scene.animation->duration);
+        f.pose.light_offset = view.light_offset;
         f.frame_id = next_id++;
         f.camera = view.camera;
         generation_of_frame[f.frame_id] = generation;
@@ -178,6 +185,7 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
   InteractiveWindow window(o.render.width, o.render.height, "igi-master: " + o.render.scene);
   WindowPanel panel(window.handle(), o.render.settings, o.render.exposure, panel_options(o));
   const float speed = 0.25f * scene.bounds().diagonal();
+  const bool animated = scene.animation && scene.animation->animated();
   CameraController controller(scene.camera_or_auto(), speed);
   Accumulator accumulator(o.render.width, o.render.height);
   std::optional<StatsWriter> stats;  // the frames the window showed
@@ -186,7 +194,7 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
   session.record_tile_sources(true);  // the tile overlay
   Handover handover;
   uint64_t generation = 0, camera_generation = controller.generation();
-  handover.publish({controller.camera(), panel.settings().settings(), generation});
+  handover.publish({controller.camera(), panel.settings().settings(), generation, controller.light_offset()});
   std::thread session_thread([&] { session_loop(o, scene, session, handover); });
   auto last_frame = std::chrono::steady_clock::now(), last_draw = last_frame, wall_start = last_frame;
   const double cpu_start = process_cpu_seconds();
@@ -196,11 +204,12 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
     if (controller.generation() != camera_generation || panel.settings().take_change()) {
       camera_generation = controller.generation();
       accumulator.reset();
-      handover.publish({controller.camera(), panel.settings().settings(), ++generation});
+      handover.publish({controller.camera(), panel.settings().settings(), ++generation, controller.light_offset()});
     }
     bool fresh = false;
     for (Shown& shown : handover.take(std::chrono::milliseconds(5))) {
       if (shown.generation != generation) continue;  // rendered for an old camera or old settings
+      if (animated) accumulator.reset();  // each frame stands at its own time
       accumulator.add(shown.frame.pixels->to_image(), 1.0);
       shown.frame.pixels.reset();  // back to the pool
       const auto now = std::chrono::steady_clock::now();

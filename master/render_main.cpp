@@ -6,6 +6,7 @@
 #include "display/image_window.h"
 #include "render_options.h"
 #include "render/offline_render.h"
+#include "render/scene_state.h"
 #include "scene/gltf_writer.h"
 #include "scene/load_scene.h"
 
@@ -20,13 +21,13 @@ int run(const igi::RenderOptions& o) {
     std::printf("wrote %s\n", o.export_gltf.c_str());
     return 0;
   }
-  igi::Accel accel(scene);
-  igi::LightSet lights(scene);
   igi::FrameSetup frame;
   frame.camera = scene.camera_or_auto();
   frame.width = o.width;
   frame.height = o.height;
   frame.seed = o.seed;
+  igi::SceneState state(std::move(scene));  // as a worker holds it: the same BVH, the same pixels
+  state.set_pose(frame.pose);
 
   igi::FrameOptions options;
   options.threads = o.threads;
@@ -37,7 +38,7 @@ int run(const igi::RenderOptions& o) {
       double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (t > 1.0) std::fprintf(stderr, "\r%5.1f%%  %.1f s", 100.0 * f, t);
     };
-  igi::OfflineResult r = igi::render_offline({scene, accel, lights}, o.settings, frame, o.samples, options);
+  igi::OfflineResult r = igi::render_offline(state.context(), o.settings, frame, o.samples, options);
   if (!o.quiet) std::fprintf(stderr, "\r                      \r");
   igi::write_image(r.image, o.output, o.exposure);
   std::printf("%s: %s %dx%d, %d %s, %.3f s, %.1f Mrays (%.1f Mrays/s)\n", o.output.c_str(),

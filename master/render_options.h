@@ -23,6 +23,10 @@ struct RenderOptions {
   bool show = false;             // open a window with the result
   std::string screenshot;        // with show: save the window's pixels and close
   bool help = false;
+  // Animated scenes: frame i stands at time + i x time_step seconds, with
+  // loop wrapped into the animation's length (scene/animation.h scene_time).
+  double time = 0.0, time_step = 1.0 / 30.0;
+  bool loop = false;
 };
 
 // Parses argv; throws std::invalid_argument with a message naming the option.

@@ -288,6 +288,8 @@ void write(Writer& w, const FrameSetupMsg& m) {
   w.u32(f.sample_count);
   w.f32(f.jitter_x);
   w.f32(f.jitter_y);
+  w.f64(f.pose.time);
+  w.vec3(f.pose.light_offset);
   write(w, m.settings);
 }
 
@@ -312,6 +314,11 @@ void read(Reader& r, FrameSetupMsg& m) {
   check_closed(r, "frame.jitter_x", f.jitter_x, 0.0f, 1.0f);
   f.jitter_y = r.f32("frame.jitter_y");
   check_closed(r, "frame.jitter_y", f.jitter_y, 0.0f, 1.0f);
+  f.pose.time = r.f64("frame.pose.time");
+  if (!(std::abs(f.pose.time) <= kMaxSceneTime))  // NaN fails too
+    r.fail("frame.pose.time", std::to_string(f.pose.time) + ", expected a finite time within +-1e9 s");
+  f.pose.light_offset = r.vec3("frame.pose.light_offset");
+  check_finite(r, "frame.pose.light_offset", f.pose.light_offset);
   read(r, m.settings);
 }
 

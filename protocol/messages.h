@@ -34,8 +34,9 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // Bye says why (leaving, quarantined, failed). 4: settings split path lengths, anti-aliasing,
 // glossy gather, lightcuts. 5: glass branches, caustic photons. 6: settings
 // carry light importance and bidirectional IR. 7: FrameSetup carries the
-// frame's settings (the window changes them live).
-inline constexpr uint16_t kVersion = 7;
+// frame's settings (the window changes them live). 8: FrameSetup carries the
+// scene's pose (animation time, moved lights).
+inline constexpr uint16_t kVersion = 8;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;
@@ -43,6 +44,7 @@ inline constexpr size_t kMaxSceneBytes = 512u << 20;
 inline constexpr int kMaxImageSide = 16384;
 inline constexpr int kMaxTileSide = 1024;
 inline constexpr size_t kMaxMessageBytes = kMaxSceneBytes + 65536;
+inline constexpr double kMaxSceneTime = 1e9;  // seconds
 inline constexpr uint32_t kMinTimeoutMs = 50, kMaxTimeoutMs = 3600000;
 
 enum class MessageType : uint8_t {

@@ -21,6 +21,7 @@ void Writer::u64(uint64_t v) {
 }
 
 void Writer::f32(float v) { u32(std::bit_cast<uint32_t>(v)); }
+void Writer::f64(double v) { u64(std::bit_cast<uint64_t>(v)); }
 
 void Writer::vec3(glm::vec3 v) {
   f32(v.x);
@@ -100,6 +101,7 @@ uint64_t Reader::u64(const char* field) {
 }
 
 float Reader::f32(const char* field) { return std::bit_cast<float>(u32(field)); }
+double Reader::f64(const char* field) { return std::bit_cast<double>(u64(field)); }
 
 bool Reader::boolean(const char* field) {
   uint8_t v = u8(field);

@@ -28,6 +28,7 @@ class Writer {
   void u64(uint64_t v);
   void i32(int32_t v) { u32(static_cast<uint32_t>(v)); }  // two's complement
   void f32(float v);                                       // IEEE-754 bits
+  void f64(double v);                                      // IEEE-754 bits
   void boolean(bool v) { u8(v ? 1 : 0); }
   void vec3(glm::vec3 v);
   void floats(const float* values, size_t n);
@@ -59,6 +60,7 @@ class Reader {
   uint64_t u64(const char* field);
   int32_t i32(const char* field) { return static_cast<int32_t>(u32(field)); }
   float f32(const char* field);
+  double f64(const char* field);
   bool boolean(const char* field);  // 0 or 1; any other byte is an error
   glm::vec3 vec3(const char* field);
   // n floats in one bounds check (pixel blocks); false when too few bytes are left.

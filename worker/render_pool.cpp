@@ -11,8 +11,8 @@
 
 namespace igi {
 
-RenderPool::RenderPool(const SceneContext& context, PixelFormat format, int threads)
-    : context_(context), format_(format), results_fd_(eventfd(0, EFD_NONBLOCK)) {
+RenderPool::RenderPool(SceneState& scene, PixelFormat format, int threads)
+    : scene_(scene), format_(format), results_fd_(eventfd(0, EFD_NONBLOCK)) {
   for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { run(); });
 }
 
@@ -23,6 +23,7 @@ RenderPool::~RenderPool() {
     queue_.clear();
   }
   wake_.notify_all();
+  posed_.notify_all();
   for (std::thread& t : threads_) t.join();
   close(results_fd_);
 }
@@ -30,7 +31,7 @@ RenderPool::~RenderPool() {
 void RenderPool::add_frame(const FrameSetup& frame, const RenderSettings& settings) {
   auto state = std::make_shared<FrameState>();
   state->setup = frame;
-  state->method = make_method(context_, settings);
+  state->settings = settings;
   std::lock_guard lock(mutex_);
   frames_[frame.frame_id] = std::move(state);
   // Keep the newest few: results of older frames may still be in flight.
@@ -54,7 +55,10 @@ std::vector<protocol::TileResult> RenderPool::take_results() {
 
 protocol::TileResult RenderPool::render(const protocol::TileJobMsg& job, FrameState& frame) {
   auto start = std::chrono::steady_clock::now();
-  std::call_once(frame.begun, [&] { frame.method->begin_frame(frame.setup); });
+  std::call_once(frame.begun, [&] {
+    frame.method = make_method(scene_.context(), frame.settings);
+    frame.method->begin_frame(frame.setup);
+  });
   protocol::TileResult r;
   r.frame_id = job.frame_id;
   r.job_id = job.job_id;
@@ -66,6 +70,18 @@ protocol::TileResult RenderPool::render(const protocol::TileJobMsg& job, FrameSt
   r.frame_state_hash = frame.method->frame_state_hash();
   r.render_seconds = std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
   return r;
+}
+
+bool RenderPool::wait_for_pose(std::unique_lock<std::mutex>& lock, const ScenePose& pose) {
+  for (;;) {
+    if (stopping_) return false;
+    if (scene_.pose() && *scene_.pose() == pose) return true;
+    if (rendering_ == 0) {
+      scene_.set_pose(pose);  // under the lock: no tile starts meanwhile
+      return true;
+    }
+    posed_.wait(lock);
+  }
 }
 
 void RenderPool::run() {
@@ -81,9 +97,13 @@ void RenderPool::run() {
     const FrameSetup& setup = frame->second->setup;
     if (job.tile.x + job.tile.w > setup.width || job.tile.y + job.tile.h > setup.height) continue;  // outside the image
     std::shared_ptr<FrameState> state = frame->second;
+    if (!wait_for_pose(lock, setup.pose)) return;
+    ++rendering_;
     lock.unlock();
     protocol::TileResult result = render(job, *state);
     lock.lock();
+    --rendering_;
+    if (rendering_ == 0) posed_.notify_all();  // a thread may wait for this, to pose the scene
     results_.push_back(std::move(result));
     const uint64_t one = 1;
     (void)!write(results_fd_, &one, sizeof one);  // wakes the socket loop

@@ -22,10 +22,8 @@ std::string scene_key(const std::string& name, uint64_t hash) { return name + "#
 }  // namespace
 
 struct WorkerSession::Loaded {
-  Scene scene;
-  std::unique_ptr<Accel> accel;
-  std::unique_ptr<LightSet> lights;
-  std::unique_ptr<RenderPool> pool;  // made for each connection
+  std::unique_ptr<SceneState> scene;  // with its BVH and lights, posed frame by frame
+  std::unique_ptr<RenderPool> pool;   // made for each connection
 };
 
 WorkerSession::WorkerSession(WorkerOptions options)
@@ -216,9 +214,7 @@ WorkerSession::LoadResult WorkerSession::load(const std::string& scene, bool fai
   try {
     if (fail) throw std::runtime_error("--test-fail-scene-load");
     auto loaded = std::make_shared<Loaded>();
-    loaded->scene = load_scene(scene);
-    loaded->accel = std::make_unique<Accel>(loaded->scene);
-    loaded->lights = std::make_unique<LightSet>(loaded->scene);
+    loaded->scene = std::make_unique<SceneState>(load_scene(scene));
     return {loaded, false, {}, false};
   } catch (const std::exception& e) {
     return {nullptr, false, e.what(), false};
@@ -233,7 +229,7 @@ void WorkerSession::on_welcome(const protocol::Welcome& welcome) {
   waiting_.clear();
   const std::string key = scene_key(welcome.scene_name, welcome.scene_hash);
   if (loaded_ && loaded_key_ == key) {
-    log("welcomed again: keeping scene " + loaded_->scene.name + " and its BVH (no reload)");
+    log("welcomed again: keeping scene " + loaded_->scene->scene().name + " and its BVH (no reload)");
     return start_pool();
   }
   if (loading_.valid() && loading_key_ == key) return;  // on its way
@@ -275,7 +271,7 @@ std::optional<WorkerSession::Outcome> WorkerSession::poll_loading(zmq::socket_t&
   loaded_ = result.loaded;
   loaded_key_ = loading_key_;
   ++loads_;
-  log("scene " + loaded_->scene.name + " ready: " + std::to_string(loaded_->scene.triangles.size()) +
+  log("scene " + loaded_->scene->scene().name + " ready: " + std::to_string(loaded_->scene->scene().triangles.size()) +
       " triangles (scene loads by this worker: " + std::to_string(loads_) + ")");
   if (current) start_pool();
   return std::nullopt;
@@ -284,8 +280,7 @@ std::optional<WorkerSession::Outcome> WorkerSession::poll_loading(zmq::socket_t&
 // A fresh pool for this connection (frames carry their settings); jobs that came early go in now.
 void WorkerSession::start_pool() {
   loaded_->pool.reset();
-  loaded_->pool = std::make_unique<RenderPool>(SceneContext{loaded_->scene, *loaded_->accel, *loaded_->lights},
-                                               welcome_->pixel_format, options_.threads);
+  loaded_->pool = std::make_unique<RenderPool>(*loaded_->scene, welcome_->pixel_format, options_.threads);
   for (protocol::Message& m : waiting_) {
     if (auto* f = std::get_if<protocol::FrameSetupMsg>(&m)) loaded_->pool->add_frame(f->frame, f->settings);
     else loaded_->pool->add_job(std::get<protocol::TileJobMsg>(m));

@@ -16,9 +16,6 @@ float spot_attenuation(const PunctualLight& light, glm::vec3 direction_from_ligh
 }
 
 LightSet::LightSet(const Scene& scene) : scene_(scene), light_of_triangle_(scene.triangles.size(), -1) {
-  Bounds b = scene.bounds();
-  scene_center_ = b.empty() ? glm::vec3(0.0f) : b.center();
-  scene_radius_ = b.empty() ? 1.0f : std::max(1e-6f, 0.5f * b.diagonal());
   for (uint32_t i = 0; i < scene.triangles.size(); ++i)
     if (scene.materials[scene.triangle_material[i]].is_emissive() && triangle_area(i) > 0.0f) {
       light_of_triangle_[i] = int32_t(lights_.size());
@@ -28,6 +25,12 @@ LightSet::LightSet(const Scene& scene) : scene_(scene), light_of_triangle_(scene
     static constexpr LightKind kinds[] = {LightKind::Point, LightKind::Spot, LightKind::Directional};
     lights_.push_back({kinds[int(scene.lights[i].type)], i});
   }
+  refresh(scene.bounds());
+}
+
+void LightSet::refresh(const Bounds& b) {
+  scene_center_ = b.empty() ? glm::vec3(0.0f) : b.center();
+  scene_radius_ = b.empty() ? 1.0f : std::max(1e-6f, 0.5f * b.diagonal());
   std::vector<float> weights;
   for (const Light& l : lights_) weights.push_back(power(l));
   distribution_ = Distribution1D(weights);

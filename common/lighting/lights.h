@@ -42,6 +42,10 @@ struct EmissionSample {
 class LightSet {
  public:
   explicit LightSet(const Scene& scene);
+  // After the scene's lights moved (scene/animation.h): re-weighs them, with
+  // `bounds` the scene's bounds as posed (directional lights cover them).
+  // The list of lights stays as built. Not while sampling.
+  void refresh(const Bounds& bounds);
 
   const std::vector<Light>& lights() const { return lights_; }
   bool empty() const { return lights_.empty(); }

@@ -106,7 +106,6 @@ void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis&
   const Region& region = out.region;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) int valid[16];
   alignas(64) RTCRayHit16 packet;
   for (int i = 0; i < 16; ++i) {
@@ -129,7 +128,7 @@ void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis&
     const int x = bx + (i & 3), y = by + (i >> 2);
     if (!valid[i] || packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
     Ray ray{camera.origin, {packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]}, 0.0f, 1e30f, kCameraRayMask};
-    Hit hit{packet.ray.tfar[i], accel.triangle_index(packet.hit.geomID[i], packet.hit.primID[i]),
+    Hit hit{packet.ray.tfar[i], accel.triangle_index(packet.hit.instID[0][i], packet.hit.geomID[i], packet.hit.primID[i]),
             {packet.hit.u[i], packet.hit.v[i]}};
     const uint32_t seed = hash(hash(uint32_t(region.x0 + x), uint32_t(region.y0 + y), frame.seed), uint32_t(k));
     // Branch 0 into its layer; further branches on the stack, then into

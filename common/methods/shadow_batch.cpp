@@ -144,11 +144,10 @@ int accumulate_shadow_packet(const ShadowPacket& packet, size_t first, PixelBatc
   return traced;
 }
 
-void shade_batch(PixelBatch& batch, std::span<const Vpl> vpls, const VplShading& shading, RTCScene scene,
+void shade_batch(PixelBatch& batch, std::span<const Vpl> vpls, const VplShading& shading, const Accel& accel,
                  RayCounts& rays, RayLog* log) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   thread_local ShadowPacket packet;
   for (const Vpl& vpl : vpls)
     for (size_t first = 0; first < batch.count; first += 16) {
@@ -158,7 +157,7 @@ void shade_batch(PixelBatch& batch, std::span<const Vpl> vpls, const VplShading&
         std::copy_n(packet.valid, 16, log->shadow.back().valid);
         log->shadow.back().rays = packet.rays;
       }
-      rtcOccluded16(packet.valid, scene, &context, &packet.rays);
+      rtcOccluded16(packet.valid, accel.handle(), &context, &packet.rays);
       rays.shadow += accumulate_shadow_packet(packet, first, batch);
     }
 }

@@ -52,7 +52,7 @@ int accumulate_shadow_packet(const ShadowPacket& packet, size_t first, PixelBatc
 // Every VPL of `vpls` against every point of the padded batch, one coherent
 // packet per VPL and 16 points, added to the batch's sums. `log`, if given,
 // records each packet (benchmarks; one thread only).
-void shade_batch(PixelBatch& batch, std::span<const Vpl> vpls, const VplShading& shading, RTCScene scene,
+void shade_batch(PixelBatch& batch, std::span<const Vpl> vpls, const VplShading& shading, const Accel& accel,
                  RayCounts& rays, RayLog* log = nullptr);
 
 }  // namespace igi

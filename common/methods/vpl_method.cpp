@@ -117,7 +117,7 @@ void VplMethod::shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scrat
       for (int v = interleaved() ? s : 0; v < (interleaved() ? s + 1 : vpls_.set_count()); ++v) {
         const auto first = vpls_.vpls.begin() + vpls_.group_first(v, g);
         const auto last = vpls_.vpls.begin() + vpls_.group_end(v, g);
-        shade_batch(batch, std::span<const Vpl>(first, last), shading, context_.accel.handle(), rays, log_);
+        shade_batch(batch, std::span<const Vpl>(first, last), shading, context_.accel, rays, log_);
       }
       for (size_t i = 0; i < batch.count; ++i)
         scratch.sums[batch.index[i]] += glm::vec3(batch.sum_r[i], batch.sum_g[i], batch.sum_b[i]);
@@ -146,7 +146,7 @@ void VplMethod::shade_exact(const GBuffer& gbuffer, const TileJob& job, const Gl
     if (hits.points[h].valid()) batch.add(uint32_t(camera_points + h), hits.points[h]);
   if (batch.count == 0) return;
   batch.pad();
-  shade_batch(batch, exact_, VplShading{context_.scene, clamp_bound_, settings_.glossy_threshold}, context_.accel.handle(), rays, log_);
+  shade_batch(batch, exact_, VplShading{context_.scene, clamp_bound_, settings_.glossy_threshold}, context_.accel, rays, log_);
   for (size_t i = 0; i < batch.count; ++i)
     scratch.direct[batch.index[i]] = glm::vec3(batch.sum_r[i], batch.sum_g[i], batch.sum_b[i]);
 }

@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "scene/camera.h"
+#include "scene/scene_pose.h"
 
 namespace igi {
 
@@ -18,6 +19,7 @@ struct FrameSetup {
   // ir/igi: where in each pixel the primary ray goes ((0.5, 0.5) = centre);
   // progressive passes move it to antialias.
   float jitter_x = 0.5f, jitter_y = 0.5f;
+  ScenePose pose;  // the scene's animation time and moved lights in this frame
 };
 
 // A rectangle of the image, rendered with `border` extra pixels on each side

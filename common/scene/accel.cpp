@@ -1,5 +1,6 @@
 #include "scene/accel.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -7,6 +8,7 @@
 #include <pmmintrin.h>
 #include <xmmintrin.h>
 
+#include "scene/animation.h"
 #include "scene/triangle.h"
 
 namespace igi {
@@ -27,11 +29,12 @@ static void filter_hits(const RTCFilterFunctionNArguments* args) {
     if (args->valid[i] != -1) continue;
     unsigned prim = RTCHitN_primID(args->hit, args->N, i);
     unsigned geom = RTCHitN_geomID(args->hit, args->N, i);
+    unsigned inst = RTCHitN_instID(args->hit, args->N, i, 0);
     glm::vec2 bary(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
     glm::vec3 dir(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
                   RTCRayN_dir_z(args->ray, args->N, i));
     const bool camera_ray = RTCRayN_mask(args->ray, args->N, i) == kCameraRayMask;
-    if (accel->rejects(accel->triangle_index(geom, prim), bary, dir, camera_ray)) args->valid[i] = 0;
+    if (accel->rejects(accel->triangle_index(inst, geom, prim), bary, dir, camera_ray)) args->valid[i] = 0;
   }
 }
 
@@ -39,48 +42,114 @@ Accel::Accel(const Scene& scene) : scene_(scene) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("embree: cannot create device");
   rtcSetDeviceErrorFunction(device_, device_error, nullptr);
-  scene_handle_ = rtcNewScene(device_);
-  rtcSetSceneBuildQuality(scene_handle_, RTC_BUILD_QUALITY_HIGH);
+  top_ = rtcNewScene(device_);
 
-  std::vector<uint32_t> plain, filtered;
-  for (uint32_t i = 0; i < scene.triangles.size(); ++i) {
-    const Material& m = scene.materials[scene.triangle_material[i]];
-    (m.alpha_mask || !m.double_sided ? filtered : plain).push_back(i);
+  // Which group each triangle belongs to: 0 static, then one per moving node.
+  std::vector<int> node_of(scene.triangles.size(), -2);  // -2: static
+  std::vector<int> nodes;                                 // the moving nodes in part order
+  if (scene.animation)
+    for (const DynamicPart& part : scene.animation->parts) {
+      if (std::find(nodes.begin(), nodes.end(), part.node) == nodes.end()) nodes.push_back(part.node);
+      for (uint32_t t : part.triangles) node_of[t] = part.node;
+    }
+  std::vector<std::vector<uint32_t>> triangles(1 + nodes.size());
+  for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
+    const size_t group = node_of[t] == -2 ? 0 : 1 + size_t(std::find(nodes.begin(), nodes.end(), node_of[t]) - nodes.begin());
+    triangles[group].push_back(t);
   }
-  add_geometry(plain, false);
-  add_geometry(filtered, true);
-  rtcCommitScene(scene_handle_);
+  add_group(triangles[0], RTC_BUILD_QUALITY_HIGH);
+  for (size_t g = 1; g < triangles.size(); ++g) add_group(triangles[g], RTC_BUILD_QUALITY_LOW);
+  if (groups_.size() == 1) {
+    // Nothing moves: trace the static scene itself, no instance in between.
+    rtcReleaseGeometry(groups_[0].instance);
+    groups_[0].instance = nullptr;
+    rtcReleaseScene(top_);
+    top_ = groups_[0].scene;
+    rtcRetainScene(top_);
+  } else {
+    rtcCommitScene(top_);
+  }
 }
 
-void Accel::add_geometry(const std::vector<uint32_t>& triangles, bool filtered) {
-  RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * triangles.size()));
-  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles.size()));
-  // Unshared vertices: simple, and the BVH cost dominates memory anyway.
-  for (size_t i = 0; i < triangles.size(); ++i)
-    for (int k = 0; k < 3; ++k) {
-      glm::vec3 p = scene_.positions[scene_.triangles[triangles[i]][k]];
-      vertices[9 * i + 3 * k + 0] = p.x;
-      vertices[9 * i + 3 * k + 1] = p.y;
-      vertices[9 * i + 3 * k + 2] = p.z;
-      indices[3 * i + k] = unsigned(3 * i + k);
-    }
-  if (filtered) {
-    rtcSetGeometryUserData(geom, const_cast<Accel*>(this));
-    rtcSetGeometryIntersectFilterFunction(geom, filter_hits);
-    rtcSetGeometryOccludedFilterFunction(geom, filter_hits);
+void Accel::add_group(const std::vector<uint32_t>& triangles, RTCBuildQuality quality) {
+  Group group;
+  group.scene = rtcNewScene(device_);
+  rtcSetSceneBuildQuality(group.scene, quality);
+  const bool moving = !groups_.empty();
+  if (moving) rtcSetSceneFlags(group.scene, RTC_SCENE_FLAG_DYNAMIC);
+  std::vector<uint32_t> plain, filtered;
+  for (uint32_t t : triangles) {
+    const Material& m = scene_.materials[scene_.triangle_material[t]];
+    (m.alpha_mask || !m.double_sided ? filtered : plain).push_back(t);
   }
-  rtcCommitGeometry(geom);
-  unsigned id = rtcAttachGeometry(scene_handle_, geom);
-  rtcReleaseGeometry(geom);
-  if (id != geometry_triangles_.size()) throw std::logic_error("embree: unexpected geometry id");
-  geometry_triangles_.push_back(triangles);
+  for (const std::vector<uint32_t>* list : {&plain, &filtered}) {
+    Geometry g;
+    g.triangles = *list;
+    g.handle = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    g.vertices = static_cast<float*>(rtcSetNewGeometryBuffer(g.handle, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                             3 * sizeof(float), 3 * list->size()));
+    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        g.handle, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), list->size()));
+    // Unshared vertices: simple, and the BVH cost dominates memory anyway.
+    for (size_t i = 0; i < 3 * list->size(); ++i) indices[i] = unsigned(i);
+    write_vertices(g);
+    // A moving part's BVH is refitted to its posed vertices (Embree honours
+    // REFIT in a LOW-quality scene): tight boxes under translation, looser
+    // under rotation and deformation.
+    if (moving) rtcSetGeometryBuildQuality(g.handle, RTC_BUILD_QUALITY_REFIT);
+    if (list == &filtered) {
+      rtcSetGeometryUserData(g.handle, const_cast<Accel*>(this));
+      rtcSetGeometryIntersectFilterFunction(g.handle, filter_hits);
+      rtcSetGeometryOccludedFilterFunction(g.handle, filter_hits);
+    }
+    rtcCommitGeometry(g.handle);
+    if (rtcAttachGeometry(group.scene, g.handle) != group.geometries.size())
+      throw std::logic_error("embree: unexpected geometry id");
+    group.geometries.push_back(std::move(g));
+  }
+  rtcCommitScene(group.scene);
+
+  group.instance = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(group.instance, group.scene);
+  const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+  rtcSetGeometryTransform(group.instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
+  rtcCommitGeometry(group.instance);
+  if (rtcAttachGeometry(top_, group.instance) != groups_.size()) throw std::logic_error("embree: unexpected instance id");
+  groups_.push_back(std::move(group));
+}
+
+void Accel::write_vertices(const Geometry& geometry) const {
+  float* out = geometry.vertices;
+  for (uint32_t t : geometry.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 p = scene_.positions[scene_.triangles[t][k]];
+      *out++ = p.x, *out++ = p.y, *out++ = p.z;
+    }
+}
+
+// The order Embree asks for: the instanced scene, then its instance, then the top.
+void Accel::update() {
+  if (groups_.size() < 2) return;
+  for (size_t i = 1; i < groups_.size(); ++i) {
+    Group& group = groups_[i];
+    for (Geometry& g : group.geometries) {
+      write_vertices(g);
+      rtcUpdateGeometryBuffer(g.handle, RTC_BUFFER_TYPE_VERTEX, 0);
+      rtcCommitGeometry(g.handle);
+    }
+    rtcCommitScene(group.scene);
+    rtcCommitGeometry(group.instance);
+  }
+  rtcCommitScene(top_);
 }
 
 Accel::~Accel() {
-  rtcReleaseScene(scene_handle_);
+  rtcReleaseScene(top_);
+  for (Group& group : groups_) {
+    if (group.instance) rtcReleaseGeometry(group.instance);
+    for (Geometry& g : group.geometries) rtcReleaseGeometry(g.handle);
+    rtcReleaseScene(group.scene);
+  }
   rtcReleaseDevice(device_);
 }
 
@@ -108,10 +177,10 @@ bool Accel::intersect(const Ray& ray, Hit& hit) const {
   set_rtc_ray(rh.ray, ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene_handle_, &context, &rh);
+  rtcIntersect1(top_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit.t = rh.ray.tfar;
-  hit.triangle = triangle_index(rh.hit.geomID, rh.hit.primID);
+  hit.triangle = triangle_index(rh.hit.instID[0], rh.hit.geomID, rh.hit.primID);
   hit.barycentric = {rh.hit.u, rh.hit.v};
   return true;
 }
@@ -121,7 +190,7 @@ bool Accel::occluded(const Ray& ray) const {
   rtcInitIntersectContext(&context);
   RTCRay r;
   set_rtc_ray(r, ray);
-  rtcOccluded1(scene_handle_, &context, &r);
+  rtcOccluded1(top_, &context, &r);
   return r.tfar < 0.0f;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/animation.h"
 #include "scene/suite_scenes.h"
 
 namespace igi {
@@ -135,9 +136,44 @@ Scene make_cornell_blob(int triangles) {
   return s;
 }
 
+namespace {
+
+// Back and forth along x, `amplitude` metres each way, in `period` seconds.
+AnimationChannel sway(double amplitude, double period) {
+  AnimationChannel channel;
+  channel.path = AnimationPath::Translation;
+  channel.interpolation = Interpolation::Linear;
+  channel.times = {0.0, 0.25 * period, 0.75 * period, period};
+  channel.values = {glm::dvec4(0.0), glm::dvec4(amplitude, 0, 0, 0), glm::dvec4(-amplitude, 0, 0, 0), glm::dvec4(0.0)};
+  return channel;
+}
+
+}  // namespace
+
+Scene make_cornell_blob_moving(int triangles) {
+  Scene s = make_cornell_blob(triangles);
+  s.name = "cornell-blob-moving";
+  const uint32_t blob = uint32_t(make_cornell_box().triangles.size()) - 20;  // after the walls and the light
+  animate_triangles(s, blob, {sway(0.08, 2.0)});
+  return s;
+}
+
+Scene make_large_moving(int triangles) {
+  Scene s = make_large_scene(triangles);
+  s.name = "large-moving";
+  const uint32_t first = uint32_t(s.triangles.size());
+  Material m;
+  m.name = "ball";
+  m.base_color = {0.7f, 0.3f, 0.2f};
+  const uint32_t ball = add_material(s, m);
+  add_bumpy_sphere(s, {0.278f, 0.35f, 0.28f}, 0.05f, 24, [](float, float) { return 1.0f; }, ball);
+  animate_triangles(s, first, {sway(0.15, 2.0)});
+  return s;
+}
+
 // "rooms-N" takes any N in 1..kMaxRooms; the list names the largest as an example.
 std::vector<std::string> builtin_scene_names() {
-  return {"cornell", "cornell-blob", "furnace", "corner", "rooms", "rooms-10", "corridor", "glossy", "glossy-rough", "large", "glass"};
+  return {"cornell", "cornell-blob", "cornell-blob-moving", "large-moving", "furnace", "corner", "rooms", "rooms-10", "corridor", "glossy", "glossy-rough", "large", "glass"};
 }
 
 bool is_builtin_scene(const std::string& name) {
@@ -151,6 +187,8 @@ Scene make_builtin_scene(const std::string& name) {
   if (name == "cornell") return make_cornell_box();
   if (name == "furnace") return make_furnace(0.5f, 1.0f);
   if (name == "cornell-blob") return make_cornell_blob(320000);
+  if (name == "cornell-blob-moving") return make_cornell_blob_moving(320000);
+  if (name == "large-moving") return make_large_moving();
   if (name == "corner") return make_corner_scene();
   if (const int rooms = parse_rooms_name(name)) return make_rooms_scene(rooms);
   if (name == "corridor") return make_corridor_scene();

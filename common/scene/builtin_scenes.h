@@ -19,6 +19,13 @@ Scene make_furnace(float albedo, float radiance);
 // sphere of about `triangles` triangles (for throughput measurements).
 Scene make_cornell_blob(int triangles);
 
+// Animated (scene/animation.h), for dynamic-scene tests and benchmarks:
+// cornell-blob with the blob swaying along x (2 s period); and the "large"
+// scene of about 10^6 triangles with a small ball (2 300 triangles) swaying
+// through it. The static geometry is the same as in their static versions.
+Scene make_cornell_blob_moving(int triangles);
+Scene make_large_moving(int triangles = 1'050'000);
+
 // Also the accuracy suite of scene/suite_scenes.h: corner, rooms, rooms-N, glossy, large, glass.
 std::vector<std::string> builtin_scene_names();
 bool is_builtin_scene(const std::string& name);

@@ -150,6 +150,21 @@ std::vector<glm::vec3> read_vec3_floats(const tinygltf::Model& model, int access
   return values;
 }
 
+std::vector<float> read_float_elements(const tinygltf::Model& model, int accessor, int components,
+                                       const std::string& role, const GltfDiagnostics& diag) {
+  const int type = components == 1 ? TINYGLTF_TYPE_SCALAR : components == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
+  const AccessorView view = checked_view(model, accessor, role, type, {TINYGLTF_COMPONENT_TYPE_FLOAT}, diag);
+  std::vector<float> values(view.count * size_t(components));
+  for (size_t i = 0; i < view.count; ++i)
+    for (int c = 0; c < components; ++c) {
+      const float value = load<float>(view.first + i * view.stride + size_t(c) * sizeof(float));
+      if (!std::isfinite(value))
+        diag.fail(accessor_name(accessor, role), "element " + std::to_string(i) + " is not finite");
+      values[i * size_t(components) + size_t(c)] = value;
+    }
+  return values;
+}
+
 std::vector<glm::vec2> read_texcoords(const tinygltf::Model& model, int accessor,
                                       const std::string& role, GltfDiagnostics& diag) {
   const AccessorView view = checked_view(

@@ -39,6 +39,11 @@ std::vector<glm::vec3> read_vec3_floats(const tinygltf::Model& model, int access
                                         const std::string& role, bool require_finite,
                                         const GltfDiagnostics& diag);
 
+// SCALAR (components 1), VEC3 (3) or VEC4 (4) of FLOAT, every component
+// finite, flattened: element i's components start at i * components.
+std::vector<float> read_float_elements(const tinygltf::Model& model, int accessor, int components,
+                                       const std::string& role, const GltfDiagnostics& diag);
+
 // VEC2 of FLOAT, or of normalized UNSIGNED_BYTE / UNSIGNED_SHORT (TEXCOORD_n).
 // Non-finite coordinates become (0, 0) with a warning.
 std::vector<glm::vec2> read_texcoords(const tinygltf::Model& model, int accessor,

@@ -98,8 +98,6 @@ void warn_extensions(const tinygltf::Model& model, GltfDiagnostics& diag) {
 }  // namespace
 
 void warn_unsupported_features(const tinygltf::Model& model, GltfDiagnostics& diag) {
-  if (!model.animations.empty())
-    diag.warn_once("animations", "animations ignored: the scene is rendered in its rest pose");
   const bool skinned = std::any_of(model.nodes.begin(), model.nodes.end(),
                                    [](const tinygltf::Node& node) { return node.skin >= 0; });
   if (!model.skins.empty() || skinned)

@@ -99,7 +99,13 @@ class GeometryBuilder {
   void append(const PrimitiveGeometry& geometry, const glm::dmat4& world);
   void append_flat(const PrimitiveGeometry& geometry, const glm::dmat4& world, bool flip);
   void repair_normals(size_t first_vertex, size_t first_triangle);
+  void add_part(const PrimitiveGeometry& geometry, const MeshInstance& instance, size_t first_vertex,
+                size_t first_triangle);
 
+ public:
+  std::vector<DynamicPart> parts;
+
+ private:
   const tinygltf::Model& model_;
   GltfDiagnostics& diag_;
   Scene& scene_;
@@ -119,7 +125,11 @@ void GeometryBuilder::add(const std::vector<MeshInstance>& instances) {
     }
   reserve(instances);
   for (const MeshInstance& instance : instances)
-    for (const PrimitiveGeometry& geometry : mesh(instance.mesh)) append(geometry, instance.world);
+    for (const PrimitiveGeometry& geometry : mesh(instance.mesh)) {
+      const size_t first_vertex = scene_.positions.size(), first_triangle = scene_.triangles.size();
+      append(geometry, instance.world);
+      if (instance.pose_node >= 0) add_part(geometry, instance, first_vertex, first_triangle);
+    }
   if (zero_area_ > 0)
     diag_.warn_once("zero-area triangles", "dropped " + std::to_string(zero_area_) + " zero-area triangles");
   if (repaired_normals_ > 0)
@@ -292,11 +302,51 @@ void GeometryBuilder::repair_normals(size_t first_vertex, size_t first_triangle)
   repaired_normals_ += broken.size();
 }
 
+// What posing a moving instance needs: its triangles and vertices as just
+// appended, and the object-space data they came from.
+void GeometryBuilder::add_part(const PrimitiveGeometry& geometry, const MeshInstance& instance,
+                               size_t first_vertex, size_t first_triangle) {
+  DynamicPart part;
+  part.node = instance.pose_node;
+  part.rest_flip = glm::determinant(glm::dmat3(instance.world)) < 0.0;
+  part.flat = any_normals_ && geometry.normals.empty();
+  for (size_t t = first_triangle; t < scene_.triangles.size(); ++t) {
+    part.triangles.push_back(uint32_t(t));
+    part.rest_triangles.push_back(scene_.triangles[t]);
+  }
+  const size_t vertex_count = scene_.positions.size() - first_vertex;
+  for (size_t v = 0; v < vertex_count; ++v) part.vertices.push_back(uint32_t(first_vertex + v));
+  if (part.flat) {
+    // append_flat's vertices: three per kept triangle, in the (mirrored) winding.
+    for (glm::uvec3 t : geometry.triangles) {
+      if (part.rest_flip) std::swap(t.y, t.z);
+      glm::vec3 p[3];
+      for (int k = 0; k < 3; ++k) p[k] = glm::vec3(instance.world * glm::dvec4(geometry.positions[t[k]], 1.0));
+      if (zero_area(p[0], p[1], p[2])) continue;
+      for (int k = 0; k < 3; ++k) part.object_positions.push_back(geometry.positions[t[k]]);
+    }
+  } else {
+    part.object_positions = geometry.positions;
+    if (any_normals_) {
+      part.object_normals = geometry.normals;
+      // A normal the loader repaired stays as repaired, carried back into object space.
+      const glm::dmat3 linear(instance.world);
+      const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(linear));
+      for (size_t v = 0; v < vertex_count; ++v)
+        if (!unit_length(glm::vec3(glm::normalize(normal_matrix * glm::dvec3(part.object_normals[v])))))
+          part.object_normals[v] = glm::vec3(glm::transpose(linear) * glm::dvec3(scene_.normals[first_vertex + v]));
+    }
+  }
+  parts.push_back(std::move(part));
+}
+
 }  // namespace
 
-void add_mesh_instances(const tinygltf::Model& model, const std::vector<MeshInstance>& instances,
-                        GltfDiagnostics& diag, Scene& scene) {
-  GeometryBuilder(model, diag, scene).add(instances);
+std::vector<DynamicPart> add_mesh_instances(const tinygltf::Model& model, const std::vector<MeshInstance>& instances,
+                                            GltfDiagnostics& diag, Scene& scene) {
+  GeometryBuilder builder(model, diag, scene);
+  builder.add(instances);
+  return std::move(builder.parts);
 }
 
 }  // namespace igi

@@ -14,6 +14,7 @@
 // geometric normal, each with one warning that counts them.
 #include <vector>
 
+#include "scene/animation.h"
 #include "scene/gltf_diagnostics.h"
 #include "scene/gltf_nodes.h"
 #include "scene/scene.h"
@@ -26,8 +27,9 @@ namespace igi {
 
 // Appends every instance's triangles to scene. scene.materials must already
 // hold the file's materials; the glTF default material is appended if a
-// primitive has none.
-void add_mesh_instances(const tinygltf::Model& model, const std::vector<MeshInstance>& instances,
+// primitive has none. Returns a part per primitive of each moving instance
+// (MeshInstance::pose_node), for posing (scene/animation.h).
+std::vector<DynamicPart> add_mesh_instances(const tinygltf::Model& model, const std::vector<MeshInstance>& instances,
                         GltfDiagnostics& diag, Scene& scene);
 
 }  // namespace igi

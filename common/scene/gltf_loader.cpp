@@ -11,7 +11,9 @@
 
 #include <tiny_gltf.h>
 
+#include "scene/animation.h"
 #include "scene/gltf_accessors.h"
+#include "scene/gltf_animation.h"
 #include "scene/gltf_diagnostics.h"
 #include "scene/gltf_features.h"
 #include "scene/gltf_geometry.h"
@@ -206,6 +208,26 @@ void check_world_extent(const Scene& scene, const GltfDiagnostics& diag) {
   }
 }
 
+// Channels keep the nodes the walk reached (an animation may target a node
+// of another glTF scene), renumbered to the moving nodes.
+std::shared_ptr<const SceneAnimation> make_animation(std::vector<AnimationChannel> channels,
+                                                     FlattenedNodes& nodes, std::vector<DynamicPart> parts,
+                                                     const Scene& scene) {
+  auto animation = std::make_shared<SceneAnimation>();
+  for (AnimationChannel& channel : channels) {
+    const int node = nodes.pose_node_of[channel.node];
+    if (node < 0) continue;
+    channel.node = uint32_t(node);
+    animation->duration = std::max(animation->duration, channel.times.back());
+    animation->channels.push_back(std::move(channel));
+  }
+  animation->nodes = std::move(nodes.pose_nodes);
+  animation->parts = std::move(parts);
+  animation->rest_lights = scene.lights;
+  animation->light_node = std::move(nodes.light_pose_node);
+  return animation;
+}
+
 // Scene::validate names the scene, not the file: prefix the file.
 void validate_scene(const Scene& scene, const GltfDiagnostics& diag) {
   try {
@@ -233,11 +255,15 @@ LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& 
   LoadedScene loaded;
   Scene& scene = loaded.scene;
   convert_materials(model, diag, scene);
-  FlattenedNodes nodes = flatten_nodes(model, diag);
-  add_mesh_instances(model, nodes.instances, diag, scene);
+  std::vector<AnimationChannel> channels = read_gltf_animations(model, diag);
+  std::vector<bool> animated(model.nodes.size(), false);
+  for (const AnimationChannel& channel : channels) animated[channel.node] = true;
+  FlattenedNodes nodes = flatten_nodes(model, animated, diag);
+  std::vector<DynamicPart> parts = add_mesh_instances(model, nodes.instances, diag, scene);
   check_world_extent(scene, diag);
   scene.lights = std::move(nodes.lights);
   scene.camera = nodes.camera;
+  if (!nodes.pose_nodes.empty()) scene.animation = make_animation(std::move(channels), nodes, std::move(parts), scene);
   scene.name = nodes.scene_name.empty() ? fs::path(name).stem().string() : nodes.scene_name;
   validate_scene(scene, diag);
   loaded.warnings = std::move(diag.warnings);

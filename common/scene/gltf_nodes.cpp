@@ -1,5 +1,7 @@
 #include "scene/gltf_nodes.h"
 
+#include "scene/node_transform.h"
+
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -13,17 +15,19 @@
 namespace igi {
 namespace {
 
+NodeTrs node_trs(const tinygltf::Node& node) {
+  NodeTrs trs;
+  if (node.translation.size() == 3) trs.translation = glm::make_vec3(node.translation.data());
+  const std::vector<double>& q = node.rotation;  // glTF order: x, y, z, w
+  if (q.size() == 4) trs.rotation = glm::dquat(q[3], q[0], q[1], q[2]);
+  if (node.scale.size() == 3) trs.scale = glm::make_vec3(node.scale.data());
+  return trs;
+}
+
 // Column-major matrix if given, else translation * rotation * scale.
 glm::dmat4 local_transform(const tinygltf::Node& node) {
   if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());
-  glm::dmat4 m(1.0);
-  if (node.translation.size() == 3) m = glm::translate(m, glm::make_vec3(node.translation.data()));
-  if (node.rotation.size() == 4) {
-    const std::vector<double>& q = node.rotation;  // glTF order: x, y, z, w
-    m *= glm::mat4_cast(glm::normalize(glm::dquat(q[3], q[0], q[1], q[2])));
-  }
-  if (node.scale.size() == 3) m = glm::scale(m, glm::make_vec3(node.scale.data()));
-  return m;
+  return trs_matrix(node_trs(node));
 }
 
 // False for NaN too.
@@ -35,18 +39,6 @@ bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && st
 
 std::string show(glm::vec3 p) {
   return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")";
-}
-
-glm::vec3 world_point(const glm::dmat4& world, glm::dvec3 local) {
-  return glm::vec3(world * glm::dvec4(local, 1.0));
-}
-
-// Where a local axis points in world space; zero-length if the transform
-// collapses it.
-glm::dvec3 world_axis(const glm::dmat4& world, glm::dvec3 local) {
-  const glm::dvec3 axis = glm::dmat3(world) * local;
-  const double length = glm::length(axis);
-  return length > 0.0 && std::isfinite(length) ? axis / length : glm::dvec3(0.0);
 }
 
 std::vector<int> root_nodes(const tinygltf::Model& model, std::string& scene_name,
@@ -71,8 +63,10 @@ std::vector<int> root_nodes(const tinygltf::Model& model, std::string& scene_nam
 
 class NodeWalker {
  public:
-  NodeWalker(const tinygltf::Model& model, GltfDiagnostics& diag)
-      : model_(model), diag_(diag), visited_(model.nodes.size(), false) {}
+  NodeWalker(const tinygltf::Model& model, const std::vector<bool>& animated, GltfDiagnostics& diag)
+      : model_(model), animated_(animated), diag_(diag), visited_(model.nodes.size(), false) {
+    out_.pose_node_of.assign(model.nodes.size(), -1);
+  }
 
   FlattenedNodes walk();
 
@@ -81,14 +75,17 @@ class NodeWalker {
     int node;
     int parent;  // -1 for a scene root
     glm::dmat4 parent_world;
+    int pose_parent = -1;  // the moving node above, if any
   };
 
   void visit(const Pending& pending, std::vector<Pending>& stack);
-  void add_light(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world);
+  int add_pose_node(const Pending& pending, const tinygltf::Node& node, const std::string& name);
+  void add_light(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world, int pose_node);
   std::optional<PunctualLight> to_punctual(const tinygltf::Light& light, size_t index);
   void add_camera(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world);
 
   const tinygltf::Model& model_;
+  const std::vector<bool>& animated_;
   GltfDiagnostics& diag_;
   std::vector<bool> visited_;
   FlattenedNodes out_;
@@ -120,19 +117,46 @@ void NodeWalker::visit(const Pending& pending, std::vector<Pending>& stack) {
 
   const tinygltf::Node& node = model_.nodes[size_t(pending.node)];
   const glm::dmat4 world = pending.parent_world * local_transform(node);
+  const int pose_node = add_pose_node(pending, node, name);
   if (node.mesh >= 0) {
     if (size_t(node.mesh) >= model_.meshes.size())
       diag_.fail(name, "mesh " + std::to_string(node.mesh) + " does not exist (the file has " +
                            std::to_string(model_.meshes.size()) + ")");
-    out_.instances.push_back({node.mesh, world});
+    out_.instances.push_back({node.mesh, world, pose_node});
   }
-  if (node.camera >= 0) add_camera(node, name, world);
-  add_light(node, name, world);
+  if (node.camera >= 0) {
+    if (pose_node >= 0)
+      diag_.warn_once("camera animation", "camera animation ignored: the camera stays where the rest pose puts it (" +
+                                              name + ")");
+    add_camera(node, name, world);
+  }
+  add_light(node, name, world, pose_node);
   for (auto it = node.children.rbegin(); it != node.children.rend(); ++it)
-    stack.push_back({*it, pending.node, world});
+    stack.push_back({*it, pending.node, world, pose_node});
 }
 
-void NodeWalker::add_light(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world) {
+// A node that moves (animated, or below an animated node) is remembered
+// with what posing it needs; -1 for a static node.
+int NodeWalker::add_pose_node(const Pending& pending, const tinygltf::Node& node, const std::string& name) {
+  const bool animated = size_t(pending.node) < animated_.size() && animated_[size_t(pending.node)];
+  if (!animated && pending.pose_parent < 0) return -1;
+  PoseNode pose;
+  pose.name = name;
+  pose.parent = pending.pose_parent;
+  if (pending.pose_parent < 0) pose.parent_world = pending.parent_world;
+  if (node.matrix.size() == 16) {
+    if (animated) diag_.fail(name, "animated, but has a matrix: glTF animates only translation, rotation and scale");
+    pose.matrix = glm::make_mat4(node.matrix.data());
+  } else {
+    pose.rest = node_trs(node);
+  }
+  out_.pose_node_of[size_t(pending.node)] = int(out_.pose_nodes.size());
+  out_.pose_nodes.push_back(std::move(pose));
+  return int(out_.pose_nodes.size()) - 1;
+}
+
+void NodeWalker::add_light(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world,
+                           int pose_node) {
   auto ext = node.extensions.find("KHR_lights_punctual");
   if (ext == node.extensions.end()) return;
   const tinygltf::Value& reference = ext->second;
@@ -151,6 +175,7 @@ void NodeWalker::add_light(const tinygltf::Node& node, const std::string& name, 
   if (light->type != LightType::Point && light->direction == glm::vec3(0.0f))
     diag_.fail(name, "the transform collapses the direction of light " + std::to_string(index));
   out_.lights.push_back(*light);
+  out_.light_pose_node.push_back(pose_node);
 }
 
 // Type, intensity and cones; the node gives position and direction.
@@ -226,8 +251,9 @@ void NodeWalker::add_camera(const tinygltf::Node& node, const std::string& name,
 
 }  // namespace
 
-FlattenedNodes flatten_nodes(const tinygltf::Model& model, GltfDiagnostics& diag) {
-  return NodeWalker(model, diag).walk();
+FlattenedNodes flatten_nodes(const tinygltf::Model& model, const std::vector<bool>& animated,
+                             GltfDiagnostics& diag) {
+  return NodeWalker(model, animated, diag).walk();
 }
 
 }  // namespace igi

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/animation.h"
 #include "scene/gltf_diagnostics.h"
 #include "scene/scene.h"
 
@@ -23,6 +24,7 @@ namespace igi {
 struct MeshInstance {
   int mesh = -1;
   glm::dmat4 world{1.0};  // object to world, column vectors
+  int pose_node = -1;     // the moving node it follows (FlattenedNodes::pose_nodes), or -1: static
 };
 
 struct FlattenedNodes {
@@ -30,8 +32,15 @@ struct FlattenedNodes {
   std::vector<PunctualLight> lights;  // KHR_lights_punctual, radiometric
   std::optional<Camera> camera;       // first perspective camera, if any
   std::string scene_name;             // the walked scene's name, may be empty
+  // The nodes that move: those `animated` marks and every node below one,
+  // parents first; and which of them each light follows (-1: static).
+  std::vector<PoseNode> pose_nodes;
+  std::vector<int> pose_node_of;  // per glTF node: index into pose_nodes, or -1
+  std::vector<int> light_pose_node;
 };
 
-FlattenedNodes flatten_nodes(const tinygltf::Model& model, GltfDiagnostics& diag);
+// `animated` has one flag per glTF node (or is empty: nothing moves).
+FlattenedNodes flatten_nodes(const tinygltf::Model& model, const std::vector<bool>& animated,
+                             GltfDiagnostics& diag);
 
 }  // namespace igi

@@ -11,6 +11,7 @@
 //    (counter-clockwise winding, right-hand rule gives the front normal).
 //  - Colours are linear RGB; textures decoded from sRGB on load.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -77,6 +78,8 @@ struct Bounds {
   bool empty() const { return lower.x > upper.x; }
 };
 
+struct SceneAnimation;  // scene/animation.h
+
 struct Scene {
   std::string name;
   // Per-vertex data; normals and uvs are either empty or one per position.
@@ -90,6 +93,9 @@ struct Scene {
   std::vector<Texture> textures;
   std::vector<PunctualLight> lights;
   std::optional<Camera> camera;
+  // What moves (animated nodes, the area lights) and how; null when nothing
+  // can. pose_scene() in scene/animation.h moves it.
+  std::shared_ptr<const SceneAnimation> animation;
 
   Bounds bounds() const;
   bool has_light() const;

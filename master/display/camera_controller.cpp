@@ -27,6 +27,12 @@ void CameraController::move(float forward, float right, float up, float seconds)
   ++generation_;
 }
 
+void CameraController::move_lights(float x, float y, float z, float seconds) {
+  if (x == 0.0f && y == 0.0f && z == 0.0f) return;
+  light_offset_ += 0.5f * speed_ * seconds * glm::vec3(x, y, z);
+  ++generation_;
+}
+
 void CameraController::reset() {
   camera_ = home_;
   yaw_ = pitch_ = 0.0f;

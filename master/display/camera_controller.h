@@ -1,5 +1,7 @@
 #pragma once
 // Fly-through camera: mouse look (yaw, pitch), WASD + Q/E moves, R resets.
+// Also where the window has moved the scene's lights (J/L, U/O, I/K along
+// world x, y, z), which the frame setup's pose carries to the workers.
 // Pure state: the window feeds it input, the master reads `camera()`.
 #include "scene/scene.h"
 
@@ -14,6 +16,9 @@ class CameraController {
   // Axes in [-1, 1] (forward, right, up), held for `seconds`.
   void move(float forward, float right, float up, float seconds);
   void reset();
+  // Axes in [-1, 1] along world x, y, z, held for `seconds`.
+  void move_lights(float x, float y, float z, float seconds);
+  glm::vec3 light_offset() const { return light_offset_; }
   const Camera& camera() const { return camera_; }
   // Bumped by every change: frames rendered with an older generation are stale.
   uint64_t generation() const { return generation_; }
@@ -23,6 +28,7 @@ class CameraController {
   Camera home_, camera_;
   float yaw_ = 0.0f, pitch_ = 0.0f, speed_;
   glm::vec3 home_forward_, right_;
+  glm::vec3 light_offset_{0.0f};
   uint64_t generation_ = 0;
 };
 

@@ -46,6 +46,8 @@ bool InteractiveWindow::poll(CameraController& camera) {
   if (key(GLFW_KEY_R)) camera.reset();
   camera.move(key(GLFW_KEY_W) - key(GLFW_KEY_S), key(GLFW_KEY_D) - key(GLFW_KEY_A), key(GLFW_KEY_E) - key(GLFW_KEY_Q),
               float(dt));
+  camera.move_lights(key(GLFW_KEY_L) - key(GLFW_KEY_J), key(GLFW_KEY_O) - key(GLFW_KEY_U),
+                     key(GLFW_KEY_K) - key(GLFW_KEY_I), float(dt));
   double x, y;
   glfwGetCursorPos(window_, &x, &y);
   const bool pressed = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && (dragging_ || !mouse_captured_);

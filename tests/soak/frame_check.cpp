@@ -9,7 +9,9 @@
 #include "lighting/lights.h"
 #include "frame_plan.h"
 #include "render/offline_render.h"
+#include "render/scene_state.h"
 #include "scene/accel.h"
+#include "render/scene_state.h"
 #include "scene/load_scene.h"
 
 namespace igi::soak {
@@ -22,28 +24,25 @@ std::string frame_file(const std::string& dir, int frame) {
   return (fs::path(dir) / name).string();
 }
 
+// As a worker holds the scene (worker/worker_session.cpp).
 struct ReferenceRenderer::Prepared {
-  Scene scene;
-  std::unique_ptr<Accel> accel;
-  std::unique_ptr<LightSet> lights;
+  std::unique_ptr<SceneState> state;
 };
 
 ReferenceRenderer::ReferenceRenderer(const RenderOptions& options) : options_(options), prepared_(new Prepared) {
-  prepared_->scene = load_scene(options.scene);
-  prepared_->accel = std::make_unique<Accel>(prepared_->scene);
-  prepared_->lights = std::make_unique<LightSet>(prepared_->scene);
+  prepared_->state = std::make_unique<SceneState>(load_scene(options.scene));
 }
 
 ReferenceRenderer::~ReferenceRenderer() = default;
 
 Image ReferenceRenderer::render(int i) const {
-  const Scene& scene = prepared_->scene;
-  const FrameSetup f = plan_frame(options_, "orbit", scene, i, false);  // as igi-master --camera-path orbit
+  SceneState& state = *prepared_->state;
+  const FrameSetup f = plan_frame(options_, "orbit", state.scene(), i, false);  // as igi-master --camera-path orbit
+  state.set_pose(f.pose);
   FrameOptions frame_options;
   frame_options.tile_size = options_.tile_size;
   frame_options.threads = 2;
-  return render_offline({scene, *prepared_->accel, *prepared_->lights}, options_.settings, f, options_.samples,
-                        frame_options).image;
+  return render_offline(state.context(), options_.settings, f, options_.samples, frame_options).image;
 }
 
 static void write_mismatch(const std::string& dir, int frame, const Image& image, const Image& reference) {

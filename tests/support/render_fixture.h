@@ -7,6 +7,7 @@
 #include "image/image.h"
 #include "methods/gbuffer.h"
 #include "render/offline_render.h"
+#include "scene/animation.h"
 #include "scene/scene.h"
 
 namespace igi::test {
@@ -44,7 +45,7 @@ struct Prepared {
   std::unique_ptr<Accel> accel;
   std::unique_ptr<LightSet> lights;
 
-  explicit Prepared(Scene s) : scene(std::move(s)), accel(std::make_unique<Accel>(scene)),
+  explicit Prepared(Scene s) : scene((group_area_lights(s), std::move(s))), accel(std::make_unique<Accel>(scene)),
                                lights(std::make_unique<LightSet>(scene)) {}
   SceneContext context() const { return {scene, *accel, *lights}; }
 

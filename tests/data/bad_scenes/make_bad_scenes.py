@@ -148,6 +148,40 @@ huge_png = b"\x89PNG\r\n\x1a\n" + struct.pack(">I4sIIBBBBB", 13, b"IHDR", 100000
 write("huge.png", huge_png, None)
 gltf("huge-texture.gltf", textured("huge.png"), "100000 x 100000 pixels")
 
+# Animations: node 0 moved by a translation channel whose key times and
+# values sit in a second buffer.
+def animated(times, values, interpolation="LINEAR", node=0, path="translation"):
+    doc = copy.deepcopy(base)
+    data = b"".join(struct.pack("<f", t) for t in times) + b"".join(struct.pack("<3f", *v) for v in values)
+    doc["buffers"].append({"byteLength": len(data),
+                           "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()})
+    doc["bufferViews"] += [{"buffer": 1, "byteOffset": 0, "byteLength": 4 * len(times)},
+                           {"buffer": 1, "byteOffset": 4 * len(times), "byteLength": 12 * len(values)}]
+    doc["accessors"] += [{"bufferView": 3, "componentType": 5126, "count": len(times), "type": "SCALAR"},
+                         {"bufferView": 4, "componentType": 5126, "count": len(values), "type": "VEC3"}]
+    doc["animations"] = [{"samplers": [{"input": 3, "output": 4, "interpolation": interpolation}],
+                          "channels": [{"sampler": 0, "target": {"node": node, "path": path}}]}]
+    return doc
+
+moves = [(0, 0, 0), (1, 0, 0), (0, 0, 0)]
+gltf("animation-count-mismatch.gltf", animated([0, 1, 2], moves[:2]),
+     "animations[0].samplers[0]: output has 2 elements for 3 key times, expected 3")
+gltf("animation-cubic-count.gltf", animated([0, 1, 2], moves, "CUBICSPLINE"),
+     "output has 3 elements for 3 key times, expected 9 (CUBICSPLINE")
+gltf("animation-times-not-increasing.gltf", animated([0, 1, 1], moves),
+     "(input of animations[0].samplers[0]): key time 2 (1.000000) does not increase")
+gltf("animation-nan-key.gltf", animated([0, nan, 2], moves),
+     "(input of animations[0].samplers[0]): element 1 is not finite")
+gltf("animation-nan-value.gltf", animated([0, 1, 2], [(0, 0, 0), (nan, 0, 0), (0, 0, 0)]),
+     "(output of animations[0].samplers[0]): element 1 is not finite")
+gltf("animation-missing-node.gltf", animated([0, 1, 2], moves, node=7),
+     "animations[0].channels[0]: target node 7 does not exist (the file has 1)")
+gltf("animation-bad-interpolation.gltf", animated([0, 1, 2], moves, "SMOOTH"),
+     "animations[0].samplers[0]: interpolation 'SMOOTH', expected LINEAR, STEP or CUBICSPLINE")
+doc = animated([0, 1, 2], moves)
+doc["nodes"][0]["matrix"] = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
+gltf("animation-of-matrix-node.gltf", doc, "nodes[0]: animated, but has a matrix")
+
 with open("MANIFEST", "w") as f:
     f.write("# file<TAB>substring igi-render's error must contain (written by make_bad_scenes.py)\n")
     for name, expected in manifest:

@@ -1,0 +1,202 @@
+#include "scene/animation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "scene/triangle.h"
+
+namespace igi {
+namespace {
+
+glm::dquat as_quat(glm::dvec4 v) { return glm::dquat(v.w, v.x, v.y, v.z); }
+glm::dvec4 as_vec(glm::dquat q) { return glm::dvec4(q.x, q.y, q.z, q.w); }
+
+}  // namespace
+
+// glTF 2.0, Appendix C: Interpolation.
+glm::dvec4 AnimationChannel::sample(double time) const {
+  const bool cubic = interpolation == Interpolation::CubicSpline;
+  auto value = [&](size_t key) { return values[cubic ? 3 * key + 1 : key]; };
+  const size_t last = times.size() - 1;
+  if (time <= times.front()) return value(0);
+  if (time >= times[last]) return value(last);
+  const size_t k = size_t(std::upper_bound(times.begin(), times.end(), time) - times.begin()) - 1;
+  const double dt = times[k + 1] - times[k];
+  const double u = (time - times[k]) / dt;
+  const bool rotation = path == AnimationPath::Rotation;
+  switch (interpolation) {
+    case Interpolation::Step: return value(k);
+    case Interpolation::Linear:
+      if (rotation) return as_vec(glm::slerp(as_quat(value(k)), as_quat(value(k + 1)), u));
+      return glm::mix(value(k), value(k + 1), u);
+    case Interpolation::CubicSpline: {
+      const double u2 = u * u, u3 = u2 * u;
+      const glm::dvec4 p0 = value(k), m0 = dt * values[3 * k + 2];
+      const glm::dvec4 p1 = value(k + 1), m1 = dt * values[3 * (k + 1)];
+      const glm::dvec4 p = (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * p1 +
+                           (u3 - u2) * m1;
+      return rotation ? as_vec(glm::normalize(as_quat(p))) : p;
+    }
+  }
+  return value(k);
+}
+
+NodeTrs SceneAnimation::local(uint32_t node, double time) const {
+  NodeTrs trs = nodes[node].rest;
+  for (const AnimationChannel& channel : channels) {
+    if (channel.node != node) continue;
+    const glm::dvec4 v = channel.sample(time);
+    switch (channel.path) {
+      case AnimationPath::Translation: trs.translation = glm::dvec3(v); break;
+      case AnimationPath::Rotation: trs.rotation = as_quat(v); break;
+      case AnimationPath::Scale: trs.scale = glm::dvec3(v); break;
+    }
+  }
+  return trs;
+}
+
+std::vector<glm::dmat4> SceneAnimation::world(double time) const {
+  std::vector<glm::dmat4> out(nodes.size());
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const glm::dmat4& parent = nodes[i].parent >= 0 ? out[size_t(nodes[i].parent)] : nodes[i].parent_world;
+    out[i] = parent * (nodes[i].matrix ? *nodes[i].matrix : trs_matrix(local(uint32_t(i), time)));
+  }
+  return out;
+}
+
+namespace {
+
+// The light group follows the window's offset only: a translation, which
+// leaves normals and winding as they are (and moves nothing at offset 0).
+void pose_light_group(Scene& scene, const DynamicPart& part, glm::vec3 offset) {
+  const glm::dmat4 move = glm::translate(glm::dmat4(1.0), glm::dvec3(offset));
+  for (size_t i = 0; i < part.vertices.size(); ++i)
+    scene.positions[part.vertices[i]] = world_point(move, glm::dvec3(part.object_positions[i]));
+}
+
+// The loader's arithmetic (gltf_geometry.cpp): positions by the world
+// matrix, normals by its inverse transpose, winding mirrored with it.
+void pose_node_part(Scene& scene, const DynamicPart& part, const glm::dmat4& world) {
+  const glm::dmat3 linear(world);
+  const bool flip = glm::determinant(linear) < 0.0;
+  for (size_t i = 0; i < part.vertices.size(); ++i)
+    scene.positions[part.vertices[i]] = world_point(world, glm::dvec3(part.object_positions[i]));
+  if (!part.object_normals.empty()) {
+    const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(linear));
+    for (size_t i = 0; i < part.vertices.size(); ++i)
+      scene.normals[part.vertices[i]] = glm::vec3(glm::normalize(normal_matrix * glm::dvec3(part.object_normals[i])));
+  }
+  for (size_t i = 0; i < part.triangles.size(); ++i) {
+    glm::uvec3 t = part.rest_triangles[i];
+    if (flip != part.rest_flip) std::swap(t.y, t.z);
+    scene.triangles[part.triangles[i]] = t;
+    if (part.flat) {
+      const glm::vec3 n = triangle_normal(scene, part.triangles[i]);
+      for (int k = 0; k < 3; ++k) scene.normals[t[k]] = n;
+    }
+  }
+}
+
+}  // namespace
+
+void pose_scene(Scene& scene, const ScenePose& pose) {
+  if (!scene.animation) return;
+  const SceneAnimation& animation = *scene.animation;
+  const std::vector<glm::dmat4> world = animation.world(pose.time);
+  for (const DynamicPart& part : animation.parts) {
+    if (part.node < 0) pose_light_group(scene, part, pose.light_offset);
+    else pose_node_part(scene, part, world[size_t(part.node)]);
+  }
+  for (size_t i = 0; i < scene.lights.size() && i < animation.rest_lights.size(); ++i) {
+    PunctualLight light = animation.rest_lights[i];
+    if (const int node = animation.light_node[i]; node >= 0) {
+      light.position = world_point(world[size_t(node)], glm::dvec3(0.0));
+      light.direction = glm::vec3(world_axis(world[size_t(node)], glm::dvec3(0.0, 0.0, -1.0)));
+    }
+    if (pose.light_offset != glm::vec3(0.0f)) light.position += pose.light_offset;
+    scene.lights[i] = light;
+  }
+}
+
+void group_area_lights(Scene& scene) {
+  auto animation = scene.animation ? std::make_shared<SceneAnimation>(*scene.animation)
+                                   : std::make_shared<SceneAnimation>();
+  for (const DynamicPart& part : animation->parts)
+    if (part.node < 0) return;  // grouped already
+  std::vector<bool> moving(scene.triangles.size(), false);
+  for (const DynamicPart& part : animation->parts)
+    for (uint32_t t : part.triangles) moving[t] = true;
+  DynamicPart group;
+  for (uint32_t t = 0; t < scene.triangles.size(); ++t)
+    if (!moving[t] && scene.materials[scene.triangle_material[t]].is_emissive()) group.triangles.push_back(t);
+  if (animation->rest_lights.empty()) {
+    animation->rest_lights = scene.lights;
+    animation->light_node.assign(scene.lights.size(), -1);
+  }
+  if (!group.triangles.empty()) {
+    // Each grouped triangle gets vertices of its own, appended: the other
+    // triangles keep theirs, so moving the group moves nothing else.
+    for (uint32_t t : group.triangles) {
+      glm::uvec3 corners = scene.triangles[t];
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t v = corners[k];
+        corners[k] = uint32_t(scene.positions.size());
+        scene.positions.push_back(scene.positions[v]);
+        if (!scene.normals.empty()) scene.normals.push_back(scene.normals[v]);
+        if (!scene.uvs.empty()) scene.uvs.push_back(scene.uvs[v]);
+        group.vertices.push_back(corners[k]);
+        group.object_positions.push_back(scene.positions[v]);
+      }
+      scene.triangles[t] = corners;
+      group.rest_triangles.push_back(corners);
+    }
+    animation->parts.push_back(std::move(group));
+  }
+  if (animation->parts.empty() && animation->rest_lights.empty()) return;
+  scene.animation = std::move(animation);
+}
+
+void animate_triangles(Scene& scene, uint32_t first_triangle, std::vector<AnimationChannel> channels) {
+  auto animation = scene.animation ? std::make_shared<SceneAnimation>(*scene.animation)
+                                   : std::make_shared<SceneAnimation>();
+  if (animation->rest_lights.empty()) {
+    animation->rest_lights = scene.lights;
+    animation->light_node.assign(scene.lights.size(), -1);
+  }
+  const uint32_t node = uint32_t(animation->nodes.size());
+  animation->nodes.push_back({"node " + std::to_string(node), -1, glm::dmat4(1.0), NodeTrs{}, std::nullopt});
+  DynamicPart part;
+  part.node = int(node);
+  std::vector<bool> seen(scene.positions.size(), false);
+  for (uint32_t t = first_triangle; t < scene.triangles.size(); ++t) {
+    part.triangles.push_back(t);
+    part.rest_triangles.push_back(scene.triangles[t]);
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = scene.triangles[t][k];
+      if (seen[v]) continue;
+      seen[v] = true;
+      part.vertices.push_back(v);
+      part.object_positions.push_back(scene.positions[v]);
+      if (!scene.normals.empty()) part.object_normals.push_back(scene.normals[v]);
+    }
+  }
+  for (AnimationChannel& channel : channels) {
+    channel.node = node;
+    animation->duration = std::max(animation->duration, channel.times.back());
+    animation->channels.push_back(std::move(channel));
+  }
+  animation->parts.push_back(std::move(part));
+  scene.animation = std::move(animation);
+}
+
+double scene_time(double start, double step, uint64_t index, bool loop, double duration) {
+  const double time = start + step * double(index);
+  if (!loop || !(duration > 0.0)) return time;
+  const double wrapped = std::fmod(time, duration);
+  return wrapped < 0.0 ? wrapped + duration : wrapped;
+}
+
+}  // namespace igi

@@ -1,0 +1,191 @@
+// Dynamic scenes: glTF animation sampled as the specification says, a posed
+// scene equal bit for bit to the same pose loaded static, posing that touches
+// only what moves, and master + workers equal to one process over an
+// animated sequence with a worker killed.
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "render/scene_state.h"
+#include "scene/builtin_scenes.h"
+#include "scene/gltf_loader.h"
+#include "support/animated_gltf.h"
+#include "support/image_compare.h"
+#include "support/process.h"
+#include "support/render_fixture.h"
+
+namespace igi {
+namespace {
+
+namespace fs = std::filesystem;
+
+AnimationChannel channel(AnimationPath path, Interpolation interpolation, std::vector<double> times,
+                         std::vector<glm::dvec4> values) {
+  AnimationChannel c;
+  c.path = path;
+  c.interpolation = interpolation;
+  c.times = std::move(times);
+  c.values = std::move(values);
+  return c;
+}
+
+TEST(Animation, SamplersInterpolateAsTheGltfSpecificationSays) {
+  const AnimationChannel linear = channel(AnimationPath::Translation, Interpolation::Linear, {1.0, 3.0},
+                                          {glm::dvec4(0.0), glm::dvec4(4.0, -2.0, 0.0, 0.0)});
+  EXPECT_EQ(linear.sample(2.5), glm::dvec4(3.0, -1.5, 0.0, 0.0));
+  EXPECT_EQ(linear.sample(0.0), glm::dvec4(0.0)) << "held before the first key";
+  EXPECT_EQ(linear.sample(9.0), glm::dvec4(4.0, -2.0, 0.0, 0.0)) << "held after the last key";
+
+  AnimationChannel step = linear;
+  step.interpolation = Interpolation::Step;
+  EXPECT_EQ(step.sample(2.9), glm::dvec4(0.0));
+  EXPECT_EQ(step.sample(3.0), glm::dvec4(4.0, -2.0, 0.0, 0.0));
+
+  // Hermite with zero tangents: smoothstep between the values.
+  const AnimationChannel cubic =
+      channel(AnimationPath::Translation, Interpolation::CubicSpline, {0.0, 2.0},
+              {glm::dvec4(0.0), glm::dvec4(0.0), glm::dvec4(0.0), glm::dvec4(0.0), glm::dvec4(8.0, 0, 0, 0), glm::dvec4(0.0)});
+  EXPECT_DOUBLE_EQ(cubic.sample(1.0).x, 4.0);
+  EXPECT_DOUBLE_EQ(cubic.sample(0.5).x, 8.0 * (3 * 0.0625 - 2 * 0.015625));
+  // An out-tangent bends the curve: slope at the key is the tangent.
+  AnimationChannel bent = cubic;
+  bent.values[2] = glm::dvec4(4.0, 0, 0, 0);
+  EXPECT_NEAR((bent.sample(1e-6).x - bent.sample(0.0).x) / 1e-6, 4.0, 1e-4);
+
+  // Rotation slerps: halfway from identity to 90 degrees about y is 45 degrees.
+  const double h = std::sqrt(0.5);
+  const AnimationChannel turn = channel(AnimationPath::Rotation, Interpolation::Linear, {0.0, 1.0},
+                                        {glm::dvec4(0, 0, 0, 1), glm::dvec4(0, h, 0, h)});
+  const glm::dvec4 q = turn.sample(0.5);
+  EXPECT_NEAR(q.y, std::sin(M_PI / 8), 1e-12);
+  EXPECT_NEAR(q.w, std::cos(M_PI / 8), 1e-12);
+}
+
+LoadedScene load_json(const nlohmann::json& doc, const std::string& name) {
+  const std::string text = doc.dump();
+  return load_gltf_memory({reinterpret_cast<const uint8_t*>(text.data()), text.size()}, name);
+}
+
+template <typename T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+Image render(const SceneState& state, double time, uint32_t seed = 1) {
+  FrameSetup f = test::camera_frame(state.scene(), 96, 72, seed);
+  f.pose.time = time;
+  RenderSettings s;
+  s.method = MethodKind::Igi;
+  s.paths_per_set = 8;
+  return render_offline(state.context(), s, f, 1, FrameOptions{}).image;
+}
+
+TEST(Animation, SceneAnimatedToATimeEqualsTheSamePoseLoadedStaticBitForBit) {
+  const nlohmann::json doc = test::animated_document();
+  LoadedScene animated = load_json(doc, "animated.gltf");
+  EXPECT_TRUE(animated.warnings.empty()) << animated.warnings.front();
+  ASSERT_TRUE(animated.scene.animation);
+  EXPECT_EQ(animated.scene.animation->nodes.size(), 3u) << "mover, its child and the lamp move";
+  EXPECT_EQ(animated.scene.animation->duration, 2.0);
+  for (const double t : {0.0, 0.7, 1.6, 2.5}) {
+    SCOPED_TRACE("t = " + std::to_string(t));
+    SceneState moving(animated.scene);
+    moving.set_pose(ScenePose{t, glm::vec3(0.0f)});
+    SceneState still(load_json(test::posed_copy(doc, *animated.scene.animation, t), "posed.gltf").scene);
+    still.set_pose(ScenePose{});
+    const Scene& a = moving.scene();
+    const Scene& b = still.scene();
+    EXPECT_TRUE(same_bits(a.positions, b.positions));
+    EXPECT_TRUE(same_bits(a.normals, b.normals)) << "normals follow their nodes";
+    EXPECT_TRUE(same_bits(a.triangles, b.triangles));
+    ASSERT_EQ(a.lights.size(), 1u);
+    EXPECT_EQ(a.lights[0].position, b.lights[0].position) << "the lamp rides on the mover";
+    EXPECT_TRUE(test::images_identical("animated-vs-posed-" + std::to_string(int(10 * t)), render(moving, t),
+                                       render(still, 0.0)));
+  }
+  // And the animation does move things: two times, two images.
+  SceneState state(animated.scene);
+  const Image early = render(state, 0.2);
+  state.set_pose(ScenePose{1.2, glm::vec3(0.0f)});
+  EXPECT_FALSE(test::images_identical("animated-moves", early, render(state, 1.2)));
+}
+
+TEST(Animation, PosingTouchesOnlyWhatMovesAndComesBack) {
+  SceneState state(make_cornell_blob_moving(2000));
+  const std::vector<glm::vec3> rest = state.scene().positions;
+  const Image at_rest = render(state, 0.0);
+  state.set_pose(ScenePose{0.5, glm::vec3(0.0f)});
+  std::vector<bool> moving(rest.size(), false);
+  for (const DynamicPart& part : state.scene().animation->parts)
+    for (uint32_t v : part.vertices) moving[v] = true;
+  size_t moved = 0;
+  for (size_t v = 0; v < rest.size(); ++v) {
+    if (!moving[v]) EXPECT_EQ(state.scene().positions[v], rest[v]) << "static vertex " << v << " moved";
+    moved += state.scene().positions[v] != rest[v];
+  }
+  EXPECT_GT(moved, 1000u) << "the blob moved";
+  state.set_pose(ScenePose{0.0, glm::vec3(0.0f)});
+  EXPECT_TRUE(test::images_identical("posed-back", render(state, 0.0), at_rest)) << "posing is a function of the pose";
+}
+
+TEST(Animation, MovedLightsLightTheSceneFromTheirNewPlace) {
+  SceneState state(make_cornell_box());
+  const Image home = render(state, 0.0);
+  ASSERT_TRUE(state.scene().animation) << "the area light is a group the window can move";
+  const glm::vec3 light_before = state.scene().positions[state.scene().animation->parts[0].vertices[0]];
+  state.set_pose(ScenePose{0.0, glm::vec3(0.2f, -0.1f, 0.0f)});
+  const glm::vec3 light_after = state.scene().positions[state.scene().animation->parts[0].vertices[0]];
+  EXPECT_NEAR(light_after.x - light_before.x, 0.2f, 1e-6f);
+  FrameSetup f = test::camera_frame(state.scene(), 96, 72, 1);
+  f.pose = *state.pose();
+  RenderSettings s;
+  s.method = MethodKind::Igi;
+  s.paths_per_set = 8;
+  const Image moved = render_offline(state.context(), s, f, 1, FrameOptions{}).image;
+  // Moved towards +x (the red wall) and down: the left half brightens.
+  double left_home = 0, left_moved = 0;
+  for (int y = 0; y < 72; ++y)
+    for (int x = 0; x < 30; ++x) {
+      left_home += test::luminance(home.at(x, y));
+      left_moved += test::luminance(moved.at(x, y));
+    }
+  EXPECT_GT(left_moved, 1.1 * left_home);
+}
+
+// One process renders frame i at time i / 30 (igi-master's default step).
+TEST(Distributed, AnimatedSequenceMatchesOneProcessWithAWorkerKilled) {
+  const fs::path file = fs::path(test::output_path("dist-animated.gltf"));
+  const nlohmann::json doc = test::animated_document();
+  std::ofstream(file) << doc.dump();
+  const std::string out = test::output_path("dist-anim.exr");
+  const int frames = 8;
+  auto r = test::run(std::string(IGI_MASTER_BINARY) + " --scene " + file.string() +
+                     " --method igi --vpl-paths 8 --size 96x72 --tile 16 --worker-threads 2 --workers 2 --frames " +
+                     std::to_string(frames) + " --heartbeat-ms 50 --timeout-ms 300 --test-kill-worker-after 12 -o " +
+                     out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("declared dead"), std::string::npos) << r.output;
+  SceneState state(load_gltf(file.string()).scene);
+  Image previous;
+  for (int i = 0; i < frames; ++i) {
+    char name[64];
+    std::snprintf(name, sizeof name, "dist-anim-%04d.exr", i);
+    FrameSetup f = test::camera_frame(state.scene(), 96, 72, 1);
+    f.pose.time = i / 30.0;
+    state.set_pose(f.pose);
+    RenderSettings s;
+    s.method = MethodKind::Igi;
+    s.paths_per_set = 8;
+    const Image one = render_offline(state.context(), s, f, 1, FrameOptions{}).image;
+    EXPECT_TRUE(test::images_identical(name, read_image(test::output_path(name)), one));
+    if (i > 0) EXPECT_FALSE(test::images_identical(std::string("moves-") + name, previous, one));
+    previous = one;
+  }
+}
+
+}  // namespace
+}  // namespace igi
