@@ -8,6 +8,7 @@
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_writer.h"
 #include "scene/scene_file.h"
+#include "support/animated_gltf.h"
 
 namespace igi::fuzz {
 namespace {
@@ -61,19 +62,11 @@ FrameSetupMsg frame_setup() {
   m.frame.sample_begin = 8;
   m.frame.sample_count = 4;
   m.frame.jitter_x = 0.25f;
+  m.frame.pose.time = 1.25;
+  m.frame.pose.light_offset = {0.1f, 0.0f, -0.2f};
   return m;
 }
 
-std::string base64(const std::vector<uint8_t>& bytes) {
-  static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string text;
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t n = uint32_t(bytes[i]) << 16 | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
-                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
-    for (size_t k = 0; k < 4; ++k) text += i + k <= bytes.size() ? digits[n >> (18 - 6 * k) & 63] : '=';
-  }
-  return text;
-}
 
 std::vector<uint8_t> read_all(const fs::path& path) {
   std::optional<std::vector<uint8_t>> bytes = read_file_bytes(path.string());
@@ -89,7 +82,7 @@ std::vector<uint8_t> embedded_gltf(const fs::path& path) {
     for (nlohmann::json& item : doc[array]) {
       const std::string mime = array == std::string("images") ? "image/png" : "application/octet-stream";
       const fs::path file = path.parent_path() / item["uri"].get<std::string>();
-      item["uri"] = "data:" + mime + ";base64," + base64(read_all(file));
+      item["uri"] = "data:" + mime + ";base64," + test::base64(read_all(file));
     }
   }
   const std::string text = doc.dump();
@@ -210,6 +203,8 @@ std::vector<Seed> scene_seeds(const std::string& scratch_dir) {
     seeds.push_back({glb.filename().string(), read_all(glb)});
     seeds.push_back({gltf.filename().string(), embedded_gltf(gltf)});
   }
+  const std::string animated = test::animated_document().dump();
+  seeds.push_back({"animated.gltf", std::vector<uint8_t>(animated.begin(), animated.end())});
   return seeds;
 }
 
