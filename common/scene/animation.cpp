@@ -67,6 +67,27 @@ std::vector<glm::dmat4> SceneAnimation::world(double time) const {
   return out;
 }
 
+std::optional<SceneAnimation::OutOfRange> SceneAnimation::check_extent(double max_coordinate) const {
+  std::vector<double> times;
+  for (const AnimationChannel& channel : channels) times.insert(times.end(), channel.times.begin(), channel.times.end());
+  std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end()), times.end());
+  auto beyond = [&](glm::dvec3 p) { return !(glm::all(glm::lessThanEqual(glm::abs(p), glm::dvec3(max_coordinate)))); };
+  for (const double time : times) {
+    const std::vector<glm::dmat4> worlds = world(time);
+    for (const DynamicPart& part : parts) {
+      if (part.node < 0) continue;
+      for (const glm::vec3& p : part.object_positions) {
+        const glm::dvec3 q = glm::dvec3(worlds[size_t(part.node)] * glm::dvec4(glm::dvec3(p), 1.0));
+        if (beyond(q)) return OutOfRange{time, q};
+      }
+    }
+    for (const int node : light_node)
+      if (node >= 0 && beyond(glm::dvec3(worlds[size_t(node)][3]))) return OutOfRange{time, glm::dvec3(worlds[size_t(node)][3])};
+  }
+  return std::nullopt;
+}
+
 namespace {
 
 // The light group follows the window's offset only: a translation, which

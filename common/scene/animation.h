@@ -79,6 +79,14 @@ struct SceneAnimation {
   NodeTrs local(uint32_t node, double time) const;
   // Every moving node's world transform at `time`.
   std::vector<glm::dmat4> world(double time) const;
+  // The first key time at which a moving vertex or light lands beyond
+  // +-max_coordinate (or not finite), and that vertex's position; none when
+  // every key time keeps them within.
+  struct OutOfRange {
+    double time;
+    glm::dvec3 position;
+  };
+  std::optional<OutOfRange> check_extent(double max_coordinate) const;
 };
 
 // Puts the scene's parts and lights where `pose` says. Touches only what

@@ -212,7 +212,7 @@ void check_world_extent(const Scene& scene, const GltfDiagnostics& diag) {
 // of another glTF scene), renumbered to the moving nodes.
 std::shared_ptr<const SceneAnimation> make_animation(std::vector<AnimationChannel> channels,
                                                      FlattenedNodes& nodes, std::vector<DynamicPart> parts,
-                                                     const Scene& scene) {
+                                                     const Scene& scene, const GltfDiagnostics& diag) {
   auto animation = std::make_shared<SceneAnimation>();
   for (AnimationChannel& channel : channels) {
     const int node = nodes.pose_node_of[channel.node];
@@ -225,6 +225,12 @@ std::shared_ptr<const SceneAnimation> make_animation(std::vector<AnimationChanne
   animation->parts = std::move(parts);
   animation->rest_lights = scene.lights;
   animation->light_node = std::move(nodes.light_pose_node);
+  if (const auto out = animation->check_extent(kMaxCoordinate)) {
+    const glm::dvec3 p = out->position;
+    diag.fail("animations", "at key time " + std::to_string(out->time) + " a moving vertex or light lands at (" +
+                                std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
+                                "), expected coordinates within +-1e15 m");
+  }
   return animation;
 }
 
@@ -263,7 +269,7 @@ LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& 
   check_world_extent(scene, diag);
   scene.lights = std::move(nodes.lights);
   scene.camera = nodes.camera;
-  if (!nodes.pose_nodes.empty()) scene.animation = make_animation(std::move(channels), nodes, std::move(parts), scene);
+  if (!nodes.pose_nodes.empty()) scene.animation = make_animation(std::move(channels), nodes, std::move(parts), scene, diag);
   scene.name = nodes.scene_name.empty() ? fs::path(name).stem().string() : nodes.scene_name;
   validate_scene(scene, diag);
   loaded.warnings = std::move(diag.warnings);

@@ -53,8 +53,7 @@ Timing time_frames(const Method& method, const FrameSetup& frame, int border, in
 Timing time_replay(const Accel& accel, RayLog& log, int frames) {
   std::vector<double> wall, cpu;
   RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcInitIntersectContext(&context);  // incoherent, as the renderer traces (scene/accel.h)
   RayCounts rays;
   for (int f = 0; f < frames; ++f) {
     rays = RayCounts{};
@@ -75,8 +74,7 @@ Timing time_replay(const Accel& accel, RayLog& log, int frames) {
 // Replays the shadow packets one ray at a time: the packet gain in this scene.
 void replay_breakdown(const Accel& accel, const RayLog& log) {
   RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcInitIntersectContext(&context);  // incoherent, as the renderer traces (scene/accel.h)
   std::vector<LoggedPrimary> primary = log.primary;
   std::vector<LoggedShadow> shadow = log.shadow;
   size_t np = 0, ns = 0;
