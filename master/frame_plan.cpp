@@ -16,6 +16,8 @@ FrameSetup plan_frame(const RenderOptions& render, const std::string& camera_pat
   f.height = render.height;
   f.seed = render.seed;
   const bool pt = render.settings.method == MethodKind::PathTracer;
+  const bool animated = scene.animation && scene.animation->animated();
+  progressive = progressive && !animated;  // each frame of an animation stands at a time of its own
   f.sample_count = pt ? uint32_t(render.samples) : 1;
   if (progressive) {
     if (pt) {  // the pass continues the sample sequence: same seed, the next samples
@@ -27,7 +29,7 @@ FrameSetup plan_frame(const RenderOptions& render, const std::string& camera_pat
       f.jitter_y = j.y;
     }
   }
-  if (scene.animation && scene.animation->animated())
+  if (animated)
     f.pose.time = scene_time(render.time, render.time_step, uint64_t(i), render.loop, scene.animation->duration);
   if (camera_path == "orbit") {  // turn about the vertical axis through the scene's centre
     const glm::vec3 c = scene.bounds().center();

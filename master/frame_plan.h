@@ -16,7 +16,8 @@ namespace igi {
 // and sub-pixel position sample_2d(i, 0, seed) (pass 0 included, so the
 // positions are one stratified set); pt keeps the seed and takes samples
 // [i x spp, (i + 1) x spp) of its sequence. An animated scene's frame i
-// stands at render.time + i x render.time_step (wrapped with render.loop).
+// stands at render.time + i x render.time_step (wrapped with render.loop),
+// and is never progressive: every frame is a whole estimate of its own time.
 FrameSetup plan_frame(const RenderOptions& render, const std::string& camera_path, const Scene& scene, int i,
                       bool progressive);
 

@@ -101,8 +101,8 @@ class Handover {
 
 void session_loop(const MasterOptions& o, const Scene& scene, MasterSession& session, Handover& handover) {
   std::map<uint64_t, uint64_t> generation_of_frame;  // open frames only
-  uint64_t generation = ~uint64_t(0), next_id = 0, animation_frame = 0;
-  int pass = 0;
+  uint64_t generation = ~uint64_t(0), next_id = 0;
+  int pass = 0, animation_frame = 0;
   const bool animated = scene.animation && scene.animation->animated();
   try {
     while (!handover.stopped()) {
@@ -114,10 +114,8 @@ void session_loop(const MasterOptions& o, const Scene& scene, MasterSession& ses
       if (session.can_add_frame() && handover.waiting() < 2) {
         RenderOptions render = o.render;
         render.settings = view.settings;  // pt's samples per pass depend on the method
-        FrameSetup f = plan_frame(render, o.camera_path, scene, animated ? 0 : pass++, true);
-        if (animated)  // every frame a new time, a fresh estimate with the same seed: nothing accumulates
-          f.pose.time = scene_time(o.render.time, o.render.time_step, animation_frame++, o.render.loop,
-                                   scene.animation->duration);
+        // An animation's frame k stands at its own time, as headless frame k: nothing accumulates.
+        FrameSetup f = plan_frame(render, o.camera_path, scene, animated ? animation_frame++ : pass++, true);
         f.pose.light_offset = view.light_offset;
         f.frame_id = next_id++;
         f.camera = view.camera;
@@ -199,7 +197,7 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
   auto last_frame = std::chrono::steady_clock::now(), last_draw = last_frame, wall_start = last_frame;
   const double cpu_start = process_cpu_seconds();
   bool edited = !o.test_panel_settings;  // the test hook edits once, after the first frame shown
-  int shots = 0;
+  int shots = 0, shown_frames = 0;
   while (window.poll(controller) && !interrupted && !handover.stopped()) {
     if (controller.generation() != camera_generation || panel.settings().take_change()) {
       camera_generation = controller.generation();
@@ -210,6 +208,7 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
     for (Shown& shown : handover.take(std::chrono::milliseconds(5))) {
       if (shown.generation != generation) continue;  // rendered for an old camera or old settings
       if (animated) accumulator.reset();  // each frame stands at its own time
+      ++shown_frames;
       accumulator.add(shown.frame.pixels->to_image(), 1.0);
       shown.frame.pixels.reset();  // back to the pool
       const auto now = std::chrono::steady_clock::now();
@@ -234,7 +233,8 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
         !m.empty())
       panel.set_message(m);
     if (actions.load_camera) camera_generation = ~controller.generation();  // a new controller: a new view
-    if (fresh && edited && !o.render.screenshot.empty() && accumulator.weight() >= o.screenshot_after) {
+    const int settled = animated ? shown_frames : int(accumulator.weight());  // an animation never accumulates
+    if (fresh && edited && !o.render.screenshot.empty() && settled >= o.screenshot_after) {
       window.screenshot(o.render.screenshot);
       interrupted = true;
     }

@@ -13,6 +13,7 @@
 #include "render/scene_state.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
+#include "image/metrics.h"
 #include "support/animated_gltf.h"
 #include "support/image_compare.h"
 #include "support/process.h"
@@ -185,6 +186,29 @@ TEST(Distributed, AnimatedSequenceMatchesOneProcessWithAWorkerKilled) {
     if (i > 0) EXPECT_FALSE(test::images_identical(std::string("moves-") + name, previous, one));
     previous = one;
   }
+}
+
+// Under Xvfb: the window shows an animation frame by frame, its third frame
+// the very frame a headless run writes third.
+TEST(Window, AnAnimatedSceneIsShownFrameByFrameAsAHeadlessRunWritesIt) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run not installed";
+  const std::string file = test::output_path("window-animated.gltf");
+  std::ofstream(file) << test::animated_document().dump();
+  const std::string common = " --workers 2 --worker-threads 1 --scene " + file +
+                             " --method igi --vpl-paths 8 --size 160x120 --quiet";
+  const std::string shot = test::output_path("window-animated.png");
+  fs::remove(shot);
+  const std::string window = std::string("timeout -s KILL 60 xvfb-run -a -s '-screen 0 640x480x24' ") +
+                             IGI_MASTER_BINARY + common + " --panel off --screenshot " + shot +
+                             " --screenshot-after 3 >/dev/null 2>&1";
+  ASSERT_EQ(std::system(window.c_str()), 0) << window;
+  const std::string headless = std::string(IGI_MASTER_BINARY) + common + " --frames 3 -o " +
+                               test::output_path("window-animated-headless.png") + " >/dev/null 2>&1";
+  ASSERT_EQ(std::system(headless.c_str()), 0) << headless;
+  const Image shown = read_image(shot);
+  EXPECT_LT(max_abs_error(shown, read_image(test::output_path("window-animated-headless-0002.png"))), 0.01);
+  EXPECT_GT(max_abs_error(shown, read_image(test::output_path("window-animated-headless-0000.png"))), 0.02)
+      << "the third frame differs from the first: the scene moved";
 }
 
 }  // namespace
