@@ -9,6 +9,7 @@
 #include <optional>
 #include <thread>
 
+#include "cli/option_checks.h"
 #include "local_workers.h"
 #include "master_options.h"
 #include "master_session.h"
@@ -98,6 +99,9 @@ int main(int argc, char** argv) {
     igi::MasterOptions o = igi::parse_master_options({argv + 1, argv + argc});
     if (o.render.help) { std::cout << igi::master_usage(argv[0]); return 0; }
     return run(o);
+  } catch (const igi::cli::OptionError& e) {
+    igi::cli::print_option_error("igi-master", e.what());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "igi-master: %s\n", e.what());
     return 1;

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "cli/option_checks.h"
 #include "display/image_window.h"
 #include "render_options.h"
 #include "render/offline_render.h"
@@ -61,6 +62,9 @@ int main(int argc, char** argv) {
     igi::RenderOptions o = igi::parse_render_options({argv + 1, argv + argc});
     if (o.help) { std::cout << igi::render_usage(argv[0]); return 0; }
     return run(o);
+  } catch (const igi::cli::OptionError& e) {
+    igi::cli::print_option_error("igi-render", e.what());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "igi-render: %s\n", e.what());
     return 1;

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <iostream>
 
+#include "cli/option_checks.h"
+
 #include "soak_options.h"
 #include "soak_run.h"
 
@@ -24,6 +26,9 @@ int main(int argc, char** argv) {
     if (o.master_binary.empty()) o.master_binary = IGI_MASTER_BINARY;
     if (o.worker_binary.empty()) o.worker_binary = IGI_WORKER_BINARY;
     return igi::soak::SoakRun(o, g_stop).run();
+  } catch (const igi::cli::OptionError& e) {
+    igi::cli::print_option_error("igi-soak", e.what());
+    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "igi-soak: %s\n", e.what());
     return 2;
