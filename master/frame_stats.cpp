@@ -9,34 +9,20 @@ nlohmann::ordered_json frame_json(const FrameRecord& f) {
   for (const auto& [name, w] : f.workers)
     workers[name] = {{"tiles", w.tiles}, {"busy_seconds", w.busy_seconds}, {"bytes_in", w.bytes_in},
                      {"bytes_out", w.bytes_out}};
-  return {{"frame", f.frame_id},
-          {"seconds", f.seconds},
-          {"tiles", f.tiles},
-          {"rays", f.rays.total()},
+  return {{"frame", f.frame_id}, {"seconds", f.seconds}, {"tiles", f.tiles}, {"rays", f.rays.total()},
           {"mrays_per_s", f.seconds > 0 ? double(f.rays.total()) * 1e-6 / f.seconds : 0.0},
-          {"reissued_total", f.reissued},
-          {"duplicated_total", f.duplicated},
-          {"late_dropped_total", f.late_dropped},
-          {"verified_total", f.verified},
-          {"failed_results_total", f.failed_results},
-          {"quarantined_total", f.quarantined},
-          {"nonfinite_pixels", f.nonfinite_pixels},
-          {"workers", workers}};
+          // The scheduler's counts are totals over the run, as of this frame.
+          {"reissued_total", f.reissued}, {"duplicated_total", f.duplicated}, {"late_dropped_total", f.late_dropped},
+          {"verified_total", f.verified}, {"failed_results_total", f.failed_results},
+          {"quarantined_total", f.quarantined}, {"nonfinite_pixels", f.nonfinite_pixels}, {"workers", workers}};
 }
 
 nlohmann::ordered_json totals_json(const RunTotals& t, uint64_t tiles) {
-  return {{"complete", t.complete},
-          {"bad_messages", t.bad_messages},
-          {"refused_keys", t.refused_keys},
-          {"failed_handshakes", t.failed_handshakes},
-          {"nonfinite_pixels", t.nonfinite_pixels},
-          {"quarantined", t.quarantined},
-          {"pixel_format", t.pixel_format},
-          {"io_threads", t.io_threads},
-          {"master_cpu_seconds", t.master_cpu_seconds},
-          {"session_cpu_seconds", t.session_cpu_seconds},
-          {"wall_seconds", t.wall_seconds},
-          {"tiles", tiles},
+  return {{"complete", t.complete}, {"bad_messages", t.bad_messages}, {"refused_keys", t.refused_keys},
+          {"failed_handshakes", t.failed_handshakes}, {"nonfinite_pixels", t.nonfinite_pixels},
+          {"quarantined", t.quarantined}, {"pixel_format", t.pixel_format}, {"io_threads", t.io_threads},
+          {"master_cpu_seconds", t.master_cpu_seconds}, {"session_cpu_seconds", t.session_cpu_seconds},
+          {"wall_seconds", t.wall_seconds}, {"tiles", tiles},
           {"master_cpu_us_per_tile", tiles ? 1e6 * t.master_cpu_seconds / double(tiles) : 0.0}};
 }
 

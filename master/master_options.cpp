@@ -8,6 +8,7 @@
 
 #include "cli/option_checks.h"
 #include "protocol/curve.h"
+#include "protocol/liveness_options.h"
 #include "protocol/messages.h"
 
 namespace igi {
@@ -21,7 +22,6 @@ constexpr int kMaxFrames = 100000000;     // --frames and --first-frame: their s
 constexpr int kMaxWaitSeconds = 86400;    // --min-workers-wait
 constexpr int kMaxCredits = 1024;
 constexpr int kMaxIoThreads = 64;
-constexpr int kMinHeartbeatMs = 10;
 
 const char* kWindowHelp =
     "window: drag with the left button to look, W/A/S/D/Q/E to move, R to reset, Esc to quit;\n"
@@ -47,10 +47,7 @@ void add_network_options(CLI::App& app, MasterOptions& o) {
   app.add_flag("--curve", o.curve, "CURVE on a loopback endpoint too (needs --key)")->group(group);
   app.add_option("--credits", o.credits, "jobs a worker holds at once [2]")
       ->check(integer(1, kMaxCredits))->group(group)->type_name("K");
-  app.add_option("--heartbeat-ms", o.heartbeat_ms, "[250]")
-      ->check(integer<int>(kMinHeartbeatMs, protocol::kMaxTimeoutMs))->group(group)->type_name("MS");
-  app.add_option("--timeout-ms", o.timeout_ms, "silent worker declared dead, > --heartbeat-ms [1500]")
-      ->check(integer<int>(protocol::kMinTimeoutMs, protocol::kMaxTimeoutMs))->group(group)->type_name("MS");
+  protocol::add_liveness_options(app, o.heartbeat_ms, o.timeout_ms, group);
   app.add_option("--pixels", o.pixels, "pixels on the wire: float, half (6 bytes a pixel, display frames) or auto: "
                  "float when -o is a float file (.exr, .hdr, .pfm, .tif), else half [auto]")
       ->check(cli::one_of({"auto", "float", "half"}))->group(group)->type_name("auto|float|half");
@@ -132,23 +129,13 @@ void check_security(const MasterOptions& o) {
     throw OptionError("--authorized-keys needs --key MASTER.key: without CURVE every peer is let in");
 }
 
-// A worker is declared dead after --timeout-ms without a message, and sends one every --heartbeat-ms.
-void check_timeouts(const MasterOptions& o) {
-  if (o.timeout_ms <= o.heartbeat_ms)
-    throw OptionError("--timeout-ms " + std::to_string(o.timeout_ms) + " must be greater than --heartbeat-ms " +
-                      std::to_string(o.heartbeat_ms) + ": a worker is declared dead after --timeout-ms without a "
-                      "message, and sends one every --heartbeat-ms");
-}
-
 }  // namespace
 
 std::string master_usage(const std::string& program) {
-  MasterOptions o;
   std::string panel_edit;
-  CLI::App app("igi-master: renders frames on igi-worker processes (local and remote) and writes them (--frames F) "
-               "or shows them in a window", program);
-  declare(app, o, panel_edit);
-  return app.help();
+  return cli::help<MasterOptions>("igi-master: renders frames on igi-worker processes (local and remote) and writes "
+                                  "them (--frames F) or shows them in a window", program,
+                                  [&](CLI::App& app, MasterOptions& o) { declare(app, o, panel_edit); });
 }
 
 PixelFormat session_pixel_format(const MasterOptions& o) {
@@ -171,7 +158,7 @@ MasterOptions parse_master_options(const std::vector<std::string>& args) {
   check_render_options(app, o.render);
   if (!panel_edit.empty()) o.test_panel_settings = edited_settings(args, panel_edit);
   check_security(o);
-  check_timeouts(o);
+  protocol::check_liveness(o.heartbeat_ms, o.timeout_ms);
   return o;
 }
 

@@ -164,10 +164,8 @@ static void declare(CLI::App& app, RenderOptions& o) {
 }
 
 std::string render_usage(const std::string& program) {
-  RenderOptions o;
-  CLI::App app("igi-render: renders one image of a scene with one method, in this process", program);
-  declare(app, o);
-  return app.help();
+  return cli::help<RenderOptions>("igi-render: renders one image of a scene with one method, in this process",
+                                  program, declare);
 }
 
 RenderOptions parse_render_options(const std::vector<std::string>& args) {

@@ -3,7 +3,6 @@
 //              [--master-key MASTER.pub --key WORKER.key]
 #include <CLI/CLI.hpp>
 #include <climits>
-#include <cstdio>
 #include <iostream>
 #include <optional>
 #include <stdexcept>
@@ -89,16 +88,11 @@ std::optional<igi::WorkerOptions> parse(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  // A bad command line, a key file or a socket: the message names it, status 2.
+  return igi::cli::run_program("igi-worker", kUsageStatus, kUsageStatus, [&] {
     std::optional<igi::WorkerOptions> options = parse(argc, argv);
     if (!options) return 0;
     igi::WorkerSession session(std::move(*options));
     return int(session.run());
-  } catch (const igi::cli::OptionError& e) {
-    igi::cli::print_option_error("igi-worker", e.what());
-    return kUsageStatus;
-  } catch (const std::exception& e) {  // a key file, a socket: the message names it
-    std::fprintf(stderr, "igi-worker: %s\n", e.what());
-    return kUsageStatus;
-  }
+  });
 }

@@ -95,4 +95,16 @@ void print_option_error(const std::string& program, const std::string& message) 
   std::fprintf(stderr, "%s: %s\nRun %s --help for the options.\n", program.c_str(), message.c_str(), program.c_str());
 }
 
+int run_program(const std::string& program, int usage_status, int error_status, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const OptionError& e) {
+    print_option_error(program, e.what());
+    return usage_status;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", program.c_str(), e.what());
+    return error_status;
+  }
+}
+
 }  // namespace igi::cli

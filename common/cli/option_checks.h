@@ -5,6 +5,7 @@
 // ("--threads: expected an integer >= 0 and <= 4096, got 'x'"; CLI11 puts the
 // option's name in front of the checks' text).
 #include <charconv>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -45,6 +46,15 @@ CLI::Validator image_size(int max_side);
 // WxH already checked by image_size().
 void parse_size(const std::string& text, int& width, int& height);
 
+// The help text of the command line that `declare(app, options)` builds.
+template <class Options, class Declare>
+std::string help(const std::string& about, const std::string& program, Declare declare) {
+  Options options;
+  CLI::App app(about, program);
+  declare(app, options);
+  return app.help();
+}
+
 // Options given twice: the last one counts (call before adding options).
 void take_last_by_default(CLI::App& app);
 // Parses `args` (argv[1] on) into the variables `app` was declared with.
@@ -52,5 +62,9 @@ void take_last_by_default(CLI::App& app);
 bool parse(CLI::App& app, std::vector<std::string> args);
 // The one line a program prints for a bad command line, and the hint to --help.
 void print_option_error(const std::string& program, const std::string& message);
+// A program's main(): runs `body` (parse, build, run) and returns its status. A bad
+// command line (OptionError) is printed by print_option_error() and returns
+// `usage_status`; any other exception prints "PROGRAM: what" and returns `error_status`.
+int run_program(const std::string& program, int usage_status, int error_status, const std::function<int()>& body);
 
 }  // namespace igi::cli

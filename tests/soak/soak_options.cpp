@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "cli/option_checks.h"
+#include "protocol/liveness_options.h"
 #include "protocol/messages.h"
 
 namespace igi::soak {
@@ -14,7 +15,6 @@ using cli::non_negative_number;
 
 constexpr int kMaxFrames = 1000000;
 constexpr int kMaxWorkers = 256;
-constexpr int kMinHeartbeatMs = 10;
 
 const char* kAbout =
     "igi-soak: runs igi-master and igi-worker processes on loopback for a number of frames while injecting\n"
@@ -30,10 +30,7 @@ void add_run_options(CLI::App& app, SoakOptions& o) {
   app.add_option("--render-args", o.render_args, "scene, method and settings, as igi-render takes them "
                  "[--scene cornell --method igi --vpl-paths 16 --clamp 0.05 --tile 16]")->type_name("\"...\"");
   app.add_option("--workers", o.workers, "loopback workers [3]")->check(integer(1, kMaxWorkers))->type_name("K");
-  app.add_option("--heartbeat-ms", o.heartbeat_ms, "master heartbeat [100]")
-      ->check(integer<int>(kMinHeartbeatMs, protocol::kMaxTimeoutMs))->type_name("MS");
-  app.add_option("--timeout-ms", o.timeout_ms, "master's dead-worker timeout, > --heartbeat-ms [500]")
-      ->check(integer<int>(protocol::kMinTimeoutMs, protocol::kMaxTimeoutMs))->type_name("MS");
+  protocol::add_liveness_options(app, o.heartbeat_ms, o.timeout_ms);
   app.add_option("--deadline", o.deadline_seconds, "give up (and fail) after S seconds; 0 = 30 + 0.6 x frames [0]")
       ->check(non_negative_number())->type_name("S");
   app.add_option("--dir", o.dir, "working folder, emptied first [soak-run]")->type_name("DIR");
@@ -76,22 +73,14 @@ void declare(CLI::App& app, SoakOptions& o) {
 
 }  // namespace
 
-std::string soak_usage() {
-  SoakOptions o;
-  CLI::App app(kAbout, "igi-soak");
-  declare(app, o);
-  return app.help();
-}
+std::string soak_usage() { return cli::help<SoakOptions>(kAbout, "igi-soak", declare); }
 
 SoakOptions parse_soak_options(const std::vector<std::string>& args) {
   SoakOptions o;
   CLI::App app;
   declare(app, o);
   o.help = !cli::parse(app, args);
-  if (o.timeout_ms <= o.heartbeat_ms)
-    throw cli::OptionError("--timeout-ms " + std::to_string(o.timeout_ms) + " must be greater than --heartbeat-ms " +
-                           std::to_string(o.heartbeat_ms) + ": the master declares a worker dead after --timeout-ms "
-                           "without a message, and workers send one every --heartbeat-ms");
+  if (!o.help) protocol::check_liveness(o.heartbeat_ms, o.timeout_ms);
   if (o.faults == 0) o.faults = o.frames / 10;
   if (o.deadline_seconds == 0) o.deadline_seconds = 30.0 + 0.6 * o.frames;
   return o;
