@@ -21,7 +21,6 @@ constexpr int kMaxLocalWorkers = 1024;
 constexpr int kMaxFrames = 100000000;     // --frames and --first-frame: their sum stays an int
 constexpr int kMaxWaitSeconds = 86400;    // --min-workers-wait
 constexpr int kMaxCredits = 1024;
-constexpr int kMaxIoThreads = 64;
 
 const char* kWindowHelp =
     "window: drag with the left button to look, W/A/S/D/Q/E to move, R to reset, Esc to quit;\n"
@@ -52,7 +51,7 @@ void add_network_options(CLI::App& app, MasterOptions& o) {
                  "float when -o is a float file (.exr, .hdr, .pfm, .tif), else half [auto]")
       ->check(cli::one_of({"auto", "float", "half"}))->group(group)->type_name("auto|float|half");
   app.add_option("--io-threads", o.io_threads, "ZeroMQ I/O threads [1]: more pay only past ~100,000 tiles a second")
-      ->check(integer(1, kMaxIoThreads))->group(group)->type_name("N");
+      ->check(integer(1, cli::kMaxIoThreads))->group(group)->type_name("N");
 }
 
 void add_run_options(CLI::App& app, MasterOptions& o) {

@@ -20,6 +20,25 @@ bool read_side(const std::string& text, int max_side, int& side) {
   return !text.empty() && error == std::errc() && end == text.data() + text.size() && side >= 1 && side <= max_side;
 }
 
+CLI::Validator image_size(int max_side) {
+  return CLI::Validator(
+      [max_side](std::string& text) -> std::string {
+        const size_t x = text.find('x');
+        int w = 0, h = 0;
+        if (x != std::string::npos && read_side(text.substr(0, x), max_side, w) &&
+            read_side(text.substr(x + 1), max_side, h))
+          return {};
+        return "expected WxH, each from 1 to " + std::to_string(max_side) + ", got '" + text + "'";
+      },
+      "");
+}
+
+void parse_size(const std::string& text, int& width, int& height) {
+  const size_t x = text.find('x');
+  width = std::stoi(text.substr(0, x));
+  height = std::stoi(text.substr(x + 1));
+}
+
 }  // namespace
 
 CLI::Validator number() {
@@ -52,23 +71,11 @@ CLI::Validator one_of(std::vector<std::string> words) {
       "");
 }
 
-CLI::Validator image_size(int max_side) {
-  return CLI::Validator(
-      [max_side](std::string& text) -> std::string {
-        const size_t x = text.find('x');
-        int w = 0, h = 0;
-        if (x != std::string::npos && read_side(text.substr(0, x), max_side, w) &&
-            read_side(text.substr(x + 1), max_side, h))
-          return {};
-        return "expected WxH, each from 1 to " + std::to_string(max_side) + ", got '" + text + "'";
-      },
-      "");
-}
-
-void parse_size(const std::string& text, int& width, int& height) {
-  const size_t x = text.find('x');
-  width = std::stoi(text.substr(0, x));
-  height = std::stoi(text.substr(x + 1));
+CLI::Option* add_size_option(CLI::App& app, int& width, int& height, int max_side, const std::string& help) {
+  return app
+      .add_option_function<std::string>(
+          "--size", [&width, &height](const std::string& v) { parse_size(v, width, height); }, help)
+      ->check(image_size(max_side))->type_name("WxH");
 }
 
 void take_last_by_default(CLI::App& app) {

@@ -15,6 +15,7 @@
 namespace igi::cli {
 
 inline constexpr int kMaxThreads = 4096;  // --threads, --worker-threads: 0 = all cores
+inline constexpr int kMaxIoThreads = 64;  // --io-threads: ZeroMQ I/O threads
 
 // A bad command line: the message names the option and the value. Programs
 // print it after their name, with a hint to --help, and exit with their usage status.
@@ -41,10 +42,8 @@ CLI::Validator number();               // finite
 CLI::Validator non_negative_number();  // >= 0 (infinity too, as before; NaN never)
 // One of `words`: "expected auto, on or off, got 'x'".
 CLI::Validator one_of(std::vector<std::string> words);
-// WxH, both sides in [1, max_side].
-CLI::Validator image_size(int max_side);
-// WxH already checked by image_size().
-void parse_size(const std::string& text, int& width, int& height);
+// --size WxH into `width` and `height`, both in [1, max_side].
+CLI::Option* add_size_option(CLI::App& app, int& width, int& height, int max_side, const std::string& help);
 
 // The help text of the command line that `declare(app, options)` builds.
 template <class Options, class Declare>
@@ -54,6 +53,11 @@ std::string help(const std::string& about, const std::string& program, Declare d
   declare(app, options);
   return app.help();
 }
+
+// Declares the command line with `declare(app, options)` and parses `args` into `options`;
+// returns false when --help was asked, throws OptionError for a bad command line.
+template <class Options, class Declare>
+bool parse_into(Options& options, Declare declare, std::vector<std::string> args);
 
 // Options given twice: the last one counts (call before adding options).
 void take_last_by_default(CLI::App& app);
@@ -66,5 +70,12 @@ void print_option_error(const std::string& program, const std::string& message);
 // command line (OptionError) is printed by print_option_error() and returns
 // `usage_status`; any other exception prints "PROGRAM: what" and returns `error_status`.
 int run_program(const std::string& program, int usage_status, int error_status, const std::function<int()>& body);
+
+template <class Options, class Declare>
+bool parse_into(Options& options, Declare declare, std::vector<std::string> args) {
+  CLI::App app;
+  declare(app, options);
+  return parse(app, std::move(args));
+}
 
 }  // namespace igi::cli

@@ -10,16 +10,10 @@
 #include "protocol/messages.h"
 
 namespace igi::loadgen {
-
 namespace {
 
 using cli::integer;
-using cli::non_negative_number;
-
-constexpr int kMaxWorkers = 65536;
-constexpr int kMaxFrames = 10000000;
-constexpr int kMaxPools = 256;
-constexpr int kMaxIoThreads = 64;
+constexpr int kMaxWorkers = 65536, kMaxFrames = 10000000, kMaxPools = 256;
 
 const char* kAbout =
     "igi-loadgen: runs igi-master with --workers 0 and simulated workers over real ZeroMQ sockets, each\n"
@@ -27,23 +21,21 @@ const char* kAbout =
 
 void add_load_options(CLI::App& app, LoadgenOptions& o) {
   app.add_option("--workers", o.workers, "simulated workers [8]")->check(integer(1, kMaxWorkers))->type_name("N");
-  app.add_option_function<std::string>(
-         "--size", [&o](const std::string& v) { cli::parse_size(v, o.width, o.height); }, "frame size [640x480]")
-      ->check(cli::image_size(protocol::kMaxImageSide))->type_name("WxH");
+  cli::add_size_option(app, o.width, o.height, protocol::kMaxImageSide, "frame size [640x480]");
   app.add_option("--tile", o.tile, "tile side [32]")->check(integer(1, protocol::kMaxTileSide))->type_name("T");
   app.add_option("--pixels", o.pixels, "half or float [half]")->check(cli::one_of({"half", "float"}));
   app.add_option("--frames", o.frames, "[300]")->check(integer(1, kMaxFrames))->type_name("F");
   app.add_option("--warmup", o.warmup_frames, "[10]")->check(integer(0, kMaxFrames))->type_name("F");
   app.add_option("--fps", o.fps, "pace the workers for F frames a second [30]")
-      ->check(non_negative_number())->type_name("F");
+      ->check(cli::non_negative_number())->type_name("F");
   app.add_option("--tile-ms", o.tile_ms, "render time per tile instead (0: answer at once, flat out)")
-      ->check(non_negative_number())->type_name("MS");
+      ->check(cli::non_negative_number())->type_name("MS");
   app.add_option("--threads", o.threads, "tiles a simulated worker renders at once [1]")
       ->check(integer(1, cli::kMaxThreads))->type_name("T");
   app.add_option("--pools", o.pools, "threads driving the simulated workers [2]")
       ->check(integer(1, kMaxPools))->type_name("P");
   app.add_option("--io-threads", o.io_threads, "the master's ZeroMQ I/O threads [1]")
-      ->check(integer(1, kMaxIoThreads))->type_name("N");
+      ->check(integer(1, cli::kMaxIoThreads))->type_name("N");
   protocol::add_liveness_options(app, o.heartbeat_ms, o.timeout_ms);
 }
 
@@ -69,7 +61,7 @@ void add_output_options(CLI::App& app, CommandLine& c) {
   app.add_option("--master-arg", c.run.master_args, "one more argument for the master (repeatable)")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("ARG");
   app.add_option("--dir", c.run.dir, "logs and frames [loadgen-run]")->type_name("DIR");
-  app.add_option("--deadline", c.run.deadline_seconds, "[120]")->check(non_negative_number())->type_name("S");
+  app.add_option("--deadline", c.run.deadline_seconds, "[120]")->check(cli::non_negative_number())->type_name("S");
   app.add_option("--csv", c.csv, "append the figures as a row")->type_name("FILE");
   app.add_option("--label", c.label, "its first column")->type_name("TEXT");
 }
@@ -96,9 +88,7 @@ std::string usage() { return cli::help<CommandLine>(kAbout, "igi-loadgen", decla
 
 CommandLine parse_command_line(const std::vector<std::string>& args) {
   CommandLine c;
-  CLI::App app;
-  declare(app, c);
-  c.help = !cli::parse(app, joined_master_args(args));
+  c.help = !cli::parse_into(c, declare, joined_master_args(args));
   if (c.help) return c;
   protocol::check_liveness(c.run.heartbeat_ms, c.run.timeout_ms);
   if (c.check_every > 0 && !c.run.write_frames) throw cli::OptionError("--check-every needs --write-frames");

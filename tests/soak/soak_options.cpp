@@ -24,9 +24,7 @@ const char* kAbout =
 
 void add_run_options(CLI::App& app, SoakOptions& o) {
   app.add_option("--frames", o.frames, "frames to render [300]")->check(integer(2, kMaxFrames))->type_name("N");
-  app.add_option_function<std::string>(
-         "--size", [&o](const std::string& v) { cli::parse_size(v, o.width, o.height); }, "[128x96]")
-      ->check(cli::image_size(protocol::kMaxImageSide))->type_name("WxH");
+  cli::add_size_option(app, o.width, o.height, protocol::kMaxImageSide, "[128x96]");
   app.add_option("--render-args", o.render_args, "scene, method and settings, as igi-render takes them "
                  "[--scene cornell --method igi --vpl-paths 16 --clamp 0.05 --tile 16]")->type_name("\"...\"");
   app.add_option("--workers", o.workers, "loopback workers [3]")->check(integer(1, kMaxWorkers))->type_name("K");
@@ -77,9 +75,7 @@ std::string soak_usage() { return cli::help<SoakOptions>(kAbout, "igi-soak", dec
 
 SoakOptions parse_soak_options(const std::vector<std::string>& args) {
   SoakOptions o;
-  CLI::App app;
-  declare(app, o);
-  o.help = !cli::parse(app, args);
+  o.help = !cli::parse_into(o, declare, args);
   if (!o.help) protocol::check_liveness(o.heartbeat_ms, o.timeout_ms);
   if (o.faults == 0) o.faults = o.frames / 10;
   if (o.deadline_seconds == 0) o.deadline_seconds = 30.0 + 0.6 * o.frames;
