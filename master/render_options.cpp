@@ -47,7 +47,7 @@ void add_image_options(CLI::App& app, RenderOptions& o) {
       ->check(cli::one_of({"pt", "ir", "igi", "lightcuts"}))->type_name("pt|ir|igi|lightcuts");
   app.add_option("--spp", o.samples, "pt: samples per pixel; ir/igi: passes with fresh VPLs [1]")
       ->check(integer(1, kMaxSamples))->type_name("N");
-  cli::add_size_option(app, o.width, o.height, protocol::kMaxImageSide, "image size [640x480]");
+  cli::add_size_option(app, "--size", o.width, o.height, protocol::kMaxImageSide, "image size [640x480]");
   app.add_option("-o,--output", o.output, "output image: .exr/.hdr linear, .png sRGB [render.png]")->type_name("FILE");
   app.add_option("--exposure", o.exposure, "scale before writing PNG [1]")
       ->check(non_negative_number())->type_name("E");

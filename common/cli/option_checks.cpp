@@ -71,10 +71,11 @@ CLI::Validator one_of(std::vector<std::string> words) {
       "");
 }
 
-CLI::Option* add_size_option(CLI::App& app, int& width, int& height, int max_side, const std::string& help) {
+CLI::Option* add_size_option(CLI::App& app, const std::string& name, int& width, int& height, int max_side,
+                             const std::string& help) {
   return app
       .add_option_function<std::string>(
-          "--size", [&width, &height](const std::string& v) { parse_size(v, width, height); }, help)
+          name, [&width, &height](const std::string& v) { parse_size(v, width, height); }, help)
       ->check(image_size(max_side))->type_name("WxH");
 }
 

@@ -42,8 +42,9 @@ CLI::Validator number();               // finite
 CLI::Validator non_negative_number();  // >= 0 (infinity too, as before; NaN never)
 // One of `words`: "expected auto, on or off, got 'x'".
 CLI::Validator one_of(std::vector<std::string> words);
-// --size WxH into `width` and `height`, both in [1, max_side].
-CLI::Option* add_size_option(CLI::App& app, int& width, int& height, int max_side, const std::string& help);
+// An image size WxH (`name`: "--size" and the like) into `width` and `height`, both in [1, max_side].
+CLI::Option* add_size_option(CLI::App& app, const std::string& name, int& width, int& height, int max_side,
+                             const std::string& help);
 
 // The help text of the command line that `declare(app, options)` builds.
 template <class Options, class Declare>

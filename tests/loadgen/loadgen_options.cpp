@@ -21,7 +21,7 @@ const char* kAbout =
 
 void add_load_options(CLI::App& app, LoadgenOptions& o) {
   app.add_option("--workers", o.workers, "simulated workers [8]")->check(integer(1, kMaxWorkers))->type_name("N");
-  cli::add_size_option(app, o.width, o.height, protocol::kMaxImageSide, "frame size [640x480]");
+  cli::add_size_option(app, "--size", o.width, o.height, protocol::kMaxImageSide, "frame size [640x480]");
   app.add_option("--tile", o.tile, "tile side [32]")->check(integer(1, protocol::kMaxTileSide))->type_name("T");
   app.add_option("--pixels", o.pixels, "half or float [half]")->check(cli::one_of({"half", "float"}));
   app.add_option("--frames", o.frames, "[300]")->check(integer(1, kMaxFrames))->type_name("F");

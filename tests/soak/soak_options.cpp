@@ -24,7 +24,7 @@ const char* kAbout =
 
 void add_run_options(CLI::App& app, SoakOptions& o) {
   app.add_option("--frames", o.frames, "frames to render [300]")->check(integer(2, kMaxFrames))->type_name("N");
-  cli::add_size_option(app, o.width, o.height, protocol::kMaxImageSide, "[128x96]");
+  cli::add_size_option(app, "--size", o.width, o.height, protocol::kMaxImageSide, "[128x96]");
   app.add_option("--render-args", o.render_args, "scene, method and settings, as igi-render takes them "
                  "[--scene cornell --method igi --vpl-paths 16 --clamp 0.05 --tile 16]")->type_name("\"...\"");
   app.add_option("--workers", o.workers, "loopback workers [3]")->check(integer(1, kMaxWorkers))->type_name("K");
