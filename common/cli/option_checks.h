@@ -46,37 +46,38 @@ CLI::Validator one_of(std::vector<std::string> words);
 CLI::Option* add_size_option(CLI::App& app, const std::string& name, int& width, int& height, int max_side,
                              const std::string& help);
 
-// The help text of the command line that `declare(app, options)` builds.
-template <class Options, class Declare>
-std::string help(const std::string& about, const std::string& program, Declare declare) {
-  Options options;
-  CLI::App app(about, program);
-  declare(app, options);
-  return app.help();
-}
-
-// Declares the command line with `declare(app, options)` and parses `args` into `options`;
-// returns false when --help was asked, throws OptionError for a bad command line.
-template <class Options, class Declare>
-bool parse_into(Options& options, Declare declare, std::vector<std::string> args);
-
 // Options given twice: the last one counts (call before adding options).
 void take_last_by_default(CLI::App& app);
 // Parses `args` (argv[1] on) into the variables `app` was declared with.
 // Returns false when --help was asked; throws OptionError for a bad command line.
 bool parse(CLI::App& app, std::vector<std::string> args);
+
+// The help text of the command line that `declare(app, options)` builds (the last of an option given twice counts).
+template <class Options, class Declare>
+std::string help(const std::string& about, const std::string& program, Declare declare) {
+  Options options;
+  CLI::App app(about, program);
+  take_last_by_default(app);
+  declare(app, options);
+  return app.help();
+}
+
+// Declares the command line with `declare(app, options)` and parses `args` into `options` (the last of an
+// option given twice counts);
+// returns false when --help was asked, throws OptionError for a bad command line.
+template <class Options, class Declare>
+bool parse_into(Options& options, Declare declare, std::vector<std::string> args) {
+  CLI::App app;
+  take_last_by_default(app);
+  declare(app, options);
+  return parse(app, std::move(args));
+}
+
 // The one line a program prints for a bad command line, and the hint to --help.
 void print_option_error(const std::string& program, const std::string& message);
 // A program's main(): runs `body` (parse, build, run) and returns its status. A bad
 // command line (OptionError) is printed by print_option_error() and returns
 // `usage_status`; any other exception prints "PROGRAM: what" and returns `error_status`.
 int run_program(const std::string& program, int usage_status, int error_status, const std::function<int()>& body);
-
-template <class Options, class Declare>
-bool parse_into(Options& options, Declare declare, std::vector<std::string> args) {
-  CLI::App app;
-  declare(app, options);
-  return parse(app, std::move(args));
-}
 
 }  // namespace igi::cli

@@ -67,7 +67,6 @@ void add_output_options(CLI::App& app, CommandLine& c) {
 }
 
 void declare(CLI::App& app, CommandLine& c) {
-  cli::take_last_by_default(app);
   add_load_options(app, c.run);
   add_fault_and_check_options(app, c);
   add_output_options(app, c);

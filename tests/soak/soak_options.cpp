@@ -63,7 +63,6 @@ void add_check_options(CLI::App& app, SoakOptions& o) {
 }
 
 void declare(CLI::App& app, SoakOptions& o) {
-  cli::take_last_by_default(app);
   add_run_options(app, o);
   add_fault_options(app, o);
   add_check_options(app, o);
