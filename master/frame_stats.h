@@ -1,7 +1,15 @@
 #pragma once
-// Per-frame statistics of a master run, written as JSON.
+// Per-frame statistics of a master run (--stats FILE), as JSON Lines: one
+// object a line, appended as the run goes on.
+//   {"frame": N, "seconds": ..., "tiles": ..., ..., "workers": {...}}   one per frame, in order
+//   {"complete": false, "bad_messages": ..., "tiles": ..., ...}         the run's totals so far
+// A totals line follows the frames now and then, so a master that is killed
+// leaves its figures; the last line of a run that ended is its totals with
+// "complete": true. A reader takes the frame lines in order and the last totals.
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "master_session.h"
 
@@ -18,15 +26,16 @@ struct RunTotals {
   double wall_seconds = 0.0;
   std::string pixel_format;        // on the wire: float or half
   int io_threads = 0;
-  bool complete = false;           // false while the run goes on (the file is rewritten now and then)
+  bool complete = false;           // false while the run goes on
 };
 
 // The session's counts for the statistics file: CPU since `cpu_start`
 // (process_cpu_seconds() when the run began) and the run's wall time.
 RunTotals run_totals(const MasterSession& session, int io_threads, double cpu_start, double wall_seconds);
 
-// Replaces `path` atomically (a reader never sees half a file).
-void write_stats_json(const std::string& path, const std::vector<FrameRecord>& frames, const RunTotals& totals);
+// A frame's line, and the totals' line (`tiles`: of every frame so far).
+nlohmann::ordered_json frame_json(const FrameRecord& frame);
+nlohmann::ordered_json totals_json(const RunTotals& totals, uint64_t tiles);
 // CPU time this process has used (user + system), all threads.
 double process_cpu_seconds();
 

@@ -56,76 +56,127 @@ bool workers_gathered(const MasterOptions& o, const MasterSession& session, Cloc
   return true;
 }
 
+// One headless run: queues frames along the camera path, pumps the session,
+// hands completed frames to the sink (which accumulates and writes them) and
+// their records to the statistics, and stops when every frame is done, on an
+// interrupt, or when the watchdog sees that no progress is possible.
+class HeadlessRun {
+ public:
+  HeadlessRun(const MasterOptions& o, const Scene& scene, MasterSession& session)
+      : o_(o), scene_(scene), session_(session), replay_(o.progressive ? o.first_frame : 0),
+        total_(replay_ + o.frames), first_index_(o.first_frame - replay_), gathered_(o.min_workers == 0),
+        sink_(o.render.width, o.render.height, o.render.exposure, o.progressive) {
+    if (!o.stats.empty()) stats_.emplace(o.stats);
+  }
+
+  // Returns the exit status: 0 when every frame was written.
+  int run(LocalWorkers& workers, const std::atomic<bool>& interrupted) {
+    announce_replay();
+    std::string failure;
+    try {
+      while (done_ < total_ && !interrupted) {
+        queue_frames();
+        pump();
+        flush_stats_when_due();
+        if (failure = watchdog_.check(session_); !failure.empty()) break;
+      }
+    } catch (const SessionError& e) {
+      failure = e.what();
+    }
+    return finish(workers, failure);
+  }
+
+ private:
+  // --first-frame with --progressive: the sum of the frames before it is rebuilt (rendered again, not written).
+  void announce_replay() const {
+    if (replay_ > 0)
+      std::fprintf(stderr, "igi-master: --first-frame %d with --progressive: rendering frames 0-%d again (not "
+                   "written) to rebuild the accumulated image\n", o_.first_frame, o_.first_frame - 1);
+  }
+
+  // Once the workers have gathered: frames up to what the session and the sink's backlog take.
+  void queue_frames() {
+    gathered_ = gathered_ || workers_gathered(o_, session_, wall_start_);
+    while (gathered_ && next_ < total_ && session_.can_add_frame() && sink_.backlog() < kMaxBacklog)
+      session_.add_frame(plan_frame(o_.render, o_.camera_path, scene_, first_index_ + next_++, o_.progressive));
+  }
+
+  void pump() {
+    for (CompletedFrame& f : session_.pump(50)) take_completed(f);
+  }
+
+  // A completed frame, in order: to the sink (accumulated, and written unless it is replayed or
+  // --no-write), a line on stdout, its record to the statistics.
+  void take_completed(CompletedFrame& f) {
+    const int index = first_index_ + done_;
+    const bool written = done_ >= replay_ && !o_.no_write;
+    if (written || o_.progressive)
+      sink_.push(std::move(f.pixels), written ? frame_path(o_.render.output, index, o_.frames, o_.first_frame) : "");
+    if (!o_.render.quiet && done_ >= replay_)
+      std::printf("frame %d: %.1f ms, %.1f Mrays/s, %zu workers\n", index, 1e3 * f.record.seconds,
+                  f.record.seconds > 0 ? f.record.rays.total() * 1e-6 / f.record.seconds : 0.0,
+                  session_.worker_count());
+    std::fflush(stdout);  // a line per frame as it completes, for whoever follows the log
+    if (stats_) stats_->add(f.record);
+    ++done_;
+  }
+
+  // The statistics so far, so a master that is killed leaves them: once a
+  // second, and a second more per 1000 frames (fewer totals lines in a long run).
+  void flush_stats_when_due() {
+    if (!stats_ || Clock::now() - last_flush_ <= std::chrono::seconds(1 + done_ / 1000)) return;
+    stats_->write(totals_now());
+    last_flush_ = Clock::now();
+  }
+
+  RunTotals totals_now() const {
+    return run_totals(session_, o_.io_threads, cpu_start_,
+                      std::chrono::duration<double>(Clock::now() - wall_start_).count());
+  }
+
+  void print_summary() const {
+    const SchedulerStats& s = session_.scheduler_stats();
+    std::fprintf(stderr, "igi-master: %d frames; tiles copied %llu, reissued %llu, verification copies %llu, "
+                 "results failing validation %llu, workers quarantined %llu, non-finite pixels %llu\n", done_,
+                 (unsigned long long)s.duplicated, (unsigned long long)s.reissued, (unsigned long long)s.verified,
+                 (unsigned long long)s.failed_results, (unsigned long long)s.quarantined,
+                 (unsigned long long)session_.nonfinite_pixels());
+  }
+
+  // Closes the session and the workers, waits for the last images, writes the final statistics.
+  int finish(LocalWorkers& workers, const std::string& failure) {
+    RunTotals totals = totals_now();
+    totals.complete = true;
+    if (!o_.render.quiet) print_summary();
+    session_.close(done_ == total_ ? "done" : failure.empty() ? "interrupted" : "failed");
+    workers.stop_all();
+    sink_.finish();  // waits for the last images
+    const std::string write_error = sink_.error();
+    if (stats_) stats_->write_final(totals);
+    if (!failure.empty()) throw std::runtime_error(failure);
+    if (!write_error.empty()) throw std::runtime_error(write_error);
+    return done_ == total_ ? 0 : 1;
+  }
+
+  const MasterOptions& o_;
+  const Scene& scene_;
+  MasterSession& session_;
+  const int replay_, total_, first_index_;
+  bool gathered_;
+  FrameSink sink_;
+  std::optional<StatsWriter> stats_;
+  int next_ = 0, done_ = 0;
+  const Clock::time_point wall_start_ = Clock::now();
+  const double cpu_start_ = process_cpu_seconds();
+  Clock::time_point last_flush_ = wall_start_;
+  Watchdog watchdog_;
+};
+
 }  // namespace
 
 int run_headless(const MasterOptions& o, const Scene& scene, MasterSession& session, LocalWorkers& workers,
                  const std::atomic<bool>& interrupted) {
-  // --first-frame with --progressive: the sum of the frames before it is rebuilt (rendered again, not written).
-  const int replay = o.progressive ? o.first_frame : 0;
-  if (replay > 0)
-    std::fprintf(stderr, "igi-master: --first-frame %d with --progressive: rendering frames 0-%d again (not written) "
-                 "to rebuild the accumulated image\n", o.first_frame, o.first_frame - 1);
-  const int total = replay + o.frames, first_index = o.first_frame - replay;
-  std::optional<FrameSink> sink(std::in_place, o.render.width, o.render.height, o.render.exposure, o.progressive);
-  std::optional<StatsWriter> stats;
-  if (!o.stats.empty()) stats.emplace(o.stats);
-  int next = 0, done = 0;
-  const auto wall_start = Clock::now();
-  const double cpu_start = process_cpu_seconds();
-  auto totals_now = [&] {
-    return run_totals(session, o.io_threads, cpu_start, std::chrono::duration<double>(Clock::now() - wall_start).count());
-  };
-  // The statistics so far, so a master that is killed leaves them: once a
-  // second, and a second more per 1000 frames (each rewrite holds every frame).
-  auto last_flush = wall_start;
-  Watchdog watchdog;
-  std::string failure;
-  bool gathered = o.min_workers == 0;
-  try {
-    while (done < total && !interrupted) {
-      gathered = gathered || workers_gathered(o, session, wall_start);
-      while (gathered && next < total && session.can_add_frame() && sink->backlog() < kMaxBacklog)
-        session.add_frame(plan_frame(o.render, o.camera_path, scene, first_index + next++, o.progressive));
-      for (CompletedFrame& f : session.pump(50)) {
-        const int index = first_index + done;
-        const bool written = done >= replay && !o.no_write;
-        if (written || o.progressive)
-          sink->push(std::move(f.pixels), written ? frame_path(o.render.output, index, o.frames, o.first_frame) : "");
-        if (!o.render.quiet && done >= replay)
-          std::printf("frame %d: %.1f ms, %.1f Mrays/s, %zu workers\n", index, 1e3 * f.record.seconds,
-                      f.record.seconds > 0 ? f.record.rays.total() * 1e-6 / f.record.seconds : 0.0,
-                      session.worker_count());
-        std::fflush(stdout);  // a line per frame as it completes, for whoever follows the log
-        if (stats) stats->add(f.record);
-        ++done;
-      }
-      if (stats && Clock::now() - last_flush > std::chrono::seconds(1 + done / 1000)) {
-        stats->write(totals_now());
-        last_flush = Clock::now();
-      }
-      if (failure = watchdog.check(session); !failure.empty()) break;
-    }
-  } catch (const SessionError& e) {
-    failure = e.what();
-  }
-  RunTotals totals = totals_now();
-  totals.complete = true;
-  if (!o.render.quiet) {
-    const SchedulerStats& s = session.scheduler_stats();
-    std::fprintf(stderr, "igi-master: %d frames; tiles copied %llu, reissued %llu, verification copies %llu, "
-                 "results failing validation %llu, workers quarantined %llu, non-finite pixels %llu\n", done,
-                 (unsigned long long)s.duplicated, (unsigned long long)s.reissued, (unsigned long long)s.verified,
-                 (unsigned long long)s.failed_results, (unsigned long long)s.quarantined,
-                 (unsigned long long)session.nonfinite_pixels());
-  }
-  session.close(done == total ? "done" : failure.empty() ? "interrupted" : "failed");
-  workers.stop_all();
-  sink->finish();  // waits for the last images
-  const std::string write_error = sink->error();
-  if (stats) stats->write_final(totals);
-  if (!failure.empty()) throw std::runtime_error(failure);
-  if (!write_error.empty()) throw std::runtime_error(write_error);
-  return done == total ? 0 : 1;
+  return HeadlessRun(o, scene, session).run(workers, interrupted);
 }
 
 }  // namespace igi

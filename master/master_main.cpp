@@ -9,6 +9,7 @@
 #include <optional>
 #include <thread>
 
+#include "cli/option_checks.h"
 #include "local_workers.h"
 #include "master_options.h"
 #include "master_session.h"
@@ -94,12 +95,9 @@ int run(const igi::MasterOptions& o) {
 int main(int argc, char** argv) {
   std::signal(SIGINT, [](int) { g_interrupted = true; });
   std::signal(SIGTERM, [](int) { g_interrupted = true; });
-  try {
+  return igi::cli::run_program("igi-master", 1, 1, [&] {
     igi::MasterOptions o = igi::parse_master_options({argv + 1, argv + argc});
     if (o.render.help) { std::cout << igi::master_usage(argv[0]); return 0; }
     return run(o);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "igi-master: %s\n", e.what());
-    return 1;
-  }
+  });
 }

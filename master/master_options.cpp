@@ -1,87 +1,140 @@
 #include "master_options.h"
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
+#include <climits>
 #include <sstream>
-#include <stdexcept>
 
+#include "cli/option_checks.h"
 #include "protocol/curve.h"
+#include "protocol/liveness_options.h"
+#include "protocol/messages.h"
 
 namespace igi {
+namespace {
 
-std::string master_usage(const std::string& program) {
-  return "usage: " + program + " [cluster options] [render options]\n"
-         "cluster options:\n"
-         "  --workers N           local igi-worker processes to start (0: only remote ones) [2]\n"
-         "  --worker-threads T    threads per local worker, 0 = cores / workers [0]\n"
-         "  --listen ENDPOINT     where workers connect [tcp://127.0.0.1:0 = loopback, any free port];\n"
-         "                        name another interface (tcp://0.0.0.0:5555) to open it to a network:\n"
-         "                        that needs CURVE (--key and --authorized-keys)\n"
-         "  --key FILE            the master's secret key (igi-keys new NAME writes NAME.key): turns on CURVE\n"
-         "                        authentication and encryption; workers get NAME.pub (--master-key)\n"
-         "  --authorized-keys P   workers allowed to connect: a folder of their .pub files, or a file\n"
-         "                        with one Z85 public key per line (local workers are always allowed)\n"
-         "  --curve               CURVE on a loopback endpoint too (needs --key)\n"
-         "  --frames F            headless: render F frames and write them (-o); default: a window\n"
-         "  --first-frame I       headless: start at frame I (camera path, seed and file names) [0]\n"
-         "  --min-workers N       headless: hold the first frame until N workers have joined, at most\n"
-         "                        --min-workers-wait S seconds [30], then start with those present [0]\n"
-         "  --progressive         headless: accumulate frames, advancing the seed\n"
-         "  --camera-path orbit   headless: turn the camera about the scene, one step a frame\n"
-         "  --stats FILE.json     per-frame statistics\n"
-         "  --no-write            headless: write no images (benchmarks)\n"
-         "  --screenshot FILE     window: save it after --screenshot-after N accumulated frames [4], then exit\n"
-         "  --camera FILE         start from this camera (JSON: position, forward, up, vfov_degrees); in the\n"
-         "                        window also the bookmark file F5 saves and F9 loads [camera.json]\n"
-         "  --panel on|off        window: the settings and cluster panel at start [on]\n"
-         "  --overlay MODE        window: tint tiles by the worker that rendered them: off, tint, solid [off]\n"
-         "window: drag with the left button to look, W/A/S/D/Q/E to move, R to reset, Esc to quit;\n"
-         "  F1 panel, F2 tile overlay, F5/F9 save/load camera, F12 save the accumulated image (EXR and PNG);\n"
-         "  while the camera and settings are still, frames accumulate (new seed and sub-pixel position each)\n"
-         "  --credits K           jobs a worker holds at once [2]\n"
-         "  --heartbeat-ms MS     [250]   --timeout-ms MS  silent worker declared dead [1500]\n"
-         "  --pixels F            pixels on the wire: float, half (6 bytes a pixel, display frames) or auto:\n"
-         "                        float when -o is a float file (.exr, .hdr, .pfm, .tif), else half [auto]\n"
-         "  --io-threads N        ZeroMQ I/O threads [1]: more pay only past ~100,000 tiles a second\n"
-         "render options (as igi-render):\n" + render_usage(program);
+using cli::integer;
+using cli::OptionError;
+
+constexpr int kMaxLocalWorkers = 1024;
+constexpr int kMaxFrames = 100000000;     // --frames and --first-frame: their sum stays an int
+constexpr int kMaxWaitSeconds = 86400;    // --min-workers-wait
+constexpr int kMaxCredits = 1024;
+
+const char* kWindowHelp =
+    "window: drag with the left button to look, W/A/S/D/Q/E to move, R to reset, Esc to quit;\n"
+    "  F1 panel, F2 tile overlay, F5/F9 save/load camera, F12 save the accumulated image (EXR and PNG);\n"
+    "  while the camera and settings are still, frames accumulate (new seed and sub-pixel position each)";
+
+void add_network_options(CLI::App& app, MasterOptions& o) {
+  const std::string group = "Cluster options";
+  app.add_option("--workers", o.workers, "local igi-worker processes to start (0: only remote ones) [2]")
+      ->check(integer(0, kMaxLocalWorkers))->group(group)->type_name("N");
+  app.add_option("--worker-threads", o.worker_threads, "threads per local worker, 0 = cores / workers [0]")
+      ->check(integer(0, cli::kMaxThreads))->group(group)->type_name("T");
+  app.add_option("--listen", o.listen, "where workers connect [tcp://127.0.0.1:0 = loopback, any free port]; name "
+                 "another interface (tcp://0.0.0.0:5555) to open it to a network: that needs CURVE (--key and "
+                 "--authorized-keys)")->type_name("ENDPOINT")->group(group);
+  app.add_option_function<std::string>(
+         "--key", [&o](const std::string& file) { o.key_file = file, o.curve = true; },
+         "the master's secret key (igi-keys new NAME writes NAME.key): turns on CURVE authentication and "
+         "encryption; workers get NAME.pub (--master-key)")->type_name("FILE")->group(group);
+  app.add_option("--authorized-keys", o.authorized_keys, "workers allowed to connect: a folder of their .pub files, "
+                 "or a file with one Z85 public key per line (local workers are always allowed)")
+      ->type_name("PATH")->group(group);
+  app.add_flag("--curve", o.curve, "CURVE on a loopback endpoint too (needs --key)")->group(group);
+  app.add_option("--credits", o.credits, "jobs a worker holds at once [2]")
+      ->check(integer(1, kMaxCredits))->group(group)->type_name("K");
+  protocol::add_liveness_options(app, o.heartbeat_ms, o.timeout_ms, group);
+  app.add_option("--pixels", o.pixels, "pixels on the wire: float, half (6 bytes a pixel, display frames) or auto: "
+                 "float when -o is a float file (.exr, .hdr, .pfm, .tif), else half [auto]")
+      ->check(cli::one_of({"auto", "float", "half"}))->group(group)->type_name("auto|float|half");
+  app.add_option("--io-threads", o.io_threads, "ZeroMQ I/O threads [1]: more pay only past ~100,000 tiles a second")
+      ->check(integer(1, cli::kMaxIoThreads))->group(group)->type_name("N");
 }
 
-static int to_int(const std::string& option, const std::string& value) {
-  try {
-    size_t end = 0;
-    int v = std::stoi(value, &end);
-    if (end == value.size() && v >= 0) return v;
-  } catch (const std::exception&) {
-  }
-  throw std::invalid_argument(option + ": expected a non-negative integer, got '" + value + "'");
+void add_run_options(CLI::App& app, MasterOptions& o) {
+  const std::string group = "Run options";
+  app.add_option("--frames", o.frames, "headless: render F frames and write them (-o); default: a window")
+      ->check(integer(0, kMaxFrames))->group(group)->type_name("F");
+  app.add_option("--first-frame", o.first_frame, "headless: start at frame I (camera path, seed and file names) [0]")
+      ->check(integer(0, kMaxFrames))->group(group)->type_name("I");
+  app.add_option("--min-workers", o.min_workers, "headless: hold the first frame until N workers have joined, at "
+                 "most --min-workers-wait seconds, then start with those present [0]")
+      ->check(integer(0, INT_MAX))->group(group)->type_name("N");
+  app.add_option("--min-workers-wait", o.min_workers_wait, "see --min-workers [30]")
+      ->check(integer(0, kMaxWaitSeconds))->group(group)->type_name("S");
+  app.add_flag("--progressive", o.progressive, "headless: accumulate frames, advancing the seed")->group(group);
+  app.add_option("--camera-path", o.camera_path, "headless: turn the camera about the scene, one step a frame")
+      ->check(cli::one_of({"orbit"}))->group(group)->type_name("orbit");
+  app.add_option("--stats", o.stats, "per-frame statistics, JSON Lines: a line per frame, and the run's totals")
+      ->type_name("FILE.jsonl")->group(group);
+  app.add_flag("--no-write", o.no_write, "headless: write no images (benchmarks)")->group(group);
+  app.add_option("--screenshot-after", o.screenshot_after, "window: save --screenshot after N accumulated frames [4], "
+                 "then exit")->check(integer(1, INT_MAX))->group(group)->type_name("N");
+  app.add_option("--camera", o.camera_file, "start from this camera (JSON: position, forward, up, vfov_degrees); in "
+                 "the window also the bookmark file F5 saves and F9 loads [camera.json]")
+      ->type_name("FILE")->group(group);
+  app.add_option_function<std::string>(
+         "--panel", [&o](const std::string& v) { o.panel = v == "on"; },
+         "window: the settings and cluster panel at start [on]")
+      ->check(cli::one_of({"on", "off"}))->group(group)->type_name("on|off");
+  app.add_option("--overlay", o.overlay, "window: tint tiles by the worker that rendered them: off, tint, solid [off]")
+      ->check(cli::one_of({"off", "tint", "solid"}))->group(group)->type_name("off|tint|solid");
 }
 
-static bool on_off(const std::string& option, const std::string& value) {
-  if (value == "on") return true;
-  if (value == "off") return false;
-  throw std::invalid_argument(option + ": expected on or off, got '" + value + "'");
+// Test hooks: not in --help.
+void add_test_options(CLI::App& app, MasterOptions& o, std::string& panel_edit) {
+  app.add_option("--test-kill-worker-after", o.kill_worker_after)->check(integer(0, INT_MAX))->group("");
+  app.add_option("--test-force-duplicates", o.force_duplicates)->check(integer(0, INT_MAX))->group("");
+  app.add_option("--test-stop-worker-after", o.stop_worker_after)->check(integer(0, INT_MAX))->group("");
+  app.add_option("--test-send-hwm", o.send_hwm)->check(integer(0, INT_MAX))->group("");
+  app.add_option("--test-panel-edit", panel_edit)->group("");
 }
 
-// The render options as given, then the edit's words (e.g. "--vpl-paths 2 --clamp 0").
-static RenderSettings edited_settings(std::vector<std::string> render_args, const std::string& edit) {
+void declare(CLI::App& app, MasterOptions& o, std::string& panel_edit) {
+  cli::take_last_by_default(app);
+  app.footer(kWindowHelp);
+  add_network_options(app, o);
+  add_run_options(app, o);
+  add_test_options(app, o, panel_edit);
+  add_render_options(app, o.render);
+}
+
+// The command line without the panel edit, then the edit's words (e.g. "--vpl-paths 2 --clamp 0"): the last counts.
+RenderSettings edited_settings(const std::vector<std::string>& args, const std::string& edit) {
+  std::vector<std::string> edited;
+  for (size_t i = 0; i < args.size(); ++i)
+    if (args[i] == "--test-panel-edit") ++i;
+    else edited.push_back(args[i]);
   std::istringstream words(edit);
-  for (std::string word; words >> word;) render_args.push_back(word);
-  return parse_render_options(render_args).settings;
+  for (std::string word; words >> word;) edited.push_back(word);
+  return parse_master_options(edited).render.settings;
 }
 
 // Refuses what would expose workers' jobs and pixels, before anything is bound.
-static void check_security(MasterOptions& o) {
+void check_security(const MasterOptions& o) {
   if (!protocol::is_local_endpoint(o.listen) && !o.curve)
-    throw std::invalid_argument("--listen " + o.listen +
-                                " can be reached from other machines, so CURVE authentication and encryption are "
-                                "required: give --key MASTER.key and --authorized-keys DIR (make keys with "
-                                "igi-keys new NAME), or listen on tcp://127.0.0.1");
+    throw OptionError("--listen " + o.listen +
+                      " can be reached from other machines, so CURVE authentication and encryption are "
+                      "required: give --key MASTER.key and --authorized-keys DIR (make keys with "
+                      "igi-keys new NAME), or listen on tcp://127.0.0.1");
   if (o.curve && o.key_file.empty())
-    throw std::invalid_argument("CURVE needs the master's secret key: --key MASTER.key (igi-keys new MASTER)");
+    throw OptionError("CURVE needs the master's secret key: --key MASTER.key (igi-keys new MASTER)");
   if (o.curve && o.authorized_keys.empty() && (o.workers == 0 || !protocol::is_local_endpoint(o.listen)))
-    throw std::invalid_argument("CURVE needs the workers' public keys: --authorized-keys DIR (their .pub files)");
+    throw OptionError("CURVE needs the workers' public keys: --authorized-keys DIR (their .pub files)");
   if (!o.authorized_keys.empty() && !o.curve)
-    throw std::invalid_argument("--authorized-keys needs --key MASTER.key: without CURVE every peer is let in");
+    throw OptionError("--authorized-keys needs --key MASTER.key: without CURVE every peer is let in");
+}
+
+}  // namespace
+
+std::string master_usage(const std::string& program) {
+  std::string panel_edit;
+  return cli::help<MasterOptions>("igi-master: renders frames on igi-worker processes (local and remote) and writes "
+                                  "them (--frames F) or shows them in a window", program,
+                                  [&](CLI::App& app, MasterOptions& o) { declare(app, o, panel_edit); });
 }
 
 PixelFormat session_pixel_format(const MasterOptions& o) {
@@ -96,53 +149,15 @@ PixelFormat session_pixel_format(const MasterOptions& o) {
 
 MasterOptions parse_master_options(const std::vector<std::string>& args) {
   MasterOptions o;
-  std::vector<std::string> render_args;
-  std::optional<std::string> panel_edit;
-  for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw std::invalid_argument(a + ": missing value");
-      return args[++i];
-    };
-    if (a == "--workers") o.workers = to_int(a, value());
-    else if (a == "--worker-threads") o.worker_threads = to_int(a, value());
-    else if (a == "--listen") o.listen = value();
-    else if (a == "--key") o.key_file = value(), o.curve = true;
-    else if (a == "--authorized-keys") o.authorized_keys = value();
-    else if (a == "--curve") o.curve = true;
-    else if (a == "--frames") o.frames = to_int(a, value());
-    else if (a == "--first-frame") o.first_frame = to_int(a, value());
-    else if (a == "--min-workers") o.min_workers = to_int(a, value());
-    else if (a == "--min-workers-wait") o.min_workers_wait = to_int(a, value());
-    else if (a == "--progressive") o.progressive = true;
-    else if (a == "--camera-path") o.camera_path = value();
-    else if (a == "--stats") o.stats = value();
-    else if (a == "--no-write") o.no_write = true;
-    else if (a == "--screenshot-after") o.screenshot_after = std::max(1, to_int(a, value()));
-    else if (a == "--credits") o.credits = std::max(1, to_int(a, value()));
-    else if (a == "--heartbeat-ms") o.heartbeat_ms = std::max(10, to_int(a, value()));
-    else if (a == "--timeout-ms") o.timeout_ms = std::max(50, to_int(a, value()));
-    else if (a == "--test-kill-worker-after") o.kill_worker_after = to_int(a, value());
-    else if (a == "--test-force-duplicates") o.force_duplicates = to_int(a, value());
-    else if (a == "--test-stop-worker-after") o.stop_worker_after = to_int(a, value());
-    else if (a == "--test-send-hwm") o.send_hwm = to_int(a, value());
-    else if (a == "--pixels") o.pixels = value();
-    else if (a == "--io-threads") o.io_threads = std::clamp(to_int(a, value()), 1, 64);
-    else if (a == "--camera") o.camera_file = value();
-    else if (a == "--panel") o.panel = on_off(a, value());
-    else if (a == "--overlay") o.overlay = value();
-    else if (a == "--test-panel-edit") panel_edit = value();
-    else render_args.push_back(a);
-  }
-  o.render = parse_render_options(render_args);
-  if (panel_edit) o.test_panel_settings = edited_settings(render_args, *panel_edit);
-  if (o.overlay != "off" && o.overlay != "tint" && o.overlay != "solid")
-    throw std::invalid_argument("--overlay: expected off, tint or solid, got '" + o.overlay + "'");
-  if (!o.render.help) check_security(o);
-  if (o.pixels != "auto" && o.pixels != "float" && o.pixels != "half")
-    throw std::invalid_argument("--pixels: expected auto, float or half, got '" + o.pixels + "'");
-  if (o.camera_path != "" && o.camera_path != "orbit")
-    throw std::invalid_argument("--camera-path: expected 'orbit', got '" + o.camera_path + "'");
+  std::string panel_edit;
+  CLI::App app;
+  declare(app, o, panel_edit);
+  o.render.help = !cli::parse(app, args);
+  if (o.render.help) return o;
+  check_render_options(app, o.render);
+  if (!panel_edit.empty()) o.test_panel_settings = edited_settings(args, panel_edit);
+  check_security(o);
+  protocol::check_liveness(o.heartbeat_ms, o.timeout_ms);
   return o;
 }
 

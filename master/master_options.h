@@ -1,6 +1,6 @@
 #pragma once
-// igi-master's options: the renderer's (scene, method, size...) plus the
-// cluster's.
+// igi-master's options: the renderer's (scene, method, size...), declared
+// once in render_options.h, plus the cluster's.
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,7 +25,7 @@ struct MasterOptions {
   int first_frame = 0;            // headless: the index of the first (camera path, seed, file name)
   bool progressive = false;       // headless: accumulate frames (seed advances)
   std::string camera_path;        // headless: "orbit" turns the camera about the scene
-  std::string stats;              // per-frame statistics as JSON
+  std::string stats;              // per-frame statistics as JSON Lines (frame_stats.h)
   bool no_write = false;          // headless benchmarks: render, count, write no images
   int credits = 2;                // jobs a worker holds at once
   int heartbeat_ms = 250;
@@ -49,6 +49,7 @@ struct MasterOptions {
 // output is a float file (.exr, .hdr, .pfm, .tif) and half otherwise (PNG, the window).
 PixelFormat session_pixel_format(const MasterOptions& options);
 
+// Parses argv[1] on; throws cli::OptionError with a message naming the option and the value.
 MasterOptions parse_master_options(const std::vector<std::string>& args);
 std::string master_usage(const std::string& program);
 

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "cli/option_checks.h"
 #include "display/image_window.h"
 #include "render_options.h"
 #include "render/offline_render.h"
@@ -58,12 +59,9 @@ int run(const igi::RenderOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  return igi::cli::run_program("igi-render", 1, 1, [&] {
     igi::RenderOptions o = igi::parse_render_options({argv + 1, argv + argc});
     if (o.help) { std::cout << igi::render_usage(argv[0]); return 0; }
     return run(o);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "igi-render: %s\n", e.what());
-    return 1;
-  }
+  });
 }

@@ -1,181 +1,177 @@
 #include "render_options.h"
 
-#include <cmath>
-#include <stdexcept>
+#include <CLI/CLI.hpp>
+#include <cstdint>
 
+#include "cli/option_checks.h"
 #include "lightcuts/lightcuts_settings.h"
 #include "photons/caustic_settings.h"
+#include "protocol/messages.h"
 #include "scene/builtin_scenes.h"
 
 namespace igi {
 namespace {
 
-int to_int(const std::string& option, const std::string& value, int min_value) {
-  size_t end = 0;
-  int v = 0;
-  try { v = std::stoi(value, &end); } catch (const std::exception&) { end = 0; }
-  if (end != value.size() || value.empty() || v < min_value)
-    throw std::invalid_argument(option + ": expected an integer >= " + std::to_string(min_value) + ", got '" + value + "'");
-  return v;
-}
+using cli::integer;
+using cli::non_negative_number;
+using cli::OptionError;
 
-// Any number, range-checked by the caller (lightcuts_settings.h).
-float to_number(const std::string& option, const std::string& value) {
-  size_t end = 0;
-  float v = 0;
-  try { v = std::stof(value, &end); } catch (const std::exception&) { end = 0; }
-  if (end != value.size() || value.empty() || !std::isfinite(v))
-    throw std::invalid_argument(option + ": expected a number, got '" + value + "'");
-  return v;
-}
-
-float to_float(const std::string& option, const std::string& value) {
-  size_t end = 0;
-  float v = 0;
-  try { v = std::stof(value, &end); } catch (const std::exception&) { end = 0; }
-  if (end != value.size() || value.empty() || !(v >= 0.0f))
-    throw std::invalid_argument(option + ": expected a non-negative number, got '" + value + "'");
-  return v;
-}
-
-void parse_size(const std::string& value, RenderOptions& o) {
-  size_t x = value.find('x');
-  if (x == std::string::npos) throw std::invalid_argument("--size: expected WxH, got '" + value + "'");
-  o.width = to_int("--size", value.substr(0, x), 1);
-  o.height = to_int("--size", value.substr(x + 1), 1);
-}
+constexpr int kMaxSamples = 1 << 20;    // --spp: samples per pixel or passes
+constexpr int kMaxAntialiasText = 1 << 20;  // --aa: the square numbers up to 64 are checked with the settings
 
 // Before any work: options lightcuts cannot use, and VPL counts that would not fit in memory.
 void check_lightcuts(const RenderSettings& s) {
   if (s.method != MethodKind::Lightcuts) return;
   std::string error = lightcuts::settings_error(s);
   if (error.empty()) error = lightcuts::memory_error(s, lightcuts::physical_memory_bytes());
-  if (!error.empty()) throw std::invalid_argument(error);
+  if (!error.empty()) throw OptionError(error);
 }
 
 // Before any work: a caustic map that could not fit in memory.
 void check_caustics(const RenderSettings& s) {
   if (!s.caustics) return;
   if (s.method != MethodKind::InstantRadiosity && s.method != MethodKind::Igi)
-    throw std::invalid_argument("--caustics: only the ir and igi methods add caustic photons (pt finds caustics "
-                                "by itself), got --method " + std::string(method_name(s.method)));
+    throw OptionError("--caustics: only the ir and igi methods add caustic photons (pt finds caustics "
+                      "by itself), got --method " + std::string(method_name(s.method)));
   const std::string error = photons::memory_error(s, lightcuts::physical_memory_bytes());
-  if (!error.empty()) throw std::invalid_argument(error);
+  if (!error.empty()) throw OptionError(error);
+}
+
+void add_image_options(CLI::App& app, RenderOptions& o) {
+  std::string scenes;
+  for (const std::string& n : builtin_scene_names()) scenes += " " + n;
+  app.add_option("--scene", o.scene, "built-in scene (" + scenes + " ) or .gltf/.glb file [cornell]")
+      ->type_name("NAME|FILE");
+  app.add_option_function<std::string>(
+         "--method", [&o](const std::string& m) { o.settings.method = *parse_method(m); }, "rendering method [igi]")
+      ->check(cli::one_of({"pt", "ir", "igi", "lightcuts"}))->type_name("pt|ir|igi|lightcuts");
+  app.add_option("--spp", o.samples, "pt: samples per pixel; ir/igi: passes with fresh VPLs [1]")
+      ->check(integer(1, kMaxSamples))->type_name("N");
+  cli::add_size_option(app, "--size", o.width, o.height, protocol::kMaxImageSide, "image size [640x480]");
+  app.add_option("-o,--output", o.output, "output image: .exr/.hdr linear, .png sRGB [render.png]")->type_name("FILE");
+  app.add_option("--exposure", o.exposure, "scale before writing PNG [1]")
+      ->check(non_negative_number())->type_name("E");
+  app.add_option("--threads", o.threads, "render threads, 0 = all [0]")
+      ->check(integer(0, cli::kMaxThreads))->type_name("T");
+  app.add_option("--tile", o.tile_size, "tile size in pixels [32]")
+      ->check(integer(1, protocol::kMaxTileSide))->type_name("T");
+  app.add_option("--seed", o.seed, "frame seed [1]")->check(integer<uint32_t>(0, UINT32_MAX))->type_name("S");
+  app.add_option("--export-gltf", o.export_gltf, "write the scene as glTF and exit")->type_name("FILE");
+  app.add_flag("--quiet", o.quiet, "no progress output");
+  app.add_flag("--show", o.show, "show the result in a window (Esc closes it)");
+  app.add_option_function<std::string>(
+         "--screenshot", [&o](const std::string& f) { o.show = true, o.screenshot = f; },
+         "show, save the window's pixels to FILE, close")->type_name("FILE");
+}
+
+void add_vpl_options(CLI::App& app, RenderSettings& s) {
+  app.add_option("--path-depth", s.path_depth, "pt: longest path in bounces, 0 = unbounded (Russian roulette) [0]")
+      ->check(integer(0, kMaxDepth))->type_name("D");
+  app.add_option("--light-depth", s.light_depth, "ir/igi: longest VPL light path, 0 = unbounded (Russian roulette) [0]")
+      ->check(integer(0, kMaxDepth))->type_name("D");
+  app.add_option("--specular-depth", s.specular_depth,
+                 "ir/igi: mirrors and glass followed from the camera, 0 = unbounded [16]")
+      ->check(integer(0, kMaxDepth))->type_name("D");
+  app.add_option("--max-depth")->group("");  // split: refused with a message that says how
+  app.add_option("--vpl-sets", s.interleave, "ir/igi: N x N interleaved VPL sets [3]")
+      ->check(integer(1, kMaxInterleave))->type_name("N");
+  app.add_option("--vpl-paths", s.paths_per_set, "ir/igi: light paths per VPL set [16]")
+      ->check(integer(1, kMaxPathsPerSet))->type_name("M");
+  app.add_option("--aa", s.aa_samples, "ir/igi: S sub-samples per pixel (1, 4, 9, ...), each shaded by 1/S of the "
+                 "pixel's light paths (anti-aliasing by VPL groups); needs --vpl-paths >= S [1]")
+      ->check(integer(1, kMaxAntialiasText))->type_name("S");
+  app.add_option("--glossy-threshold", s.glossy_threshold, "ir/igi: GGX surfaces with alpha below A gather their "
+                 "lobe with rays instead of VPL light; 0 = VPLs shade every glossy surface [0.2]")
+      ->check(non_negative_number())->type_name("A");
+  app.add_option("--glossy-rays", s.glossy_rays, "ir/igi: gather rays per sub-sample of such a surface [1]")
+      ->check(integer(1, kMaxGlossyRays))->type_name("K");
+  app.add_option("--clamp", s.clamp, "ir/igi: clamp 1/r^2 below distance C x scene diagonal, 0 = off [0]")
+      ->check(non_negative_number())->type_name("C");
+  app.add_option("--compensate", s.compensation_samples,
+                 "ir/igi: bias compensation, N eye samples per pixel (needs --clamp), 0 = off [0]")
+      ->check(integer(0, kMaxCompensationSamples))->type_name("N");
+  app.add_option("--glass-branches", s.glass_branches, "ir/igi: glass seen from the camera splits into reflection "
+                 "and refraction at its first B - 1 surfaces, each branch filtered on its own; 1 = pick one by "
+                 "Fresnel [3]")->check(integer(1, kMaxGlassBranches))->type_name("B");
+}
+
+void add_filter_and_caustic_options(CLI::App& app, RenderSettings& s) {
+  app.add_flag_callback("--no-filter", [&s] { s.filter = false; }, "igi: skip the discontinuity buffer");
+  app.add_option("--filter-normal", s.filter_normal_cos, "igi: neighbours need normal dot above C [0.9]")
+      ->check(non_negative_number())->type_name("C");
+  app.add_option("--filter-depth", s.filter_depth_ratio,
+                 "igi: neighbours need relative depth difference below R [0.05]")
+      ->check(non_negative_number())->type_name("R");
+  app.add_flag("--caustics", s.caustics, "ir/igi: add caustics from a photon map (light through mirrors and glass)");
+  app.add_option_function<int>(
+         "--caustic-photons", [&s](int n) { s.caustic_photons = n, s.caustics = true; },
+         "ir/igi: photon paths shot per frame, >= 1; implies --caustics [20000]")
+      ->check(integer(0, photons::kMaxCausticPhotons))->type_name("N");
+  app.add_option_function<float>(
+         "--caustic-radius", [&s](float r) { s.caustic_radius = r, s.caustics = true; },
+         "ir/igi: photon gather radius, a fraction of the scene diagonal; implies --caustics [0.01]")
+      ->check(non_negative_number())->type_name("R");
+}
+
+void add_lightcuts_and_importance_options(CLI::App& app, RenderSettings& s) {
+  app.add_option("--lightcuts-error", s.lightcuts_error, "lightcuts (over all --vpl-sets x --vpl-paths VPLs): refine "
+                 "until every cluster's error bound is below E x the pixel's total, 0 < E < 1 [0.02]")
+      ->check(cli::number())->type_name("E");
+  app.add_option("--lightcuts-max-cut", s.lightcuts_max_cut, "lightcuts: at most N nodes (shadow rays) in a cut [1000]")
+      ->check(integer(1, lightcuts::kMaxCut))->type_name("N");
+  app.add_option("--lightcuts-spacing", s.lightcuts_spacing,
+                 "lightcuts: reconstruction cuts, full cuts every S pixels only, 0 = off [0]")
+      ->check(integer(0, lightcuts::kMaxSpacing))->type_name("S");
+  app.add_option("--lightcuts-samples", s.lightcuts_samples,
+                 "lightcuts: K = 1, 4, 9 ... 64 gather points per pixel (multidimensional) [1]")
+      ->check(integer(1, lightcuts::kMaxSamples))->type_name("K");
+  app.add_option("--importance", s.importance_paths, "ir/igi: start VPL light paths at lights by their estimated "
+                 "share of the image, from N camera paths (light importance for the view), 0 = by power [0]")
+      ->check(integer(0, kMaxImportancePaths))->type_name("N");
+  app.add_option("--importance-floor", s.importance_floor, "ir/igi: share of light paths still started by power, "
+                 "0..1 [0.2]")->check(non_negative_number())->type_name("F");
+  app.add_option("--bidir", s.bidir_vpls, "ir/igi: bidirectional instant radiosity: per set, keep K of the VPLs of "
+                 "--vpl-paths light paths and R camera paths, by their estimated contribution [0]")
+      ->check(integer(0, kMaxBidirVpls))->type_name("K");
+  app.add_option("--bidir-camera-paths", s.bidir_camera_paths,
+                 "ir/igi with --bidir: camera paths per set, 0 = --vpl-paths [0]")
+      ->check(integer(0, kMaxBidirPaths))->type_name("R");
 }
 
 }  // namespace
 
+void add_render_options(CLI::App& app, RenderOptions& o) {
+  add_image_options(app, o);
+  add_vpl_options(app, o.settings);
+  add_filter_and_caustic_options(app, o.settings);
+  add_lightcuts_and_importance_options(app, o.settings);
+}
+
+void check_render_options(const CLI::App& app, const RenderOptions& o) {
+  if (app.count("--max-depth"))
+    throw OptionError("--max-depth was split: --path-depth (pt), --light-depth (VPL light paths) and "
+                      "--specular-depth (mirrors and glass from the camera)");
+  if (auto error = settings_error(o.settings)) throw OptionError(*error);
+  check_lightcuts(o.settings);
+  check_caustics(o.settings);
+}
+
+static void declare(CLI::App& app, RenderOptions& o) {
+  cli::take_last_by_default(app);
+  add_render_options(app, o);
+}
+
 std::string render_usage(const std::string& program) {
-  std::string scenes;
-  for (const std::string& n : builtin_scene_names()) scenes += " " + n;
-  return "usage: " + program + " [options]\n"
-         "  --scene NAME|FILE     built-in scene (" + scenes + " ) or .gltf/.glb file [cornell]\n"
-         "  --method pt|ir|igi|lightcuts  rendering method [igi]\n"
-         "  --spp N               pt: samples per pixel; ir/igi: passes with fresh VPLs [1]\n"
-         "  --size WxH            image size [640x480]\n"
-         "  -o FILE               output image: .exr/.hdr linear, .png sRGB [render.png]\n"
-         "  --exposure E          scale before writing PNG [1]\n"
-         "  --threads T           render threads, 0 = all [0]\n"
-         "  --tile T              tile size in pixels [32]\n"
-         "  --seed S              frame seed [1]\n"
-         "  --path-depth D        pt: longest path in bounces, 0 = unbounded (Russian roulette) [0]\n"
-         "  --light-depth D       ir/igi: longest VPL light path, 0 = unbounded (Russian roulette) [0]\n"
-         "  --specular-depth D    ir/igi: mirrors and glass followed from the camera, 0 = unbounded [16]\n"
-         "  --vpl-sets N          ir/igi: N x N interleaved VPL sets [3]\n"
-         "  --vpl-paths M         ir/igi: light paths per VPL set [16]\n"
-         "  --aa S                ir/igi: S sub-samples per pixel (1, 4, 9, ...), each shaded by 1/S of the\n"
-         "                        pixel's light paths (anti-aliasing by VPL groups); needs M >= S [1]\n"
-         "  --glossy-threshold A  ir/igi: GGX surfaces with alpha below A gather their lobe with rays\n"
-         "                        instead of VPL light; 0 = VPLs shade every glossy surface [0.2]\n"
-         "  --glossy-rays K       ir/igi: gather rays per sub-sample of such a surface [1]\n"
-         "  --clamp C             ir/igi: clamp 1/r^2 below distance C x scene diagonal, 0 = off [0]\n"
-         "  --compensate N        ir/igi: bias compensation, N eye samples per pixel (needs --clamp), 0 = off [0]\n"
-         "  --no-filter           igi: skip the discontinuity buffer\n"
-         "  --filter-normal C     igi: neighbours need normal dot above C [0.9]\n"
-         "  --filter-depth R      igi: neighbours need relative depth difference below R [0.05]\n"
-         "  --glass-branches B    ir/igi: glass seen from the camera splits into reflection and refraction at its\n"
-         "                        first B - 1 surfaces, each branch filtered on its own; 1 = pick one by Fresnel [3]\n"
-         "  --caustics            ir/igi: add caustics from a photon map (light through mirrors and glass)\n"
-         "  --caustic-photons N   ir/igi: photon paths shot per frame, >= 1; implies --caustics [20000]\n"
-         "  --caustic-radius R    ir/igi: photon gather radius, a fraction of the scene diagonal; implies\n"
-         "                        --caustics [0.01]\n"
-         "  --lightcuts-error E   lightcuts (over all --vpl-sets x --vpl-paths VPLs): refine until every cluster's\n"
-         "                        error bound is below E x the pixel's total, 0 < E < 1 [0.02]\n"
-         "  --lightcuts-max-cut N lightcuts: at most N nodes (shadow rays) in a cut [1000]\n"
-         "  --lightcuts-spacing S lightcuts: reconstruction cuts, full cuts every S pixels only, 0 = off [0]\n"
-         "  --lightcuts-samples K lightcuts: K = 1, 4, 9 ... 64 gather points per pixel (multidimensional) [1]\n"
-         "  --importance N        ir/igi: start VPL light paths at lights by their estimated share of the image,\n"
-         "                        from N camera paths (light importance for the view), 0 = by power [0]\n"
-         "  --importance-floor F  ir/igi: share of light paths still started by power, 0..1 [0.2]\n"
-         "  --bidir K             ir/igi: bidirectional instant radiosity: per set, keep K of the VPLs of\n"
-         "                        --vpl-paths light paths and R camera paths, by their estimated contribution [0]\n"
-         "  --bidir-camera-paths R  ir/igi with --bidir: camera paths per set, 0 = --vpl-paths [0]\n"
-         "  --export-gltf FILE    write the scene as glTF and exit\n"
-         "  --quiet               no progress output\n"
-         "  --show                show the result in a window (Esc closes it)\n"
-         "  --screenshot FILE     show, save the window's pixels to FILE, close\n";
+  return cli::help<RenderOptions>("igi-render: renders one image of a scene with one method, in this process",
+                                  program, declare);
 }
 
 RenderOptions parse_render_options(const std::vector<std::string>& args) {
   RenderOptions o;
-  for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw std::invalid_argument(a + ": missing value");
-      return args[++i];
-    };
-    RenderSettings& s = o.settings;
-    if (a == "--help" || a == "-h") o.help = true;
-    else if (a == "--scene") o.scene = value();
-    else if (a == "--method") {
-      auto m = parse_method(value());
-      if (!m) throw std::invalid_argument("--method: expected pt, ir, igi or lightcuts, got '" + args[i] + "'");
-      s.method = *m;
-    }
-    else if (a == "--spp") o.samples = to_int(a, value(), 1);
-    else if (a == "--size") parse_size(value(), o);
-    else if (a == "-o" || a == "--output") o.output = value();
-    else if (a == "--exposure") o.exposure = to_float(a, value());
-    else if (a == "--threads") o.threads = to_int(a, value(), 0);
-    else if (a == "--tile") o.tile_size = to_int(a, value(), 1);
-    else if (a == "--seed") o.seed = uint32_t(to_int(a, value(), 0));
-    else if (a == "--path-depth") s.path_depth = to_int(a, value(), 0);
-    else if (a == "--light-depth") s.light_depth = to_int(a, value(), 0);
-    else if (a == "--specular-depth") s.specular_depth = to_int(a, value(), 0);
-    else if (a == "--max-depth")
-      throw std::invalid_argument("--max-depth was split: --path-depth (pt), --light-depth (VPL light paths) and "
-                                  "--specular-depth (mirrors and glass from the camera)");
-    else if (a == "--vpl-sets") s.interleave = to_int(a, value(), 1);
-    else if (a == "--vpl-paths") s.paths_per_set = to_int(a, value(), 1);
-    else if (a == "--aa") s.aa_samples = to_int(a, value(), 1);
-    else if (a == "--glossy-threshold") s.glossy_threshold = to_float(a, value());
-    else if (a == "--glossy-rays") s.glossy_rays = to_int(a, value(), 1);
-    else if (a == "--clamp") s.clamp = to_float(a, value());
-    else if (a == "--compensate") s.compensation_samples = to_int(a, value(), 0);
-    else if (a == "--no-filter") s.filter = false;
-    else if (a == "--filter-normal") s.filter_normal_cos = to_float(a, value());
-    else if (a == "--filter-depth") s.filter_depth_ratio = to_float(a, value());
-    else if (a == "--glass-branches") s.glass_branches = to_int(a, value(), 1);
-    else if (a == "--caustics") s.caustics = true;
-    else if (a == "--caustic-photons") { s.caustic_photons = to_int(a, value(), 0); s.caustics = true; }
-    else if (a == "--caustic-radius") { s.caustic_radius = to_float(a, value()); s.caustics = true; }
-    else if (a == "--lightcuts-error") s.lightcuts_error = to_number(a, value());
-    else if (a == "--lightcuts-max-cut") s.lightcuts_max_cut = to_int(a, value(), 1);
-    else if (a == "--lightcuts-spacing") s.lightcuts_spacing = to_int(a, value(), 0);
-    else if (a == "--lightcuts-samples") s.lightcuts_samples = to_int(a, value(), 1);
-    else if (a == "--importance") s.importance_paths = to_int(a, value(), 0);
-    else if (a == "--importance-floor") s.importance_floor = to_float(a, value());
-    else if (a == "--bidir") s.bidir_vpls = to_int(a, value(), 0);
-    else if (a == "--bidir-camera-paths") s.bidir_camera_paths = to_int(a, value(), 0);
-    else if (a == "--export-gltf") o.export_gltf = value();
-    else if (a == "--quiet") o.quiet = true;
-    else if (a == "--show") o.show = true;
-    else if (a == "--screenshot") { o.show = true; o.screenshot = value(); }
-    else throw std::invalid_argument("unknown option '" + a + "' (see --help)");
-  }
-  if (auto error = settings_error(o.settings)) throw std::invalid_argument(*error);
-  check_lightcuts(o.settings);
-  check_caustics(o.settings);
+  CLI::App app;
+  declare(app, o);
+  o.help = !cli::parse(app, args);
+  if (!o.help) check_render_options(app, o);
   return o;
 }
 

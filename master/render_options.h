@@ -1,10 +1,15 @@
 #pragma once
-// Command-line options shared by igi-render and (later) igi-master: which
-// scene, which method with which settings, what image.
+// Command-line options shared by igi-render and igi-master: which scene,
+// which method with which settings, what image. Declared once (CLI11), for
+// both programs' command lines and help.
 #include <string>
 #include <vector>
 
 #include "methods/settings.h"
+
+namespace CLI {
+class App;
+}
 
 namespace igi {
 
@@ -29,7 +34,14 @@ struct RenderOptions {
   bool loop = false;
 };
 
-// Parses argv; throws std::invalid_argument with a message naming the option.
+// Declares the render options on `app`, writing into `options` (which must
+// outlive the parse); call check_render_options() after the parse.
+void add_render_options(CLI::App& app, RenderOptions& options);
+// What no single option can check: the settings together, and the memory
+// lightcuts and a caustic map would need. Throws cli::OptionError.
+void check_render_options(const CLI::App& app, const RenderOptions& options);
+
+// Parses argv[1] on; throws cli::OptionError with a message naming the option and the value.
 RenderOptions parse_render_options(const std::vector<std::string>& args);
 std::string render_usage(const std::string& program);
 

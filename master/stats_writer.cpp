@@ -1,10 +1,12 @@
 #include "stats_writer.h"
 
 #include <cstdio>
+#include <stdexcept>
 
 namespace igi {
 
-StatsWriter::StatsWriter(std::string path) : path_(std::move(path)), thread_([this] { run(); }) {}
+StatsWriter::StatsWriter(std::string path)
+    : path_(std::move(path)), out_(path_, std::ios::trunc), thread_([this] { run(); }) {}
 
 StatsWriter::~StatsWriter() {
   {
@@ -35,26 +37,39 @@ void StatsWriter::write_final(const RunTotals& totals) {
     pending_.reset();
   }
   wake_.notify_one();
-  thread_.join();  // the thread has written whatever it was writing
-  for (FrameRecord& r : incoming_) records_.push_back(std::move(r));
-  incoming_.clear();
-  write_stats_json(path_, records_, totals);
+  thread_.join();  // the thread has appended whatever it was appending
+  if (!append(incoming_, totals)) throw std::runtime_error(path_ + ": cannot write statistics");
+}
+
+bool StatsWriter::append(std::vector<FrameRecord>& records, const RunTotals& totals) {
+  // A line at a time, so a reader (or a kill) sees whole lines but perhaps the last.
+  const auto line = [](const nlohmann::ordered_json& j) {
+    return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  };
+  for (const FrameRecord& r : records) {
+    out_ << line(frame_json(r));
+    tiles_ += r.tiles;
+  }
+  records.clear();
+  out_ << line(totals_json(totals, tiles_));
+  out_.flush();
+  return bool(out_);
 }
 
 void StatsWriter::run() {
+  bool reported = false;  // a file that cannot be written is said once
   std::unique_lock lock(mutex_);
   for (;;) {
     wake_.wait(lock, [&] { return stopping_ || pending_; });
     if (stopping_) return;
     const RunTotals totals = *pending_;
     pending_.reset();
-    for (FrameRecord& r : incoming_) records_.push_back(std::move(r));
-    incoming_.clear();
+    std::vector<FrameRecord> records;
+    records.swap(incoming_);
     lock.unlock();
-    try {
-      write_stats_json(path_, records_, totals);
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "igi-master: %s\n", e.what());
+    if (!append(records, totals) && !reported) {
+      std::fprintf(stderr, "igi-master: %s: cannot write statistics\n", path_.c_str());
+      reported = true;
     }
     lock.lock();
   }

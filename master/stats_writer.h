@@ -1,10 +1,10 @@
 #pragma once
 // --stats on a thread of its own: the session thread hands over each frame's
-// record and, now and then, the run's totals; this thread keeps the records
-// and rewrites the file (atomically), so a long run's growing file never
-// stalls the loop that feeds the workers. Memory: one record per frame, by
-// request (the file holds them all).
+// record and, now and then, the run's totals; this thread appends their lines
+// to the file (JSON Lines, frame_stats.h), so writing never stalls the loop
+// that feeds the workers. Memory: only the records not yet written.
 #include <condition_variable>
+#include <fstream>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -17,20 +17,24 @@ namespace igi {
 
 class StatsWriter {
  public:
-  explicit StatsWriter(std::string path);
-  ~StatsWriter();  // writes what was asked last, then returns
+  explicit StatsWriter(std::string path);  // starts the file afresh
+  ~StatsWriter();  // stops the thread once its current append is done
   void add(const FrameRecord& record);
-  // Rewrites the file with every record so far and these totals (soon, on the writer's thread).
+  // Appends the records so far and these totals (soon, on the writer's thread).
   void write(const RunTotals& totals);
-  // Writes now, on the caller's thread, and waits: the final file. Throws when it cannot.
+  // Appends the last records and the final totals now, on the caller's thread, and waits. Throws when it cannot.
   void write_final(const RunTotals& totals);
 
  private:
   void run();
+  // Appends `records`' lines, then the totals' line; false when the file cannot be written.
+  bool append(std::vector<FrameRecord>& records, const RunTotals& totals);
   std::string path_;
+  std::ofstream out_;  // the writer's thread's, then write_final()'s
+  uint64_t tiles_ = 0;  // of every frame appended
   std::mutex mutex_;
   std::condition_variable wake_;
-  std::vector<FrameRecord> records_, incoming_;
+  std::vector<FrameRecord> incoming_;
   std::optional<RunTotals> pending_;
   bool stopping_ = false;
   std::thread thread_;

@@ -19,6 +19,7 @@
 #include "support/process.h"
 #include "support/render_fixture.h"
 #include "support/sanitizers.h"
+#include "support/stats_file.h"
 
 namespace igi {
 namespace {
@@ -42,11 +43,6 @@ Image single_process(const std::string& scene = "cornell") {
     cache[scene] = p.render(s, kWidth, kHeight, 1, 1);
   }
   return cache[scene];
-}
-
-nlohmann::json read_json(const std::string& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
 }
 
 TEST(Distributed, TwoWorkersMatchTheSingleProcessRenderBitForBit) {
@@ -115,7 +111,7 @@ TEST(Distributed, DuplicatedTilesGiveTheSameImage) {
     const std::string name = "dist-dup-000" + std::to_string(f);
     EXPECT_TRUE(test::images_identical(name, read_image(test::output_path(name + ".exr")), single_process()));
   }
-  EXPECT_GE(read_json(stats)["frames"][3]["duplicated_total"].get<int>(), 40);
+  EXPECT_GE(test::read_stats(stats)["frames"][3]["duplicated_total"].get<int>(), 40);
 }
 
 TEST(Distributed, WorkerKilledMidFrameLosesNothing) {
@@ -129,7 +125,7 @@ TEST(Distributed, WorkerKilledMidFrameLosesNothing) {
     EXPECT_TRUE(test::images_identical(std::string("dist-kill-") + std::to_string(f),
                                        read_image(test::output_path(name)), single_process()));
   }
-  nlohmann::json s = read_json(stats);
+  nlohmann::json s = test::read_stats(stats);
   // Its jobs come back either as straggler copies (often first, near a
   // frame's end) or reissued once it is declared dead.
   const auto& last = s["frames"][39];
@@ -154,7 +150,7 @@ TEST(Distributed, LightImportanceAndBidirectionalMatchOneProcessWithAWorkerKille
                             " --stats " + stats, "rooms"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   // The kill comes after 20 results once both workers have joined (80 tiles a frame).
-  const nlohmann::json last = read_json(stats)["frames"][frames - 1];
+  const nlohmann::json last = test::read_stats(stats)["frames"][frames - 1];
   EXPECT_EQ(last["workers"].size(), 1u) << "one worker was killed";
   EXPECT_GT(last["reissued_total"].get<int>() + last["duplicated_total"].get<int>(), 0)
       << "its tiles came back from the other";
@@ -179,7 +175,7 @@ TEST(Distributed, WorkerJoiningMidSessionGetsWork) {
   pid_t w = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --quiet");
   EXPECT_EQ(test::wait_exit(m, 120), 0);
   EXPECT_EQ(test::wait_exit(w, 20), 0) << "the joined worker leaves cleanly on the master's bye";
-  nlohmann::json s = read_json(stats);
+  nlohmann::json s = test::read_stats(stats);
   EXPECT_EQ(s["frames"].back()["workers"].size(), 2u) << "both workers rendered the last frame";
 }
 

@@ -2,7 +2,6 @@
 // joined (what the cluster launchers rely on), and no longer than
 // --min-workers-wait seconds.
 #include <chrono>
-#include <fstream>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -11,6 +10,7 @@
 
 #include "support/image_compare.h"
 #include "support/process.h"
+#include "support/stats_file.h"
 
 namespace igi {
 namespace {
@@ -22,11 +22,6 @@ std::string master(const std::string& endpoint, const std::string& extra) {
 
 std::string worker(const std::string& endpoint) {
   return std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --quiet";
-}
-
-nlohmann::json read_json(const std::string& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
 }
 
 // Without the option the first worker renders the first frames alone (they
@@ -41,7 +36,7 @@ TEST(MinWorkers, FirstFrameWaitsForEveryWorker) {
   EXPECT_EQ(test::wait_exit(m, 60), 0);
   EXPECT_EQ(test::wait_exit(first, 20), 0);
   EXPECT_EQ(test::wait_exit(second, 20), 0);
-  const nlohmann::json s = read_json(stats);
+  const nlohmann::json s = test::read_stats(stats);
   ASSERT_EQ(s["frames"].size(), 3u);
   EXPECT_EQ(s["frames"][0]["workers"].size(), 2u) << "both workers rendered frame 0: " << s["frames"][0]["workers"];
 }

@@ -10,6 +10,7 @@
 #include "loadgen_run.h"
 #include "support/image_compare.h"
 #include "support/sanitizers.h"
+#include "support/stats_file.h"
 
 namespace igi::loadgen {
 namespace {
@@ -41,8 +42,7 @@ std::vector<SimBehaviour> paced(const LoadgenOptions& o) {
 }
 
 nlohmann::json stats(const LoadgenOptions& o) {
-  std::ifstream in(std::filesystem::path(o.dir) / "stats.json");
-  return nlohmann::json::parse(in);
+  return test::read_stats((std::filesystem::path(o.dir) / "stats.json").string());
 }
 
 ::testing::AssertionResult frames_exact(const LoadgenOptions& o) {

@@ -29,6 +29,7 @@
 #include "support/image_compare.h"
 #include "support/process.h"
 #include "support/render_fixture.h"
+#include "support/stats_file.h"
 
 namespace igi {
 namespace {
@@ -435,8 +436,7 @@ TEST(Security, OversizedMessagesAreDroppedWithoutHarm) {
   auto w = test::run(worker(endpoint, "--quiet"), 60);
   EXPECT_EQ(test::wait_exit(m, 30), 0) << "the master went on";
   EXPECT_EQ(w.exit_code, 0) << w.output;
-  std::ifstream in(stats);
-  EXPECT_EQ(nlohmann::json::parse(in)["bad_messages"].get<int>(), 0) << "zmq dropped it before it was decoded";
+  EXPECT_EQ(test::read_stats(stats)["bad_messages"].get<int>(), 0) << "zmq dropped it before it was decoded";
   expect_frames_match(dir, 2, "security-oversized");
 }
 

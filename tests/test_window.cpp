@@ -1,7 +1,6 @@
 // The window shows what the renderer wrote: a screenshot of it under Xvfb
 // equals the PNG (both are 8-bit sRGB of the same image).
 #include <cstdlib>
-#include <fstream>
 #include <map>
 
 #include <nlohmann/json.hpp>
@@ -13,6 +12,7 @@
 #include "image/image.h"
 #include "image/metrics.h"
 #include "support/image_compare.h"
+#include "support/stats_file.h"
 #include "display/tile_overlay.h"
 
 namespace igi {
@@ -116,7 +116,7 @@ TEST(Window, TileOverlayColoursMatchTheStatisticsTileCounts) {
   std::filesystem::remove(stats);
   ASSERT_EQ(std::system(window_run(shot, "--panel off --overlay solid --screenshot-after 1 --tile 32 --stats " + stats)
                             .c_str()), 0);
-  const nlohmann::json j = nlohmann::json::parse(std::ifstream(stats));
+  const nlohmann::json j = test::read_stats(stats);
   ASSERT_FALSE(j["frames"].empty());
   const nlohmann::json& last = j["frames"].back();
   const Image image = read_image(shot);

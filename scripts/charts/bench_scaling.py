@@ -35,13 +35,29 @@ def baseline(a):
     return seconds / a.frames, mrays / seconds
 
 
+def read_stats(path):
+    """The master's --stats (JSON Lines): the last totals line, with "frames", every frame's line in order."""
+    frames, totals = [], {}
+    with open(path) as f:
+        for text in f:
+            try:
+                line = json.loads(text)
+            except json.JSONDecodeError:  # a killed master's last line
+                continue
+            if "frame" in line:
+                frames.append(line)
+            else:
+                totals = line
+    return {**totals, "frames": frames}
+
+
 def cluster(a, workers, threads, tile):
     stats = os.path.join(OUT, "stats.json")
     cmd = [os.path.join(BUILD, "master", "igi-master"), "--workers", str(workers), "--worker-threads", str(threads),
            "--frames", str(a.frames), "--no-write", "--stats", stats, "--tile", str(tile),
            "-o", os.path.join(OUT, "unused.exr")] + render_args(a)
     subprocess.run(cmd, check=True, capture_output=True, text=True, timeout=600)
-    s = json.load(open(stats))
+    s = read_stats(stats)
     frames = s["frames"][2:] or s["frames"]  # skip the warm-up frames
     rays = sum(f["rays"] for f in frames) / len(frames)
     per_frame = s["wall_seconds"] / len(s["frames"])  # throughput: frames overlap (pipelining)

@@ -66,35 +66,20 @@ struct Options {
   bool runs(const std::string& family) const { return std::find(series.begin(), series.end(), family) != series.end(); }
 };
 
-std::vector<std::string> split(const std::string& s, char sep) {
-  std::vector<std::string> parts;
-  std::stringstream in(s);
-  for (std::string part; std::getline(in, part, sep);)
-    if (!part.empty()) parts.push_back(part);
-  return parts;
+void declare(CLI::App& app, Options& o) {
+  app.add_option("--scenes", o.scenes, "scenes, comma-separated")->delimiter(',')->type_name("a,b");
+  cli::add_size_option(app, "--size", o.width, o.height, 16384, "image size [128x96]");
+  app.add_option("--ref-spp", o.ref_spp, "pt reference samples per pixel [4096]")->check(cli::integer(1, 1 << 24));
+  app.add_option("--refs", o.refs, "folder of cached references [results/refs]");
+  app.add_option("--out", o.out, "CSV file [results/accuracy/accuracy.csv]");
+  app.add_flag("--quick", o.quick, "fewer points, for a smoke run");
+  app.add_option("--series", o.series, "of pt,igi,ir,caustics,view,lightcuts [all]")->delimiter(',')
+      ->check(cli::one_of({"pt", "igi", "ir", "caustics", "view", "lightcuts"}));
 }
 
 Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + ": expected a value");
-      return argv[++i];
-    };
-    if (a == "--scenes") o.scenes = split(value(), ',');
-    else if (a == "--size") {
-      const std::string v = value();
-      if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 1 || o.height < 1)
-        throw std::invalid_argument("--size: expected WxH, got '" + v + "'");
-    } else if (a == "--ref-spp") o.ref_spp = std::stoi(value());
-    else if (a == "--refs") o.refs = value();
-    else if (a == "--out") o.out = value();
-    else if (a == "--quick") o.quick = true;
-    else if (a == "--series") o.series = split(value(), ',');
-    else throw std::invalid_argument("unknown option '" + a + "' (see the header of tests/bench/accuracy_bench.cpp)");
-  }
-  return o;
+  return bench::parse_options<Options>("igi-accuracy: error against render time for every method (see the header "
+                                       "of tests/bench/accuracy_bench.cpp)", "igi-accuracy", argc, argv, declare);
 }
 
 // A scene with its BVH and lights, and its name as on the command line

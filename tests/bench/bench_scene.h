@@ -1,10 +1,14 @@
 #pragma once
-// What the benchmark programs share: a scene ready to render, and main()'s
-// error handling.
+// What the benchmark programs share: a scene ready to render, the command
+// line, and main()'s error handling.
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <iostream>
 #include <utility>
+
+#include "cli/option_checks.h"
 
 #include "lighting/lights.h"
 #include "methods/method.h"
@@ -26,6 +30,16 @@ struct PreparedScene {
     return test::camera_frame(scene, width, height, seed);
   }
 };
+
+// The command line `declare(app, options)` declares (CLI11); --help prints it
+// and ends the program (status 0), a bad value throws cli::OptionError.
+template <class Options, class Declare>
+Options parse_options(const char* about, const char* program, int argc, char** argv, Declare declare) {
+  Options options;
+  if (cli::parse_into(options, declare, {argv + 1, argv + argc})) return options;
+  std::cout << cli::help<Options>(about, program, declare);
+  std::exit(0);
+}
 
 // Runs a benchmark's body; a bad option or file ends it with status 1 and
 // the program's name before the message.

@@ -41,6 +41,7 @@
 #include "image/flip.h"
 #include "image/metrics.h"
 #include "methods/vpl_method.h"
+#include "photons/caustic_settings.h"
 #include "render/frame_renderer.h"
 #include "render/offline_render.h"
 #include "scene/camera_rays.h"
@@ -71,44 +72,32 @@ struct Options {
   std::vector<int> reach_photons = {10000, 30000, 100000};
 };
 
-std::vector<int> ints(const std::string& s) {
-  std::vector<int> v;
-  std::stringstream in(s);
-  for (std::string part; std::getline(in, part, ',');)
-    if (!part.empty()) v.push_back(std::stoi(part));
-  return v;
-}
-
-void parse_size(const std::string& v, int& w, int& h) {
-  if (std::sscanf(v.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1)
-    throw std::invalid_argument("expected WxH, got '" + v + "'");
+void declare(CLI::App& app, Options& o) {
+  using cli::integer;
+  const int max_photons = photons::kMaxCausticPhotons;
+  app.add_option("--scene", o.scene, "[glass]");
+  app.add_option("--photons", o.photons, "photon paths a frame, comma-separated [1000,...,1000000]")
+      ->delimiter(',')->check(integer(1, max_photons));
+  app.add_option("--reach-photons", o.reach_photons, "reach: photon counts [10000,30000,100000]")->delimiter(',')
+      ->check(integer(1, max_photons));
+  app.add_option("--frames", o.frames, "frames, median [5]")->check(integer(1, 100000));
+  app.add_option("--threads", o.threads, "[2]")->check(integer(0, cli::kMaxThreads));
+  cli::add_size_option(app, "--fps-size", o.fps_width, o.fps_height, 16384, "fps: frame size [640x480]");
+  app.add_option("--ref", o.ref, "converged reference (reach, branches)")->type_name("FILE.exr");
+  app.add_option("--out", o.out, "folder [results/caustics]")->type_name("DIR");
+  app.add_option("--vpl-paths", o.vpl_paths, "[16]")->check(integer(1, kMaxPathsPerSet));
+  app.add_option("--fps-vpl-paths", o.fps_vpl_paths, "[6]")->check(integer(1, kMaxPathsPerSet));
+  app.add_option("--clamp", o.clamp, "[0]")->check(cli::non_negative_number());
+  app.add_flag_callback("--skip-pass", [&o] { o.pass = false; }, "leave out part 1");
+  app.add_flag_callback("--skip-fps", [&o] { o.fps = false; }, "leave out part 2");
+  app.add_flag_callback("--skip-reach", [&o] { o.reach = false; }, "leave out part 3");
+  app.add_flag_callback("--skip-branches", [&o] { o.branches = false; }, "leave out part 4");
 }
 
 Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + ": expected a value");
-      return argv[++i];
-    };
-    if (a == "--scene") o.scene = value();
-    else if (a == "--photons") o.photons = ints(value());
-    else if (a == "--reach-photons") o.reach_photons = ints(value());
-    else if (a == "--frames") o.frames = std::stoi(value());
-    else if (a == "--threads") o.threads = std::stoi(value());
-    else if (a == "--fps-size") parse_size(value(), o.fps_width, o.fps_height);
-    else if (a == "--ref") o.ref = value();
-    else if (a == "--out") o.out = value();
-    else if (a == "--vpl-paths") o.vpl_paths = std::stoi(value());
-    else if (a == "--fps-vpl-paths") o.fps_vpl_paths = std::stoi(value());
-    else if (a == "--clamp") o.clamp = std::stof(value());
-    else if (a == "--skip-pass") o.pass = false;
-    else if (a == "--skip-fps") o.fps = false;
-    else if (a == "--skip-reach") o.reach = false;
-    else if (a == "--skip-branches") o.branches = false;
-    else throw std::invalid_argument("unknown option '" + a + "' (see the header of tests/bench/caustics_bench.cpp)");
-  }
+  Options o = bench::parse_options<Options>("igi-caustics-bench: what the caustic photon map costs and what it buys "
+                                            "(see the header of tests/bench/caustics_bench.cpp)",
+                                            "igi-caustics-bench", argc, argv, declare);
   if ((o.reach || o.branches) && o.ref.empty())
     throw std::invalid_argument("--ref: the converged reference is needed (or --skip-reach --skip-branches)");
   return o;

@@ -24,6 +24,7 @@
 #include <ctime>
 #include <sstream>
 
+#include "bench/bench_scene.h"
 #include "image/flip.h"
 #include "image/metrics.h"
 #include "methods/vpl_method.h"
@@ -50,27 +51,24 @@ struct Options {
   std::vector<std::string> variants;
 };
 
+void declare(CLI::App& app, Options& o) {
+  app.add_option("--scene", o.scene, "[rooms]");
+  cli::add_size_option(app, "--size", o.width, o.height, 16384, "[128x96]");
+  app.add_option("--ref", o.reference, "reference image")->type_name("REF.exr");
+  app.add_option("--seeds", o.seeds, "runs, seeds 1, 1001, ... [3]")->check(cli::integer(1, 100000));
+  app.add_option("--passes", o.passes, "progressive passes [1]")->check(cli::integer(1, 100000));
+  app.add_flag_callback("--no-flip", [&o] { o.flip = false; }, "no FLIP");
+  app.add_option("--flicker", o.flicker_step, "measure flicker: the camera slides STEP metres a frame")
+      ->check(cli::non_negative_number())->type_name("STEP");
+  app.add_option("--frames", o.frames, "flicker frames [6]")->check(cli::integer(2, 100000));
+  app.add_option("--variant", o.variants, "igi-render options of a variant (repeatable)")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("\"OPTIONS\"");
+}
+
 Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + ": expected a value");
-      return argv[++i];
-    };
-    if (a == "--scene") o.scene = value();
-    else if (a == "--size") {
-      const std::string v = value();
-      if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2) throw std::invalid_argument("--size: WxH");
-    } else if (a == "--ref") o.reference = value();
-    else if (a == "--seeds") o.seeds = std::stoi(value());
-    else if (a == "--passes") o.passes = std::stoi(value());
-    else if (a == "--no-flip") o.flip = false;
-    else if (a == "--flicker") o.flicker_step = std::stof(value());
-    else if (a == "--frames") o.frames = std::stoi(value());
-    else if (a == "--variant") o.variants.push_back(value());
-    else throw std::invalid_argument("unknown option '" + a + "' (see tests/bench/importance_bench.cpp)");
-  }
+  Options o = bench::parse_options<Options>("igi-importance: light importance and bidirectional IR against plain "
+                                            "ir/igi (see the header of tests/bench/importance_bench.cpp)",
+                                            "igi-importance", argc, argv, declare);
   if ((o.reference.empty() && o.flicker_step <= 0.0f) || o.variants.empty())
     throw std::invalid_argument("need --ref (or --flicker) and at least one --variant");
   return o;
@@ -235,10 +233,5 @@ int run(const Options& o) {
 }  // namespace igi
 
 int main(int argc, char** argv) {
-  try {
-    return igi::run(igi::parse(argc, argv));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "igi-importance: %s\n", e.what());
-    return 1;
-  }
+  return igi::bench::run_main("igi-importance", [&] { return igi::run(igi::parse(argc, argv)); });
 }

@@ -61,41 +61,27 @@ struct Options {
   bool ir = true;
 };
 
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> parts;
-  std::stringstream in(s);
-  for (std::string part; std::getline(in, part, ',');)
-    if (!part.empty()) parts.push_back(part);
-  return parts;
+void declare(CLI::App& app, Options& o) {
+  app.add_option("--scenes", o.scenes, "scenes, comma-separated")->delimiter(',')->type_name("a,b");
+  app.add_option("--vpls", o.vpls, "VPL counts to aim at [1000,10000,100000]")->delimiter(',')
+      ->check(cli::integer(1, 1 << 26));
+  cli::add_size_option(app, "--size", o.width, o.height, 16384, "image size [96x72]");
+  app.add_option("--ref-spp", o.ref_spp, "pt reference samples per pixel [1024]")->check(cli::integer(1, 1 << 24));
+  app.add_option("--refs", o.refs, "folder of cached references [results/refs]");
+  app.add_option("--out", o.out, "CSV file [results/lightcuts/lightcuts.csv]");
+  app.add_option("--spacing", o.spacing, "reconstruction cuts' spacing [4]")->check(cli::integer(0, 64));
+  app.add_option("--samples", o.samples, "multidimensional gather points, 0 = leave out [4]")
+      ->check(cli::integer(0, 64));
+  app.add_option_function<int>("--frames", [&o](int f) { o.frames = std::max(1, f); }, "frames, median [1]")
+      ->check(cli::integer(0, 100000));
+  app.add_option("--clamp", o.clamp, "clamp [0]")->check(cli::non_negative_number());
+  app.add_flag_callback("--no-ir", [&o] { o.ir = false; }, "leave out ir");
 }
 
 Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + ": expected a value");
-      return argv[++i];
-    };
-    if (a == "--scenes") o.scenes = split(value());
-    else if (a == "--vpls") {
-      o.vpls.clear();
-      for (const std::string& v : split(value())) o.vpls.push_back(std::stoi(v));
-    } else if (a == "--size") {
-      const std::string v = value();
-      if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 1 || o.height < 1)
-        throw std::invalid_argument("--size: expected WxH, got '" + v + "'");
-    } else if (a == "--ref-spp") o.ref_spp = std::stoi(value());
-    else if (a == "--refs") o.refs = value();
-    else if (a == "--out") o.out = value();
-    else if (a == "--spacing") o.spacing = std::stoi(value());
-    else if (a == "--samples") o.samples = std::stoi(value());
-    else if (a == "--frames") o.frames = std::max(1, std::stoi(value()));
-    else if (a == "--clamp") o.clamp = std::stof(value());
-    else if (a == "--no-ir") o.ir = false;
-    else throw std::invalid_argument("unknown option '" + a + "' (see the header of tests/bench/lightcuts_bench.cpp)");
-  }
-  return o;
+  return bench::parse_options<Options>("igi-lightcuts-bench: Lightcuts against ir over the same VPLs (see the "
+                                       "header of tests/bench/lightcuts_bench.cpp)", "igi-lightcuts-bench", argc,
+                                       argv, declare);
 }
 
 using Prepared = bench::PreparedScene;

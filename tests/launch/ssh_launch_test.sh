@@ -105,7 +105,7 @@ cat "$tmp/launch.log"
 echo "launch of 2 workers and $FRAMES frames: $((SECONDS - start)) s"
 check_frames "$tmp/frames/f" "$tmp/reference.exr" launch-ssh
 workers=$(python3 -c 'import json, sys
-frames = json.load(open(sys.argv[1]))["frames"]
+frames = [line for line in map(json.loads, open(sys.argv[1])) if "frame" in line]  # JSON Lines
 print(len({name for f in frames for name in f["workers"]}))' "$tmp/stats.json")
 [ "$workers" = 2 ] || fail "expected both workers to render tiles, the statistics name $workers"
 for log in "$tmp"/run/workers/w01-worker-a.log "$tmp"/run/workers/w02-worker-b.log; do

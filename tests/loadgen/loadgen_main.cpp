@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "cli/option_checks.h"
 #include "loadgen_options.h"
 
 namespace {
@@ -26,7 +27,7 @@ void append_csv(const std::string& path, const igi::loadgen::CommandLine& c, con
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  return igi::cli::run_program("igi-loadgen", 2, 2, [&] {
     igi::loadgen::CommandLine c = igi::loadgen::parse_command_line({argv + 1, argv + argc});
     if (c.help) { std::cout << igi::loadgen::usage(); return 0; }
     if (c.run.master_binary.empty()) c.run.master_binary = IGI_MASTER_BINARY;
@@ -64,8 +65,5 @@ int main(int argc, char** argv) {
     }
     if (!c.csv.empty()) append_csv(c.csv, c, r);
     return status;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "igi-loadgen: %s\n", e.what());
-    return 2;
-  }
+  });
 }

@@ -1,106 +1,98 @@
 #include "loadgen_options.h"
 
+#include <CLI/CLI.hpp>
+#include <climits>
+#include <cstdint>
 #include <random>
-#include <stdexcept>
+
+#include "cli/option_checks.h"
+#include "protocol/liveness_options.h"
+#include "protocol/messages.h"
 
 namespace igi::loadgen {
+namespace {
 
-std::string usage() {
-  return "usage: igi-loadgen [options]\n"
-         "  Runs igi-master with --workers 0 and simulated workers over real ZeroMQ sockets, each\n"
-         "  answering its jobs with pre-rendered tiles, and measures the master from outside.\n"
-         "  --workers N         simulated workers [8]\n"
-         "  --size WxH          frame size [640x480]     --tile T  tile side [32]\n"
-         "  --pixels F          half or float [half]     --frames F [300]  --warmup F [10]\n"
-         "  --fps F             pace the workers for F frames a second [30]\n"
-         "  --tile-ms MS        render time per tile instead (0: answer at once, flat out)\n"
-         "  --threads T         tiles a simulated worker renders at once [1]\n"
-         "  --pools P           threads driving the simulated workers [2]\n"
-         "  --io-threads N      the master's ZeroMQ I/O threads [1]\n"
-         "  --heartbeat-ms MS   [250]   --timeout-ms MS [1500]\n"
-         "  --write-frames      the master writes EXR frames (check them with --check-every N)\n"
-         "  --check-every N     check every N-th frame pixel by pixel against the simulated tiles\n"
-         "  --stats             the master writes stats.json\n"
-         "  --churn SEED        faults on a seeded schedule: a tenth of the workers join late, a tenth\n"
-         "                      stall past the master's timeout, a tenth die and are replaced\n"
-         "  --diverging N       the first N workers report another VPL-set hash\n"
-         "  --nan-every N       worker 0 sends a NaN pixel in every N-th tile\n"
-         "  --wrong-tile-every N  worker 0 claims another tile's rectangle in every N-th answer\n"
-         "  --master PATH       igi-master [next to this program's build tree]\n"
-         "  --master-arg ARG    one more argument for the master (repeatable)\n"
-         "  --dir DIR           logs and frames [loadgen-run]   --deadline S [120]\n"
-         "  --csv FILE          append the figures as a row   --label TEXT  its first column\n";
+using cli::integer;
+constexpr int kMaxWorkers = 65536, kMaxFrames = 10000000, kMaxPools = 256;
+
+const char* kAbout =
+    "igi-loadgen: runs igi-master with --workers 0 and simulated workers over real ZeroMQ sockets, each\n"
+    "answering its jobs with pre-rendered tiles, and measures the master from outside.";
+
+void add_load_options(CLI::App& app, LoadgenOptions& o) {
+  app.add_option("--workers", o.workers, "simulated workers [8]")->check(integer(1, kMaxWorkers))->type_name("N");
+  cli::add_size_option(app, "--size", o.width, o.height, protocol::kMaxImageSide, "frame size [640x480]");
+  app.add_option("--tile", o.tile, "tile side [32]")->check(integer(1, protocol::kMaxTileSide))->type_name("T");
+  app.add_option("--pixels", o.pixels, "half or float [half]")->check(cli::one_of({"half", "float"}));
+  app.add_option("--frames", o.frames, "[300]")->check(integer(1, kMaxFrames))->type_name("F");
+  app.add_option("--warmup", o.warmup_frames, "[10]")->check(integer(0, kMaxFrames))->type_name("F");
+  app.add_option("--fps", o.fps, "pace the workers for F frames a second [30]")
+      ->check(cli::non_negative_number())->type_name("F");
+  app.add_option("--tile-ms", o.tile_ms, "render time per tile instead (0: answer at once, flat out)")
+      ->check(cli::non_negative_number())->type_name("MS");
+  app.add_option("--threads", o.threads, "tiles a simulated worker renders at once [1]")
+      ->check(integer(1, cli::kMaxThreads))->type_name("T");
+  app.add_option("--pools", o.pools, "threads driving the simulated workers [2]")
+      ->check(integer(1, kMaxPools))->type_name("P");
+  app.add_option("--io-threads", o.io_threads, "the master's ZeroMQ I/O threads [1]")
+      ->check(integer(1, cli::kMaxIoThreads))->type_name("N");
+  protocol::add_liveness_options(app, o.heartbeat_ms, o.timeout_ms);
 }
 
-static int to_int(const std::string& option, const std::string& value) {
-  try {
-    size_t end = 0;
-    const int v = std::stoi(value, &end);
-    if (end == value.size() && v >= 0) return v;
-  } catch (const std::exception&) {
-  }
-  throw std::invalid_argument(option + ": expected a non-negative integer, got '" + value + "'");
+void add_fault_and_check_options(CLI::App& app, CommandLine& c) {
+  app.add_flag("--write-frames", c.run.write_frames, "the master writes EXR frames (check them with --check-every N)");
+  app.add_option("--check-every", c.check_every, "check every N-th frame pixel by pixel against the simulated tiles")
+      ->check(integer(0, kMaxFrames))->type_name("N");
+  app.add_flag("--stats", c.run.stats, "the master writes stats.json");
+  app.add_option("--churn", c.churn_seed, "faults on a seeded schedule: a tenth of the workers join late, a tenth "
+                 "stall past the master's timeout, a tenth die and are replaced")
+      ->check(integer<uint64_t>(0, UINT64_MAX))->type_name("SEED");
+  app.add_option("--diverging", c.diverging, "the first N workers report another VPL-set hash")
+      ->check(integer(0, kMaxWorkers))->type_name("N");
+  app.add_option("--nan-every", c.nan_every, "worker 0 sends a NaN pixel in every N-th tile")
+      ->check(integer(0, INT_MAX))->type_name("N");
+  app.add_option("--wrong-tile-every", c.wrong_tile_every, "worker 0 claims another tile's rectangle in every N-th "
+                 "answer")->check(integer(0, INT_MAX))->type_name("N");
 }
 
-static double to_double(const std::string& option, const std::string& value) {
-  try {
-    size_t end = 0;
-    const double v = std::stod(value, &end);
-    if (end == value.size() && v >= 0) return v;
-  } catch (const std::exception&) {
-  }
-  throw std::invalid_argument(option + ": expected a number >= 0, got '" + value + "'");
+void add_output_options(CLI::App& app, CommandLine& c) {
+  app.add_option("--master", c.run.master_binary, "igi-master [next to this program's build tree]")
+      ->type_name("PATH");
+  app.add_option("--master-arg", c.run.master_args, "one more argument for the master (repeatable)")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("ARG");
+  app.add_option("--dir", c.run.dir, "logs and frames [loadgen-run]")->type_name("DIR");
+  app.add_option("--deadline", c.run.deadline_seconds, "[120]")->check(cli::non_negative_number())->type_name("S");
+  app.add_option("--csv", c.csv, "append the figures as a row")->type_name("FILE");
+  app.add_option("--label", c.label, "its first column")->type_name("TEXT");
 }
+
+void declare(CLI::App& app, CommandLine& c) {
+  add_load_options(app, c.run);
+  add_fault_and_check_options(app, c);
+  add_output_options(app, c);
+}
+
+// "--master-arg --credits": the master's argument looks like an option of ours, so it is joined to its name.
+std::vector<std::string> joined_master_args(const std::vector<std::string>& args) {
+  std::vector<std::string> joined;
+  for (size_t i = 0; i < args.size(); ++i)
+    if (args[i] == "--master-arg" && i + 1 < args.size()) joined.push_back("--master-arg=" + args[++i]);
+    else joined.push_back(args[i]);
+  return joined;
+}
+
+}  // namespace
+
+std::string usage() { return cli::help<CommandLine>(kAbout, "igi-loadgen", declare); }
 
 CommandLine parse_command_line(const std::vector<std::string>& args) {
   CommandLine c;
-  LoadgenOptions& o = c.run;
-  for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw std::invalid_argument(a + ": missing value");
-      return args[++i];
-    };
-    if (a == "--help" || a == "-h") c.help = true;
-    else if (a == "--workers") o.workers = std::max(1, to_int(a, value()));
-    else if (a == "--size") {
-      const std::string v = value();
-      const size_t x = v.find('x');
-      if (x == std::string::npos) throw std::invalid_argument("--size: expected WxH, got '" + v + "'");
-      o.width = std::max(1, to_int(a, v.substr(0, x)));
-      o.height = std::max(1, to_int(a, v.substr(x + 1)));
-    }
-    else if (a == "--tile") o.tile = std::max(1, to_int(a, value()));
-    else if (a == "--pixels") o.pixels = value();
-    else if (a == "--frames") o.frames = std::max(1, to_int(a, value()));
-    else if (a == "--warmup") o.warmup_frames = to_int(a, value());
-    else if (a == "--fps") o.fps = to_double(a, value());
-    else if (a == "--tile-ms") o.tile_ms = to_double(a, value());
-    else if (a == "--threads") o.threads = std::max(1, to_int(a, value()));
-    else if (a == "--pools") o.pools = std::max(1, to_int(a, value()));
-    else if (a == "--io-threads") o.io_threads = std::max(1, to_int(a, value()));
-    else if (a == "--heartbeat-ms") o.heartbeat_ms = to_int(a, value());
-    else if (a == "--timeout-ms") o.timeout_ms = to_int(a, value());
-    else if (a == "--write-frames") o.write_frames = true;
-    else if (a == "--check-every") c.check_every = to_int(a, value());
-    else if (a == "--stats") o.stats = true;
-    else if (a == "--churn") c.churn_seed = uint64_t(std::stoull(value()));
-    else if (a == "--diverging") c.diverging = to_int(a, value());
-    else if (a == "--nan-every") c.nan_every = to_int(a, value());
-    else if (a == "--wrong-tile-every") c.wrong_tile_every = to_int(a, value());
-    else if (a == "--master") o.master_binary = value();
-    else if (a == "--master-arg") o.master_args.push_back(value());
-    else if (a == "--dir") o.dir = value();
-    else if (a == "--deadline") o.deadline_seconds = to_double(a, value());
-    else if (a == "--csv") c.csv = value();
-    else if (a == "--label") c.label = value();
-    else throw std::invalid_argument("unknown option '" + a + "' (see --help)");
-  }
-  if (o.pixels != "half" && o.pixels != "float")
-    throw std::invalid_argument("--pixels: expected half or float, got '" + o.pixels + "'");
-  if (c.check_every > 0 && !o.write_frames) throw std::invalid_argument("--check-every needs --write-frames");
-  if (o.write_frames && o.pixels != "float" && c.check_every > 0)
-    throw std::invalid_argument("--check-every compares exactly: use --pixels float");
+  c.help = !cli::parse_into(c, declare, joined_master_args(args));
+  if (c.help) return c;
+  protocol::check_liveness(c.run.heartbeat_ms, c.run.timeout_ms);
+  if (c.check_every > 0 && !c.run.write_frames) throw cli::OptionError("--check-every needs --write-frames");
+  if (c.run.write_frames && c.run.pixels != "float" && c.check_every > 0)
+    throw cli::OptionError("--check-every compares exactly: use --pixels float");
   return c;
 }
 

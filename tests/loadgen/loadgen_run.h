@@ -33,7 +33,7 @@ struct LoadgenOptions {
   int io_threads = 1;                // the master's
   int heartbeat_ms = 250, timeout_ms = 1500;
   bool write_frames = false;         // the master writes EXR frames into dir (float pixels) for checking
-  bool stats = false;                // the master writes stats.json (grows with frames)
+  bool stats = false;                // the master writes stats.json (JSON Lines, grows with frames)
   std::vector<std::string> master_args;  // more, e.g. {"--credits", "4"}
   double deadline_seconds = 120.0;
   bool sample_memory = true;

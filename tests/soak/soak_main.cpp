@@ -5,8 +5,9 @@
 // against the single-process render and the master's memory for growth.
 #include <atomic>
 #include <csignal>
-#include <cstdio>
 #include <iostream>
+
+#include "cli/option_checks.h"
 
 #include "soak_options.h"
 #include "soak_run.h"
@@ -18,14 +19,11 @@ std::atomic<bool> g_stop{false};  // set by SIGINT/SIGTERM/SIGHUP only
 int main(int argc, char** argv) {
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, [](int) { g_stop = true; });
   std::signal(SIGPIPE, SIG_IGN);
-  try {
+  return igi::cli::run_program("igi-soak", 2, 2, [&] {
     igi::soak::SoakOptions o = igi::soak::parse_soak_options({argv + 1, argv + argc});
     if (o.help) { std::cout << igi::soak::soak_usage(); return 0; }
     if (o.master_binary.empty()) o.master_binary = IGI_MASTER_BINARY;
     if (o.worker_binary.empty()) o.worker_binary = IGI_WORKER_BINARY;
     return igi::soak::SoakRun(o, g_stop).run();
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "igi-soak: %s\n", e.what());
-    return 2;
-  }
+  });
 }

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/stats_file.h"
+
 namespace igi::soak {
 
 namespace fs = std::filesystem;
@@ -26,11 +28,10 @@ MasterFigures read_master_figures(const std::string& dir, int runs) {
     const std::string log = (fs::path(dir) / "logs" / ("master-" + std::to_string(r) + ".log")).string();
     m.bad_messages_logged += count_lines(log, "dropped a bad message");
     m.declared_dead += count_lines(log, "declared dead");
-    std::ifstream in(fs::path(dir) / ("stats-" + std::to_string(r) + ".json"));
-    if (!in) continue;
-    const nlohmann::json stats = nlohmann::json::parse(in, nullptr, false);
-    if (stats.is_discarded()) continue;
-    // A killed master leaves its statistics as of its last flush (once a second).
+    const fs::path path = fs::path(dir) / ("stats-" + std::to_string(r) + ".json");
+    if (!fs::exists(path)) continue;
+    const nlohmann::json stats = test::read_stats(path.string());
+    // A killed master leaves its statistics as of its last totals line (once a second).
     if (stats.value("complete", false)) ++m.runs_finished;
     ++m.runs_with_stats;
     m.bad_messages_json += stats.value("bad_messages", uint64_t(0));

@@ -1,0 +1,118 @@
+#include "cli/option_checks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace igi::cli {
+namespace {
+
+// Every float option parses the same way: the whole text, as strtod reads it.
+bool read_number(const std::string& text, double& value) {
+  if (text.empty()) return false;
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size();
+}
+
+bool read_side(const std::string& text, int max_side, int& side) {
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), side);
+  return !text.empty() && error == std::errc() && end == text.data() + text.size() && side >= 1 && side <= max_side;
+}
+
+CLI::Validator image_size(int max_side) {
+  return CLI::Validator(
+      [max_side](std::string& text) -> std::string {
+        const size_t x = text.find('x');
+        int w = 0, h = 0;
+        if (x != std::string::npos && read_side(text.substr(0, x), max_side, w) &&
+            read_side(text.substr(x + 1), max_side, h))
+          return {};
+        return "expected WxH, each from 1 to " + std::to_string(max_side) + ", got '" + text + "'";
+      },
+      "");
+}
+
+void parse_size(const std::string& text, int& width, int& height) {
+  const size_t x = text.find('x');
+  width = std::stoi(text.substr(0, x));
+  height = std::stoi(text.substr(x + 1));
+}
+
+}  // namespace
+
+CLI::Validator number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double v = 0;
+        return read_number(text, v) && std::isfinite(v) ? "" : "expected a number, got '" + text + "'";
+      },
+      "");
+}
+
+CLI::Validator non_negative_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double v = 0;
+        return read_number(text, v) && v >= 0.0 ? "" : "expected a non-negative number, got '" + text + "'";
+      },
+      "");
+}
+
+CLI::Validator one_of(std::vector<std::string> words) {
+  std::string expected = "expected ";
+  for (size_t i = 0; i < words.size(); ++i)
+    expected += (i == 0 ? "" : i + 1 == words.size() ? " or " : ", ") + words[i];
+  return CLI::Validator(
+      [words, expected](std::string& text) -> std::string {
+        if (std::find(words.begin(), words.end(), text) != words.end()) return {};
+        return expected + ", got '" + text + "'";
+      },
+      "");
+}
+
+CLI::Option* add_size_option(CLI::App& app, const std::string& name, int& width, int& height, int max_side,
+                             const std::string& help) {
+  return app
+      .add_option_function<std::string>(
+          name, [&width, &height](const std::string& v) { parse_size(v, width, height); }, help)
+      ->check(image_size(max_side))->type_name("WxH");
+}
+
+void take_last_by_default(CLI::App& app) {
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+}
+
+bool parse(CLI::App& app, std::vector<std::string> args) {
+  std::reverse(args.begin(), args.end());  // CLI11 takes the arguments from the back
+  try {
+    app.parse(args);
+  } catch (const CLI::CallForHelp&) {
+    return false;
+  } catch (const CLI::ExtrasError&) {
+    const std::string first = app.remaining().front();
+    const bool option = first.rfind("-", 0) == 0;
+    throw OptionError((option ? "unknown option '" : "unexpected argument '") + first + "'");
+  } catch (const CLI::ParseError& e) {
+    throw OptionError(e.what());
+  }
+  return true;
+}
+
+void print_option_error(const std::string& program, const std::string& message) {
+  std::fprintf(stderr, "%s: %s\nRun %s --help for the options.\n", program.c_str(), message.c_str(), program.c_str());
+}
+
+int run_program(const std::string& program, int usage_status, int error_status, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const OptionError& e) {
+    print_option_error(program, e.what());
+    return usage_status;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", program.c_str(), e.what());
+    return error_status;
+  }
+}
+
+}  // namespace igi::cli

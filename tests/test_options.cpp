@@ -1,0 +1,88 @@
+// The programs' command lines (CLI11, common/cli/option_checks.h): a bad value
+// is refused before any work with one line that names the option and the
+// value, and the program's usage exit status (1: igi-render, igi-master;
+// 2: igi-worker, igi-soak).
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "support/process.h"
+
+namespace igi {
+namespace {
+
+struct Refusal {
+  std::string command;
+  int status;
+  std::vector<std::string> expected;  // each must be in the output
+};
+
+void expect_refused(const Refusal& r) {
+  const test::RunResult result = test::run(r.command, 30);
+  EXPECT_EQ(result.exit_code, r.status) << r.command << "\n" << result.output;
+  for (const std::string& text : r.expected)
+    EXPECT_NE(result.output.find(text), std::string::npos) << r.command << ": no '" << text << "' in\n" << result.output;
+  EXPECT_NE(result.output.find("--help"), std::string::npos) << "a hint to --help\n" << result.output;
+  EXPECT_EQ(result.output.find("stoi"), std::string::npos) << result.output;
+}
+
+TEST(Options, IgiRenderNamesTheOptionAndTheBadValue) {
+  expect_refused({std::string(IGI_RENDER_BINARY) + " --quiet -o /dev/null --threads x", 1,
+                  {"igi-render: --threads", "'x'"}});
+}
+
+TEST(Options, IgiMasterNamesTheOptionAndTheBadValue) {
+  expect_refused({std::string(IGI_MASTER_BINARY) + " --workers 0 --frames 1 --credits many", 1,
+                  {"igi-master: --credits", "'many'"}});
+}
+
+TEST(Options, IgiWorkerNamesTheOptionAndTheBadValue) {
+  expect_refused({std::string(IGI_WORKER_BINARY) + " --connect tcp://127.0.0.1:1 --threads x", 2,
+                  {"igi-worker: --threads", "'x'"}});
+}
+
+TEST(Options, IgiSoakNamesTheOptionAndTheBadValue) {
+  expect_refused({std::string(IGI_SOAK_BINARY) + " --frames ten --dir " + std::string(IGI_TEST_OUTPUT_DIR) +
+                      "/soak-bad-option", 2, {"igi-soak: --frames", "'ten'"}});
+}
+
+TEST(Options, UnknownOptionsAreNamed) {
+  expect_refused({std::string(IGI_RENDER_BINARY) + " --vpl-set 4", 1, {"unknown option '--vpl-set'"}});
+  expect_refused({std::string(IGI_WORKER_BINARY) + " --connect tcp://127.0.0.1:1 --thread 2", 2,
+                  {"unknown option '--thread'"}});
+}
+
+// Above the upper bound: --vpl-sets N makes N x N sets, so 50000 would overflow an int.
+TEST(Options, ValuesAboveTheirRangeAreRefused) {
+  expect_refused({std::string(IGI_RENDER_BINARY) + " --quiet -o /dev/null --vpl-sets 50000", 1,
+                  {"--vpl-sets", "<= 16", "'50000'"}});
+  expect_refused({std::string(IGI_MASTER_BINARY) + " --workers 0 --frames 1 --size 20000x10", 1,
+                  {"--size", "16384", "'20000x10'"}});
+  expect_refused({std::string(IGI_WORKER_BINARY) + " --connect tcp://127.0.0.1:1 --threads 99999999999", 2,
+                  {"--threads", "'99999999999'"}});
+}
+
+TEST(Options, TheTimeoutMustExceedTheHeartbeat) {
+  expect_refused({std::string(IGI_MASTER_BINARY) + " --workers 0 --frames 1 --heartbeat-ms 500 --timeout-ms 400", 1,
+                  {"--timeout-ms 400", "--heartbeat-ms 500"}});
+  expect_refused({std::string(IGI_SOAK_BINARY) + " --heartbeat-ms 200 --timeout-ms 200 --dir " +
+                      std::string(IGI_TEST_OUTPUT_DIR) + "/soak-bad-option", 2,
+                  {"--timeout-ms 200", "--heartbeat-ms 200"}});
+}
+
+TEST(Options, HelpListsTheOptionsAndExitsZero) {
+  const std::pair<std::string, std::string> programs[] = {{IGI_RENDER_BINARY, "--vpl-sets"},
+                                                           {IGI_MASTER_BINARY, "--heartbeat-ms"},
+                                                           {IGI_WORKER_BINARY, "--connect"},
+                                                           {IGI_SOAK_BINARY, "--faults"}};
+  for (const auto& [binary, option] : programs) {
+    const test::RunResult r = test::run(binary + " --help", 30);
+    EXPECT_EQ(r.exit_code, 0) << binary << "\n" << r.output;
+    EXPECT_NE(r.output.find(option), std::string::npos) << binary << "\n" << r.output;
+  }
+}
+
+}  // namespace
+}  // namespace igi
