@@ -29,6 +29,7 @@ FrameSetup plan_frame(const RenderOptions& render, const std::string& camera_pat
       f.jitter_y = j.y;
     }
   }
+  f.pose.light_offset = render.light_offset;
   if (animated)
     f.pose.time = scene_time(render.time, render.time_step, uint64_t(i), render.loop, scene.animation->duration);
   if (camera_path == "orbit") {  // turn about the vertical axis through the scene's centre

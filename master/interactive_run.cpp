@@ -116,7 +116,7 @@ void session_loop(const MasterOptions& o, const Scene& scene, MasterSession& ses
         render.settings = view.settings;  // pt's samples per pass depend on the method
         // An animation's frame k stands at its own time, as headless frame k: nothing accumulates.
         FrameSetup f = plan_frame(render, o.camera_path, scene, animated ? animation_frame++ : pass++, true);
-        f.pose.light_offset = view.light_offset;
+        f.pose.light_offset = o.render.light_offset + view.light_offset;
         f.frame_id = next_id++;
         f.camera = view.camera;
         generation_of_frame[f.frame_id] = generation;

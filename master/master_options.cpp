@@ -66,6 +66,9 @@ void add_run_options(CLI::App& app, MasterOptions& o) {
   app.add_option("--min-workers-wait", o.min_workers_wait, "see --min-workers [30]")
       ->check(integer(0, kMaxWaitSeconds))->group(group)->type_name("S");
   app.add_flag("--progressive", o.progressive, "headless: accumulate frames, advancing the seed")->group(group);
+  app.add_option("--time-step", o.render.time_step, "animated scenes: seconds of animation time a frame [0.0333]")
+      ->check(cli::bounded_number(protocol::kMaxSceneTime))->group(group)->type_name("S");
+  app.add_flag("--loop", o.render.loop, "animated scenes: wrap the time into the animation's length")->group(group);
   app.add_option("--camera-path", o.camera_path, "headless: turn the camera about the scene, one step a frame")
       ->check(cli::one_of({"orbit"}))->group(group)->type_name("orbit");
   app.add_option("--stats", o.stats, "per-frame statistics, JSON Lines: a line per frame, and the run's totals")

@@ -9,6 +9,7 @@
 #include "render/offline_render.h"
 #include "render/scene_state.h"
 #include "scene/gltf_writer.h"
+#include "scene/animation.h"
 #include "scene/load_scene.h"
 
 namespace {
@@ -27,6 +28,8 @@ int run(const igi::RenderOptions& o) {
   frame.width = o.width;
   frame.height = o.height;
   frame.seed = o.seed;
+  if (scene.animation && scene.animation->animated()) frame.pose.time = o.time;
+  frame.pose.light_offset = o.light_offset;
   igi::SceneState state(std::move(scene));  // as a worker holds it: the same BVH, the same pixels
   state.set_pose(frame.pose);
 

@@ -62,6 +62,10 @@ void add_image_options(CLI::App& app, RenderOptions& o) {
   app.add_option_function<std::string>(
          "--screenshot", [&o](const std::string& f) { o.show = true, o.screenshot = f; },
          "show, save the window's pixels to FILE, close")->type_name("FILE");
+  app.add_option("--time", o.time, "animated scenes: seconds of animation time of the (first) frame [0]")
+      ->check(cli::bounded_number(protocol::kMaxSceneTime))->type_name("T");
+  cli::add_vec3_option(app, "--move-lights", o.light_offset, 1e6,
+                       "metres to move the scene's lights by, as the window's J/L, U/O, I/K keys do [0,0,0]");
 }
 
 void add_vpl_options(CLI::App& app, RenderSettings& s) {

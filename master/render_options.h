@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "methods/settings.h"
 
 namespace CLI {
@@ -32,6 +34,7 @@ struct RenderOptions {
   // loop wrapped into the animation's length (scene/animation.h scene_time).
   double time = 0.0, time_step = 1.0 / 30.0;
   bool loop = false;
+  glm::vec3 light_offset{0.0f};  // --move-lights: metres, as the window's keys move them
 };
 
 // Declares the render options on `app`, writing into `options` (which must

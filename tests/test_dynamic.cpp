@@ -188,6 +188,36 @@ TEST(Distributed, AnimatedSequenceMatchesOneProcessWithAWorkerKilled) {
   }
 }
 
+// --time, --time-step and --loop place the frames; --move-lights moves the
+// lights; igi-render --time renders one frame at a time. All as one process.
+TEST(Distributed, SceneTimesAndMovedLightsReachTheWorkers) {
+  const std::string file = test::output_path("dist-times.gltf");
+  std::ofstream(file) << test::animated_document().dump();
+  const std::string out = test::output_path("dist-times.exr"), one = test::output_path("render-at-time.exr");
+  const std::string common = " --scene " + file + " --method igi --vpl-paths 8 --size 96x72 --move-lights 0.2,-0.3,0.1";
+  auto r = test::run(std::string(IGI_MASTER_BINARY) + common +
+                     " --tile 16 --worker-threads 2 --workers 2 --frames 3 --time 1.9 --time-step 0.1 --loop -o " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = test::run(std::string(IGI_RENDER_BINARY) + common + " --quiet --time 1.9 -o " + one);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  SceneState state(load_gltf(file).scene);
+  const double times[] = {1.9, 0.0, 0.1};  // 2.0 and 2.1 wrapped into the 2 s animation
+  for (int i = 0; i < 3; ++i) {
+    FrameSetup f = test::camera_frame(state.scene(), 96, 72, 1);
+    f.pose = ScenePose{scene_time(1.9, 0.1, uint64_t(i), true, 2.0), glm::vec3(0.2f, -0.3f, 0.1f)};
+    EXPECT_NEAR(f.pose.time, times[i], 1e-12);
+    state.set_pose(f.pose);
+    RenderSettings s;
+    s.method = MethodKind::Igi;
+    s.paths_per_set = 8;
+    const Image expected = render_offline(state.context(), s, f, 1, FrameOptions{}).image;
+    char name[64];
+    std::snprintf(name, sizeof name, "dist-times-%04d.exr", i);
+    EXPECT_TRUE(test::images_identical(name, read_image(test::output_path(name)), expected));
+    if (i == 0) EXPECT_TRUE(test::images_identical("render-at-time", read_image(one), expected));
+  }
+}
+
 // Under Xvfb: the window shows an animation frame by frame, its third frame
 // the very frame a headless run writes third.
 TEST(Window, AnAnimatedSceneIsShownFrameByFrameAsAHeadlessRunWritesIt) {

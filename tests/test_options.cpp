@@ -54,6 +54,16 @@ TEST(Options, UnknownOptionsAreNamed) {
                   {"unknown option '--thread'"}});
 }
 
+// The scene's pose: a time and a light offset that a frame setup can carry.
+TEST(Options, SceneTimeAndLightMovesAreChecked) {
+  expect_refused({std::string(IGI_RENDER_BINARY) + " --quiet -o /dev/null --move-lights 1,x,2", 1,
+                  {"igi-render: --move-lights", "X,Y,Z", "'1,x,2'"}});
+  expect_refused({std::string(IGI_MASTER_BINARY) + " --workers 0 --frames 1 --time nan", 1,
+                  {"igi-master: --time", "'nan'"}});
+  expect_refused({std::string(IGI_MASTER_BINARY) + " --workers 0 --frames 1 --time-step 1e10", 1,
+                  {"--time-step", "'1e10'"}});
+}
+
 // Above the upper bound: --vpl-sets N makes N x N sets, so 50000 would overflow an int.
 TEST(Options, ValuesAboveTheirRangeAreRefused) {
   expect_refused({std::string(IGI_RENDER_BINARY) + " --quiet -o /dev/null --vpl-sets 50000", 1,

@@ -71,6 +71,50 @@ CLI::Validator one_of(std::vector<std::string> words) {
       "");
 }
 
+CLI::Validator bounded_number(double bound) {
+  char expected[64];
+  std::snprintf(expected, sizeof expected, "expected a number within +-%g, got '", bound);
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double v = 0;
+        return read_number(text, v) && std::abs(v) <= bound ? "" : expected + text + "'";
+      },
+      "");
+}
+
+namespace {
+
+bool read_vec3(const std::string& text, double bound, glm::vec3& out) {
+  size_t start = 0;
+  for (int k = 0; k < 3; ++k) {
+    const size_t comma = k < 2 ? text.find(',', start) : text.size();
+    if (comma == std::string::npos) return false;
+    double v = 0;
+    if (!read_number(text.substr(start, comma - start), v) || !(std::abs(v) <= bound)) return false;
+    out[k] = float(v);
+    start = comma + 1;
+  }
+  return true;
+}
+
+}  // namespace
+
+CLI::Option* add_vec3_option(CLI::App& app, const std::string& name, glm::vec3& out, double bound,
+                             const std::string& help) {
+  char expected[80];
+  std::snprintf(expected, sizeof expected, "expected X,Y,Z, three numbers within +-%g, got '", bound);
+  return app
+      .add_option_function<std::string>(
+          name, [&out, bound](const std::string& v) { read_vec3(v, bound, out); }, help)
+      ->check(CLI::Validator(
+          [=](std::string& text) -> std::string {
+            glm::vec3 v;
+            return read_vec3(text, bound, v) ? "" : expected + text + "'";
+          },
+          ""))
+      ->type_name("X,Y,Z");
+}
+
 CLI::Option* add_size_option(CLI::App& app, const std::string& name, int& width, int& height, int max_side,
                              const std::string& help) {
   return app

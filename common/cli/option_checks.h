@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <glm/glm.hpp>
 
 namespace igi::cli {
 
@@ -44,6 +45,12 @@ CLI::Validator non_negative_number();  // >= 0 (infinity too, as before; NaN nev
 CLI::Validator one_of(std::vector<std::string> words);
 // An image size WxH (`name`: "--size" and the like) into `width` and `height`, both in [1, max_side].
 CLI::Option* add_size_option(CLI::App& app, const std::string& name, int& width, int& height, int max_side,
+                             const std::string& help);
+
+// A number within +-bound (NaN and infinity fail): "expected a number within +-1e+09, got 'x'".
+CLI::Validator bounded_number(double bound);
+// A point or offset X,Y,Z (`name`: "--move-lights"), each a number within +-bound, into `out`.
+CLI::Option* add_vec3_option(CLI::App& app, const std::string& name, glm::vec3& out, double bound,
                              const std::string& help);
 
 // Options given twice: the last one counts (call before adding options).
