@@ -133,11 +133,13 @@ void session_loop(const MasterOptions& o, const Scene& scene, MasterSession& ses
   }
 }
 
-std::string status_line(const CompletedFrame& f, size_t workers, int accumulated, double fps) {
-  char text[160];
+std::string status_line(const CompletedFrame& f, size_t workers, int accumulated, double fps, bool animated) {
+  char text[192];
   const double s = f.record.seconds;
-  std::snprintf(text, sizeof text, "%.1f fps  %.0f ms/frame  %.1f Mrays/s  %zu workers  %d frames accumulated", fps,
-                1e3 * s, s > 0 ? f.record.rays.total() * 1e-6 / s : 0.0, workers, accumulated);
+  const int n = std::snprintf(text, sizeof text, "%.1f fps  %.0f ms/frame  %.1f Mrays/s  %zu workers  ", fps, 1e3 * s,
+                              s > 0 ? f.record.rays.total() * 1e-6 / s : 0.0, workers);
+  if (animated) std::snprintf(text + n, sizeof text - size_t(n), "t = %.2f s", f.setup.pose.time);
+  else std::snprintf(text + n, sizeof text - size_t(n), "%d frames accumulated", accumulated);
   return text;
 }
 
@@ -214,7 +216,7 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
       const auto now = std::chrono::steady_clock::now();
       const double fps = 1.0 / std::max(1e-6, std::chrono::duration<double>(now - last_frame).count());
       last_frame = now;
-      window.set_status(status_line(shown.frame, shown.workers, int(accumulator.weight()), fps));
+      window.set_status(status_line(shown.frame, shown.workers, int(accumulator.weight()), fps, animated));
       FrameRecord& record = shown.frame.record;
       std::vector<TileSource> sources = std::move(record.tile_sources);  // the overlay's, not the file's
       if (stats) stats->add(record);

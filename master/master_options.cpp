@@ -24,6 +24,7 @@ constexpr int kMaxCredits = 1024;
 
 const char* kWindowHelp =
     "window: drag with the left button to look, W/A/S/D/Q/E to move, R to reset, Esc to quit;\n"
+    "  J/L, U/O, I/K move the scene's lights along x, y, z;\n"
     "  F1 panel, F2 tile overlay, F5/F9 save/load camera, F12 save the accumulated image (EXR and PNG);\n"
     "  while the camera and settings are still, frames accumulate (new seed and sub-pixel position each)";
 

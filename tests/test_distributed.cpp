@@ -151,7 +151,11 @@ TEST(Distributed, LightImportanceAndBidirectionalMatchOneProcessWithAWorkerKille
   ASSERT_EQ(r.exit_code, 0) << r.output;
   // The kill comes after 20 results once both workers have joined (80 tiles a frame).
   const nlohmann::json last = test::read_stats(stats)["frames"][frames - 1];
-  EXPECT_EQ(last["workers"].size(), 1u) << "one worker was killed";
+  // The killed worker may still be listed (with no tiles) when the run ends
+  // within the timeout of the kill: the frames are short.
+  int rendering = 0;
+  for (const auto& [name, w] : last["workers"].items()) rendering += w["tiles"].get<int>() > 0;
+  EXPECT_EQ(rendering, 1) << "one worker was killed";
   EXPECT_GT(last["reissued_total"].get<int>() + last["duplicated_total"].get<int>(), 0)
       << "its tiles came back from the other";
   test::Prepared p(load_scene("rooms"));

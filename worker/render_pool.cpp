@@ -1,6 +1,7 @@
 #include "render_pool.h"
 
 #include <chrono>
+#include <stdexcept>
 #include <utility>
 
 #include "protocol/pixels.h"
@@ -29,6 +30,10 @@ RenderPool::~RenderPool() {
 }
 
 void RenderPool::add_frame(const FrameSetup& frame, const RenderSettings& settings) {
+  // The method is made later, on a render thread at the frame's pose: what
+  // its constructor would refuse is refused here, on the caller's thread.
+  if (settings.method != MethodKind::PathTracer)
+    if (auto error = settings_error(settings)) throw std::invalid_argument(*error);
   auto state = std::make_shared<FrameState>();
   state->setup = frame;
   state->settings = settings;
@@ -94,9 +99,9 @@ void RenderPool::run() {
     queue_.pop_front();
     auto frame = frames_.find(job.frame_id);
     if (frame == frames_.end()) continue;  // a frame we were never told about: drop
-    const FrameSetup& setup = frame->second->setup;
+    std::shared_ptr<FrameState> state = frame->second;  // alive while we wait, even if forgotten meanwhile
+    const FrameSetup& setup = state->setup;
     if (job.tile.x + job.tile.w > setup.width || job.tile.y + job.tile.h > setup.height) continue;  // outside the image
-    std::shared_ptr<FrameState> state = frame->second;
     if (!wait_for_pose(lock, setup.pose)) return;
     ++rendering_;
     lock.unlock();

@@ -1,7 +1,7 @@
 #include "scene/accel.h"
 
-#include <algorithm>
 #include <cstdio>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -44,19 +44,17 @@ Accel::Accel(const Scene& scene) : scene_(scene) {
   rtcSetDeviceErrorFunction(device_, device_error, nullptr);
   top_ = rtcNewScene(device_);
 
-  // Which group each triangle belongs to: 0 static, then one per moving node.
-  std::vector<int> node_of(scene.triangles.size(), -2);  // -2: static
-  std::vector<int> nodes;                                 // the moving nodes in part order
+  // Which group each triangle belongs to: 0 static, then one per moving node
+  // (the light group's node is -1), in the order the parts name them.
+  std::vector<uint32_t> group_of(scene.triangles.size(), 0);
+  std::map<int, uint32_t> group_of_node;
   if (scene.animation)
     for (const DynamicPart& part : scene.animation->parts) {
-      if (std::find(nodes.begin(), nodes.end(), part.node) == nodes.end()) nodes.push_back(part.node);
-      for (uint32_t t : part.triangles) node_of[t] = part.node;
+      const uint32_t group = group_of_node.emplace(part.node, uint32_t(1 + group_of_node.size())).first->second;
+      for (uint32_t t : part.triangles) group_of[t] = group;
     }
-  std::vector<std::vector<uint32_t>> triangles(1 + nodes.size());
-  for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
-    const size_t group = node_of[t] == -2 ? 0 : 1 + size_t(std::find(nodes.begin(), nodes.end(), node_of[t]) - nodes.begin());
-    triangles[group].push_back(t);
-  }
+  std::vector<std::vector<uint32_t>> triangles(1 + group_of_node.size());
+  for (uint32_t t = 0; t < scene.triangles.size(); ++t) triangles[group_of[t]].push_back(t);
   add_group(triangles[0], RTC_BUILD_QUALITY_HIGH);
   for (size_t g = 1; g < triangles.size(); ++g) add_group(triangles[g], RTC_BUILD_QUALITY_LOW);
   if (groups_.size() == 1) {
