@@ -24,9 +24,9 @@
 #include "display/interactive_window.h"
 #include "display/window_panel.h"
 #include "frame_plan.h"
-#include "scene/animation.h"
 #include "render/accumulator.h"
 #include "run_modes.h"
+#include "scene/animation.h"
 #include "stats_writer.h"
 
 namespace igi {

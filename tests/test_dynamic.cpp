@@ -18,6 +18,7 @@
 #include "support/image_compare.h"
 #include "support/process.h"
 #include "support/render_fixture.h"
+#include "support/stats_file.h"
 
 namespace igi {
 namespace {
@@ -162,14 +163,18 @@ TEST(Distributed, AnimatedSequenceMatchesOneProcessWithAWorkerKilled) {
   const fs::path file = fs::path(test::output_path("dist-animated.gltf"));
   const nlohmann::json doc = test::animated_document();
   std::ofstream(file) << doc.dump();
-  const std::string out = test::output_path("dist-anim.exr");
+  const std::string out = test::output_path("dist-anim.exr"), stats = test::output_path("dist-anim.jsonl");
   const int frames = 8;
   auto r = test::run(std::string(IGI_MASTER_BINARY) + " --scene " + file.string() +
                      " --method igi --vpl-paths 8 --size 96x72 --tile 16 --worker-threads 2 --workers 2 --frames " +
                      std::to_string(frames) + " --heartbeat-ms 50 --timeout-ms 300 --test-kill-worker-after 12 -o " +
-                     out);
+                     out + " --stats " + stats);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("declared dead"), std::string::npos) << r.output;
+  const nlohmann::json last = test::read_stats(stats)["frames"][frames - 1];
+  int rendering = 0;  // the killed worker may still be listed, with no tiles
+  for (const auto& [name, w] : last["workers"].items())
+    rendering += w["tiles"].get<int>() > 0;
+  EXPECT_EQ(rendering, 1) << "one worker was killed";
   SceneState state(load_gltf(file.string()).scene);
   Image previous;
   for (int i = 0; i < frames; ++i) {
