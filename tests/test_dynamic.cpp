@@ -223,8 +223,11 @@ TEST(Distributed, SceneTimesAndMovedLightsReachTheWorkers) {
   }
 }
 
-// Under Xvfb: the window shows an animation frame by frame, its third frame
-// the very frame a headless run writes third.
+// Under Xvfb: the window shows an animation frame by frame, each frame the
+// very frame a headless run writes at that time. Which frame is third on
+// screen depends on timing (frames planned before a view change are
+// dropped, and the animation's clock runs on), so the screenshot is looked
+// up among the headless frames: it is one of them, and at least frame 2.
 TEST(Window, AnAnimatedSceneIsShownFrameByFrameAsAHeadlessRunWritesIt) {
   if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run not installed";
   const std::string file = test::output_path("window-animated.gltf");
@@ -237,13 +240,21 @@ TEST(Window, AnAnimatedSceneIsShownFrameByFrameAsAHeadlessRunWritesIt) {
                              IGI_MASTER_BINARY + common + " --panel off --screenshot " + shot +
                              " --screenshot-after 3 >/dev/null 2>&1";
   ASSERT_EQ(std::system(window.c_str()), 0) << window;
-  const std::string headless = std::string(IGI_MASTER_BINARY) + common + " --frames 3 -o " +
-                               test::output_path("window-animated-headless.png") + " >/dev/null 2>&1";
+  const int frames = 16;
+  const std::string headless = std::string(IGI_MASTER_BINARY) + common + " --frames " + std::to_string(frames) +
+                               " -o " + test::output_path("window-animated-headless.png") + " >/dev/null 2>&1";
   ASSERT_EQ(std::system(headless.c_str()), 0) << headless;
   const Image shown = read_image(shot);
-  EXPECT_LT(max_abs_error(shown, read_image(test::output_path("window-animated-headless-0002.png"))), 0.01);
-  EXPECT_GT(max_abs_error(shown, read_image(test::output_path("window-animated-headless-0000.png"))), 0.02)
-      << "the third frame differs from the first: the scene moved";
+  int best = -1;
+  double best_error = 1e30;
+  for (int k = 0; k < frames; ++k) {
+    char name[64];
+    std::snprintf(name, sizeof name, "window-animated-headless-%04d.png", k);
+    const double error = max_abs_error(shown, read_image(test::output_path(name)));
+    if (error < best_error) best = k, best_error = error;
+  }
+  EXPECT_LT(best_error, 0.01) << "the window shows frame " << best << " of the headless run, or none";
+  EXPECT_GE(best, 2) << "the third frame shown stands at least two frames into the animation";
 }
 
 }  // namespace
