@@ -4,9 +4,8 @@
 // moving part of scene/animation.h (an animated node, the light group) in an
 // instanced scene of its own that update() rebuilds from the posed vertices.
 // A scene where nothing moves is traced single-level, with no instance.
-// Packets are traced incoherent (Embree's default): on cornell-blob the
-// coherent flag made igi 29 % slower (10.6 against 14.9 Mrays/s, measured
-// with igi-dynamic-bench while it was still set).
+// Packets are traced incoherent (Embree's default): igi's packets replayed
+// with the coherent flag ran at 0.68x on cornell-blob (igi-bench prints it).
 // Every instance has the identity transform: parts are posed in world space,
 // so a posed scene traces exactly as the same scene loaded static, and hits
 // and normals need no instance transform. Between update() calls the

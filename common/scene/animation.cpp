@@ -44,25 +44,28 @@ glm::dvec4 AnimationChannel::sample(double time) const {
   return value(k);
 }
 
-NodeTrs SceneAnimation::local(uint32_t node, double time) const {
-  NodeTrs trs = nodes[node].rest;
+// One pass over the channels, each applied to its node: O(nodes + channels).
+std::vector<NodeTrs> SceneAnimation::locals(double time) const {
+  std::vector<NodeTrs> trs(nodes.size());
+  for (size_t i = 0; i < nodes.size(); ++i) trs[i] = nodes[i].rest;
   for (const AnimationChannel& channel : channels) {
-    if (channel.node != node) continue;
     const glm::dvec4 v = channel.sample(time);
+    NodeTrs& t = trs[channel.node];
     switch (channel.path) {
-      case AnimationPath::Translation: trs.translation = glm::dvec3(v); break;
-      case AnimationPath::Rotation: trs.rotation = as_quat(v); break;
-      case AnimationPath::Scale: trs.scale = glm::dvec3(v); break;
+      case AnimationPath::Translation: t.translation = glm::dvec3(v); break;
+      case AnimationPath::Rotation: t.rotation = as_quat(v); break;
+      case AnimationPath::Scale: t.scale = glm::dvec3(v); break;
     }
   }
   return trs;
 }
 
 std::vector<glm::dmat4> SceneAnimation::world(double time) const {
+  const std::vector<NodeTrs> trs = locals(time);
   std::vector<glm::dmat4> out(nodes.size());
   for (size_t i = 0; i < nodes.size(); ++i) {
     const glm::dmat4& parent = nodes[i].parent >= 0 ? out[size_t(nodes[i].parent)] : nodes[i].parent_world;
-    out[i] = parent * (nodes[i].matrix ? *nodes[i].matrix : trs_matrix(local(uint32_t(i), time)));
+    out[i] = parent * (nodes[i].matrix ? *nodes[i].matrix : trs_matrix(trs[i]));
   }
   return out;
 }
@@ -73,12 +76,19 @@ std::optional<SceneAnimation::OutOfRange> SceneAnimation::check_extent(double ma
   std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end()), times.end());
   auto beyond = [&](glm::dvec3 p) { return !(glm::all(glm::lessThanEqual(glm::abs(p), glm::dvec3(max_coordinate)))); };
+  // A part's vertices lie in the image of its object-space box: when the
+  // box's corners stay in range, so do they (checked at 8 points a key).
+  std::vector<Bounds> boxes(parts.size());
+  for (size_t i = 0; i < parts.size(); ++i)
+    for (const glm::vec3& p : parts[i].object_positions) boxes[i].extend(p);
   for (const double time : times) {
     const std::vector<glm::dmat4> worlds = world(time);
-    for (const DynamicPart& part : parts) {
-      if (part.node < 0) continue;
-      for (const glm::vec3& p : part.object_positions) {
-        const glm::dvec3 q = glm::dvec3(worlds[size_t(part.node)] * glm::dvec4(glm::dvec3(p), 1.0));
+    for (size_t i = 0; i < parts.size(); ++i) {
+      if (parts[i].node < 0 || boxes[i].empty()) continue;
+      for (int corner = 0; corner < 8; ++corner) {
+        const glm::dvec3 p(corner & 1 ? boxes[i].upper.x : boxes[i].lower.x, corner & 2 ? boxes[i].upper.y : boxes[i].lower.y,
+                           corner & 4 ? boxes[i].upper.z : boxes[i].lower.z);
+        const glm::dvec3 q = glm::dvec3(worlds[size_t(parts[i].node)] * glm::dvec4(p, 1.0));
         if (beyond(q)) return OutOfRange{time, q};
       }
     }

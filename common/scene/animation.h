@@ -75,13 +75,13 @@ struct SceneAnimation {
   double duration = 0.0;                   // the last key time of any channel
 
   bool animated() const { return !channels.empty(); }
-  // A moving node's translation, rotation and scale at `time`.
-  NodeTrs local(uint32_t node, double time) const;
+  // Every moving node's own translation, rotation and scale at `time`.
+  std::vector<NodeTrs> locals(double time) const;
   // Every moving node's world transform at `time`.
   std::vector<glm::dmat4> world(double time) const;
-  // The first key time at which a moving vertex or light lands beyond
-  // +-max_coordinate (or not finite), and that vertex's position; none when
-  // every key time keeps them within.
+  // The first key time at which a moving part's bounds or a light reach
+  // beyond +-max_coordinate (or are not finite), and the point that does;
+  // none when every key time keeps them within.
   struct OutOfRange {
     double time;
     glm::dvec3 position;

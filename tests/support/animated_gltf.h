@@ -144,10 +144,11 @@ inline nlohmann::json animated_document() {
 // translation, rotation and scale `animation` gives it then.
 inline nlohmann::json posed_copy(nlohmann::json doc, const SceneAnimation& animation, double time) {
   doc.erase("animations");
+  const std::vector<NodeTrs> locals = animation.locals(time);
   for (uint32_t i = 0; i < animation.nodes.size(); ++i) {
     const std::string& name = animation.nodes[i].name;  // "nodes[k]"
     const size_t k = std::stoul(name.substr(6, name.size() - 7));
-    const NodeTrs trs = animation.local(i, time);
+    const NodeTrs& trs = locals[i];
     nlohmann::json& node = doc["nodes"][k];
     node["translation"] = {trs.translation.x, trs.translation.y, trs.translation.z};
     node["rotation"] = {trs.rotation.x, trs.rotation.y, trs.rotation.z, trs.rotation.w};

@@ -179,7 +179,7 @@ gltf("animation-missing-node.gltf", animated([0, 1, 2], moves, node=7),
 gltf("animation-bad-interpolation.gltf", animated([0, 1, 2], moves, "SMOOTH"),
      "animations[0].samplers[0]: interpolation 'SMOOTH', expected LINEAR, STEP or CUBICSPLINE")
 gltf("animation-out-of-range.gltf", animated([0, 1, 2], [(0, 0, 0), (3e38, 0, 0), (0, 0, 0)]),
-     "animations: at key time 1.000000 a moving vertex or light lands at")
+     "animations: at key time 1.000000 a moving part or light reaches")
 doc = animated([0, 1, 2], moves)
 doc["nodes"][0]["matrix"] = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
 gltf("animation-of-matrix-node.gltf", doc, "nodes[0]: animated, but has a matrix")
