@@ -1,10 +1,12 @@
 // Headless tile-result tests: a master with local or extra workers gives the
 // very image the single-process renderer gives, whatever happens to workers.
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -131,11 +133,15 @@ TEST(Distributed, WorkerKilledMidFrameLosesNothing) {
   const auto& last = s["frames"][39];
   EXPECT_GT(last["reissued_total"].get<int>() + last["duplicated_total"].get<int>(), 0);
   EXPECT_NE(r.output.find("declared dead"), std::string::npos) << r.output;
-  double slowest = 0;
-  for (auto& f : s["frames"]) slowest = std::max(slowest, f["seconds"].get<double>());
-  std::printf("slowest frame with a worker killed: %.0f ms (timeout 300 ms)\n", 1e3 * slowest);
-  // Slack for a loaded 2-core machine: 1 s, 5 s under a sanitizer (2.4 s seen under ASan with ctest -j2).
-  EXPECT_LT(slowest, 2 * 0.3 + 1.0 * test::kSlowdown) << "a kill delays a frame by about a timeout, not more";
+  std::vector<double> seconds;
+  for (auto& f : s["frames"]) seconds.push_back(f["seconds"].get<double>());
+  std::sort(seconds.begin(), seconds.end());
+  const double slowest = seconds.back(), median = seconds[seconds.size() / 2];
+  std::printf("slowest frame with a worker killed: %.0f ms (timeout 300 ms, median frame %.0f ms)\n", 1e3 * slowest,
+              1e3 * median);
+  // A load that slows every frame slows this one too: the slack is 5 median
+  // frames, plus 1 s (5 s under a sanitizer; 2.4 s seen under ASan with ctest -j2).
+  EXPECT_LT(slowest, 2 * 0.3 + 5 * median + 1.0 * test::kSlowdown) << "a kill delays a frame by about a timeout, not more";
 }
 
 // Light importance and bidirectional IR: every worker computes the light
