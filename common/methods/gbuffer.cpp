@@ -37,11 +37,31 @@ float lobe_number(uint32_t seed, int branch, int depth) {
   return float(hash(branch_seed, uint32_t(depth)) >> 8) * 0x1p-24f;
 }
 
+// The chain ends at a non-specular surface: g holds it.
+void end_at_surface(GSample& g, const SurfacePoint& sp, glm::vec3 wo, float depth) {
+  g.surface = sp;
+  g.wo = wo;
+  g.depth = depth;
+  g.has_surface = true;
+}
+
 }  // namespace
 
 int follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, int specular_depth, int branches,
                          GSample* const* out, RayCounts& rays) {
   const Scene& scene = accel.scene();
+  {
+    // Most camera rays end on a surface that is not specular: no branches,
+    // no stack (building it cost more than the rest of this path).
+    const SurfacePoint sp = surface_at(scene, hit, ray.direction);
+    if (!sp.material->is_specular()) {
+      GSample& g = *out[0];
+      g = GSample{};
+      g.emitted += g.throughput * sp.emitted();
+      end_at_surface(g, sp, -ray.direction, 0.0f + hit.t);
+      return 1;
+    }
+  }
   Branch pending[kMaxGlassBranches];
   int pending_count = 0, used = 1;
   pending[pending_count++] = Branch{ray, hit};
@@ -59,10 +79,7 @@ int follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, in
       b.travelled += b.hit.t;
       g.emitted += g.throughput * sp.emitted();
       if (!sp.material->is_specular()) {
-        g.surface = sp;
-        g.wo = -b.ray.direction;
-        g.depth = b.travelled;
-        g.has_surface = true;
+        end_at_surface(g, sp, -b.ray.direction, b.travelled);
         break;
       }
       if (b.depth + 1 >= specular_depth) break;
