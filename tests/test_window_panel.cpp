@@ -27,6 +27,12 @@ TEST(WindowPanel, BoundedSettingsCannotHoldAZeroVplCountOrANegativeClamp) {
   s.aa_samples = 8;  // not a square
   s.compensation_samples = 100000;
   s.filter_normal_cos = 3.0f;
+  s.lightcuts_samples = 5;  // not a square
+  s.lightcuts_spacing = -2;
+  s.importance_paths = -1;
+  s.importance_floor = 2.0f;
+  s.bidir_vpls = kMaxBidirVpls + 1;
+  s.bidir_camera_paths = -3;
   const RenderSettings b = bounded(s);
   EXPECT_EQ(b.paths_per_set, 1);
   EXPECT_EQ(b.clamp, 0.0f);
@@ -34,6 +40,12 @@ TEST(WindowPanel, BoundedSettingsCannotHoldAZeroVplCountOrANegativeClamp) {
   EXPECT_EQ(b.aa_samples, 1) << "a square no larger than the paths per set";
   EXPECT_EQ(b.compensation_samples, kMaxCompensationSamples);
   EXPECT_EQ(b.filter_normal_cos, 1.0f);
+  EXPECT_EQ(b.lightcuts_samples, 1) << "a square";
+  EXPECT_EQ(b.lightcuts_spacing, 0);
+  EXPECT_EQ(b.importance_paths, 0);
+  EXPECT_EQ(b.importance_floor, 1.0f);
+  EXPECT_EQ(b.bidir_vpls, kMaxBidirVpls);
+  EXPECT_EQ(b.bidir_camera_paths, 0);
   EXPECT_FALSE(panel_settings_error(b)) << *panel_settings_error(b);
 }
 

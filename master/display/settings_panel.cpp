@@ -48,6 +48,13 @@ RenderSettings bounded(RenderSettings s) {
   s.filter_depth_ratio = std::clamp(s.filter_depth_ratio, 0.0f, 1.0f);
   s.lightcuts_error = std::clamp(s.lightcuts_error, 0.001f, 0.5f);
   s.lightcuts_max_cut = std::clamp(s.lightcuts_max_cut, 1, lightcuts::kMaxCut);
+  s.lightcuts_spacing = std::clamp(s.lightcuts_spacing, 0, lightcuts::kMaxSpacing);
+  const int gather_side = std::clamp(subpixel_side(s.lightcuts_samples), 1, 8);  // 0: not a square
+  s.lightcuts_samples = gather_side * gather_side;
+  s.importance_paths = std::clamp(s.importance_paths, 0, kMaxImportancePaths);
+  s.importance_floor = std::clamp(s.importance_floor, 0.0f, 1.0f);
+  s.bidir_vpls = std::clamp(s.bidir_vpls, 0, kMaxBidirVpls);
+  s.bidir_camera_paths = std::clamp(s.bidir_camera_paths, 0, kMaxBidirPaths);
   s.glass_branches = std::clamp(s.glass_branches, 1, kMaxGlassBranches);
   s.caustic_photons = std::clamp(s.caustic_photons, 1, 1 << 22);
   s.caustic_radius = std::clamp(s.caustic_radius, photons::kMinCausticRadius, photons::kMaxCausticRadius);
@@ -137,8 +144,17 @@ void SettingsPanel::draw_extras(RenderSettings& s) {
   if (s.method == MethodKind::Lightcuts) {
     ImGui::SliderFloat("lightcuts error", &s.lightcuts_error, 0.001f, 0.5f, "%.3f", ImGuiSliderFlags_Logarithmic | kBound);
     ImGui::DragInt("lightcuts max cut", &s.lightcuts_max_cut, 10.0f, 1, lightcuts::kMaxCut, "%d", kBound);
+    ImGui::SliderInt("reconstruction spacing (0 = off)", &s.lightcuts_spacing, 0, lightcuts::kMaxSpacing, "%d", kBound);
+    int side = std::max(1, int(subpixel_side(s.lightcuts_samples)));
+    if (ImGui::SliderInt("gather points s (s x s)", &side, 1, 8, "%d", kBound)) s.lightcuts_samples = side * side;
   }
   if (s.method == MethodKind::InstantRadiosity || s.method == MethodKind::Igi) {
+    ImGui::DragInt("importance paths (0 = off)", &s.importance_paths, 100.0f, 0, kMaxImportancePaths, "%d", kBound);
+    if (s.importance_paths > 0)
+      ImGui::SliderFloat("importance floor", &s.importance_floor, 0.0f, 1.0f, "%.2f", kBound);
+    ImGui::DragInt("bidir VPLs kept (0 = off)", &s.bidir_vpls, 1.0f, 0, kMaxBidirVpls, "%d", kBound);
+    if (s.bidir_vpls > 0)
+      ImGui::DragInt("bidir camera paths (0 = M)", &s.bidir_camera_paths, 1.0f, 0, kMaxBidirPaths, "%d", kBound);
     ImGui::Checkbox("caustic photons", &s.caustics);
     if (s.caustics) {
       ImGui::DragInt("photon paths", &s.caustic_photons, 100.0f, 1, 1 << 22, "%d", kBound);
