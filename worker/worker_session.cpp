@@ -134,8 +134,20 @@ WorkerSession::Outcome WorkerSession::refused(const std::string& why) const {
 }
 
 std::string WorkerSession::handshake_hint() const {
-  return std::to_string(failed_handshakes_) + " handshakes with the master at " + options_.endpoint + " failed" +
-         (options_.curve ? ": is --master-key the public key of that master's --key?" : ": is it an igi-master?");
+  char last[96];
+  std::snprintf(last, sizeof last, " (the last: zmq event 0x%x, value %u)", unsigned(last_failure_.event),
+                unsigned(last_failure_.value));
+  std::string hint = std::to_string(failed_handshakes_) + " handshakes with the master at " + options_.endpoint +
+                     " failed" + last;
+  if (options_.curve) return hint + ": is --master-key the public key of that master's --key?";
+  hint += ": is it an igi-master?";
+  // A master that requires CURVE names the mismatch in its greeting, but when
+  // it reads our whole greeting in one go (a loaded machine) zmq closes the
+  // connection before that greeting is sent: the handshake just breaks off.
+  if (last_failure_.event == ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL)
+    hint += " If it requires CURVE (it then closes the connection during the handshake, as here), give --master-key "
+            "MASTER.pub and --key WORKER.key";
+  return hint;
 }
 
 // A refused handshake never becomes a message: zmq would retry it for ever.
@@ -160,6 +172,7 @@ std::optional<WorkerSession::Outcome> WorkerSession::check_connection(protocol::
                                           "--key WORKER.key (make keys with igi-keys new NAME)");
     } else {
       ++failed_handshakes_;  // a wrong --master-key, or a relay whose master is down: retried until --give-up
+      last_failure_ = e;
     }
   }
   return std::nullopt;

@@ -103,6 +103,7 @@ class WorkerSession {
   std::vector<protocol::Message> waiting_;   // frames and jobs that came before the scene was ready
   Clock::time_point last_sent_;
   int failed_handshakes_ = 0;  // in a row; reset by a handshake that succeeds
+  protocol::SocketEvent last_failure_;  // the last of them, named in the hint
   uint64_t nonfinite_pixels_ = 0, nonfinite_logged_ = 0;
   int loads_ = 0;  // scenes loaded by this process (logged: a reconnect should not add one)
 };
