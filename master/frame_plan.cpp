@@ -11,7 +11,6 @@ FrameSetup plan_frame(const RenderOptions& render, const std::string& camera_pat
                       bool progressive) {
   FrameSetup f;
   f.frame_id = uint64_t(i);
-  f.camera = scene.camera_or_auto();
   f.width = render.width;
   f.height = render.height;
   f.seed = render.seed;
@@ -32,6 +31,7 @@ FrameSetup plan_frame(const RenderOptions& render, const std::string& camera_pat
   f.pose.light_offset = render.light_offset;
   if (animated)
     f.pose.time = scene_time(render.time, render.time_step, uint64_t(i), render.loop, scene.animation->duration);
+  f.camera = scene_camera(scene, f.pose.time);  // where an animated camera stands then
   if (camera_path == "orbit") {  // turn about the vertical axis through the scene's centre
     const glm::vec3 c = scene.bounds().center();
     const float angle = 0.02f * float(i);

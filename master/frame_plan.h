@@ -10,7 +10,8 @@
 
 namespace igi {
 
-// camera_path: "" (the scene's camera) or "orbit" (a turn of 0.02 rad a frame
+// camera_path: "" (the scene's camera, where an animated camera stands at
+// the frame's time) or "orbit" (a turn of 0.02 rad a frame
 // about the vertical axis through the scene's centre). progressive: frame i is
 // pass i of one estimate, exactly as igi-render's passes: ir/igi take seed + i
 // and sub-pixel position sample_2d(i, 0, seed) (pass 0 included, so the

@@ -47,6 +47,7 @@ class Handover {
     RenderSettings settings;
     uint64_t generation = 0;
     glm::vec3 light_offset{0.0f};  // where the keys moved the lights
+    bool follow_camera = false;    // an animated camera the user has not placed: frames take the animation's
   };
   void publish(const View& view) {
     std::lock_guard lock(mutex_);
@@ -118,7 +119,7 @@ void session_loop(const MasterOptions& o, const Scene& scene, MasterSession& ses
         FrameSetup f = plan_frame(render, o.camera_path, scene, animated ? animation_frame++ : pass++, true);
         f.pose.light_offset = o.render.light_offset + view.light_offset;
         f.frame_id = next_id++;
-        f.camera = view.camera;
+        if (!view.follow_camera) f.camera = view.camera;  // else where the animation puts it at the frame's time
         generation_of_frame[f.frame_id] = generation;
         session.add_frame(f, view.settings);
       }
@@ -153,6 +154,7 @@ std::string act(const PanelActions& a, const PanelOptions& p, CameraController& 
     }
     if (a.load_camera) {
       controller = CameraController(read_camera_file(p.bookmark), speed);
+      controller.hold();  // where the bookmark puts it, not where an animation would
       return "camera loaded from " + p.bookmark;
     }
     if (a.save_image) {
@@ -186,7 +188,8 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
   WindowPanel panel(window.handle(), o.render.settings, o.render.exposure, panel_options(o));
   const float speed = 0.25f * scene.bounds().diagonal();
   const bool animated = scene.animation && scene.animation->animated();
-  CameraController controller(scene.camera_or_auto(), speed);
+  const bool camera_animated = animated && scene.camera && scene.animation->camera_node >= 0;
+  CameraController controller(scene_camera(scene, o.render.time), speed);
   Accumulator accumulator(o.render.width, o.render.height);
   std::optional<StatsWriter> stats;  // the frames the window showed
   if (!o.stats.empty()) stats.emplace(o.stats);
@@ -194,7 +197,11 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
   session.record_tile_sources(true);  // the tile overlay
   Handover handover;
   uint64_t generation = 0, camera_generation = controller.generation();
-  handover.publish({controller.camera(), panel.settings().settings(), generation, controller.light_offset()});
+  auto view = [&] {
+    return Handover::View{controller.camera(), panel.settings().settings(), generation, controller.light_offset(),
+                          camera_animated && !controller.placed()};
+  };
+  handover.publish(view());
   std::thread session_thread([&] { session_loop(o, scene, session, handover); });
   auto last_frame = std::chrono::steady_clock::now(), last_draw = last_frame, wall_start = last_frame;
   const double cpu_start = process_cpu_seconds();
@@ -204,12 +211,14 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
     if (controller.generation() != camera_generation || panel.settings().take_change()) {
       camera_generation = controller.generation();
       accumulator.reset();
-      handover.publish({controller.camera(), panel.settings().settings(), ++generation, controller.light_offset()});
+      ++generation;
+      handover.publish(view());
     }
     bool fresh = false;
     for (Shown& shown : handover.take(std::chrono::milliseconds(5))) {
       if (shown.generation != generation) continue;  // rendered for an old camera or old settings
       if (animated) accumulator.reset();  // each frame stands at its own time
+      if (camera_animated) controller.follow(shown.frame.setup.camera);  // a first move starts from the view shown
       ++shown_frames;
       accumulator.add(shown.frame.pixels->to_image(), 1.0);
       shown.frame.pixels.reset();  // back to the pool

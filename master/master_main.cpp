@@ -15,6 +15,7 @@
 #include "master_session.h"
 #include "protocol/curve.h"
 #include "run_modes.h"
+#include "scene/animation.h"
 #include "scene/builtin_scenes.h"
 #include "scene/load_scene.h"
 #include "camera_bookmark.h"
@@ -70,7 +71,7 @@ void arm_test_hooks(const igi::MasterOptions& o, igi::MasterSession& session, ig
 int run(const igi::MasterOptions& o) {
   const std::optional<CurveSetup> curve = curve_setup(o);  // bad key files stop us before anything is bound
   igi::Scene scene = igi::load_scene(o.render.scene);  // validates it, and gives the camera
-  if (!o.camera_file.empty()) scene.camera = igi::read_camera_file(o.camera_file);  // before anything starts
+  if (!o.camera_file.empty()) igi::place_camera(scene, igi::read_camera_file(o.camera_file));  // before anything starts
   zmq::context_t context(o.io_threads);
   igi::MasterSession session(o, igi::make_scene_source(o.render.scene), context, curve ? &curve->server : nullptr);
   if (curve)

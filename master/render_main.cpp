@@ -8,8 +8,8 @@
 #include "render_options.h"
 #include "render/offline_render.h"
 #include "render/scene_state.h"
-#include "scene/gltf_writer.h"
 #include "scene/animation.h"
+#include "scene/gltf_writer.h"
 #include "scene/load_scene.h"
 
 namespace {
@@ -24,11 +24,11 @@ int run(const igi::RenderOptions& o) {
     return 0;
   }
   igi::FrameSetup frame;
-  frame.camera = scene.camera_or_auto();
   frame.width = o.width;
   frame.height = o.height;
   frame.seed = o.seed;
   if (scene.animation && scene.animation->animated()) frame.pose.time = o.time;
+  frame.camera = igi::scene_camera(scene, frame.pose.time);
   frame.pose.light_offset = o.light_offset;
   igi::SceneState state(std::move(scene));  // as a worker holds it: the same BVH, the same pixels
   state.set_pose(frame.pose);

@@ -37,6 +37,34 @@ TEST(CameraController, LookingTurnsAndResetReturnsHome) {
   EXPECT_NEAR(c.camera().forward.z, -1.0f, 1e-6f);
 }
 
+// An animated camera: followed until the user moves it, from where it was
+// shown; reset goes back to following, lights moved do not stop it.
+TEST(CameraController, FollowsAnAnimatedCameraUntilTheUserPlacesIt) {
+  CameraController c(home(), 1.0f);
+  Camera flying = home();
+  flying.position = glm::vec3(2.0f, 1.0f, 4.0f);
+  const uint64_t g = c.generation();
+  c.move_lights(1, 0, 0, 0.5f);
+  c.follow(flying);
+  EXPECT_EQ(c.camera().position, flying.position);
+  EXPECT_FALSE(c.placed());
+  EXPECT_NE(c.generation(), g) << "the lights moved";
+  const uint64_t followed = c.generation();
+  c.follow(home());
+  EXPECT_EQ(c.generation(), followed) << "following is not a change: the frames carry the animation's camera";
+  c.follow(flying);
+  c.move(1, 0, 0, 0.5f);  // from the view shown
+  EXPECT_TRUE(c.placed());
+  EXPECT_NEAR(c.camera().position.z, 3.5f, 1e-5f);
+  c.follow(home());
+  EXPECT_NEAR(c.camera().position.z, 3.5f, 1e-5f) << "placed: no longer follows";
+  c.reset();
+  EXPECT_FALSE(c.placed());
+  EXPECT_EQ(c.camera().position, flying.position) << "home is where it last followed to";
+  c.hold();
+  EXPECT_TRUE(c.placed());
+}
+
 TEST(CameraController, NoInputChangesNothing) {
   CameraController c(home(), 1.0f);
   const uint64_t g = c.generation();

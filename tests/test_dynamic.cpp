@@ -116,6 +116,40 @@ TEST(Animation, SceneAnimatedToATimeEqualsTheSamePoseLoadedStaticBitForBit) {
   EXPECT_FALSE(test::images_identical("animated-moves", early, render(state, 1.2)));
 }
 
+bool same_camera(const Camera& a, const Camera& b) {
+  return std::memcmp(&a.position, &b.position, sizeof a.position) == 0 &&
+         std::memcmp(&a.forward, &b.forward, sizeof a.forward) == 0 && std::memcmp(&a.up, &b.up, sizeof a.up) == 0 &&
+         a.vfov == b.vfov;
+}
+
+// An animated camera stands, at each time, where the statically posed file
+// puts it (the loader's arithmetic), keeps its field of view, and moves; a
+// camera the user places (a bookmark) is not moved by the animation.
+TEST(Animation, AnimatedCameraStandsWhereThePosedFilePutsIt) {
+  const nlohmann::json doc = test::animated_document(true);
+  LoadedScene animated = load_json(doc, "camera.gltf");
+  ASSERT_TRUE(animated.scene.animation && animated.scene.camera);
+  EXPECT_TRUE(animated.warnings.empty()) << animated.warnings.front();
+  EXPECT_GE(animated.scene.animation->camera_node, 0);
+  for (const double t : {0.0, 0.45, 1.3, 2.0, 5.0}) {
+    SCOPED_TRACE("t = " + std::to_string(t));
+    const LoadedScene still = load_json(test::posed_copy(doc, *animated.scene.animation, t), "posed-camera.gltf");
+    ASSERT_TRUE(still.scene.camera);
+    EXPECT_TRUE(same_camera(scene_camera(animated.scene, t), *still.scene.camera));
+    EXPECT_EQ(scene_camera(animated.scene, t).vfov, 0.9f);
+  }
+  const Camera early = scene_camera(animated.scene, 0.2), late = scene_camera(animated.scene, 1.7);
+  EXPECT_GT(glm::length(late.position - early.position), 0.5f) << "the camera flies";
+  EXPECT_GT(glm::length(late.forward - early.forward), 0.1f) << "and turns";
+  // The mover's camera-less document: its camera stays.
+  const LoadedScene fixed = load_json(test::animated_document(), "fixed.gltf");
+  EXPECT_TRUE(same_camera(scene_camera(fixed.scene, 0.0), scene_camera(fixed.scene, 1.7)));
+  Scene placed = animated.scene;
+  place_camera(placed, early);
+  EXPECT_TRUE(same_camera(scene_camera(placed, 1.7), early)) << "a placed camera does not follow the animation";
+  EXPECT_TRUE(same_camera(scene_camera(animated.scene, 1.7), late)) << "the loaded scene's animation is not changed";
+}
+
 TEST(Animation, PosingTouchesOnlyWhatMovesAndComesBack) {
   SceneState state(make_cornell_blob_moving(2000));
   const std::vector<glm::vec3> rest = state.scene().positions;
@@ -197,7 +231,7 @@ TEST(Distributed, AnimatedSequenceMatchesOneProcessWithAWorkerKilled) {
 // lights; igi-render --time renders one frame at a time. All as one process.
 TEST(Distributed, SceneTimesAndMovedLightsReachTheWorkers) {
   const std::string file = test::output_path("dist-times.gltf");
-  std::ofstream(file) << test::animated_document().dump();
+  std::ofstream(file) << test::animated_document(true).dump();  // the camera flies too
   const std::string out = test::output_path("dist-times.exr"), one = test::output_path("render-at-time.exr");
   const std::string common = " --scene " + file + " --method igi --vpl-paths 8 --size 96x72 --move-lights 0.2,-0.3,0.1";
   auto r = test::run(std::string(IGI_MASTER_BINARY) + common +
@@ -211,6 +245,7 @@ TEST(Distributed, SceneTimesAndMovedLightsReachTheWorkers) {
     FrameSetup f = test::camera_frame(state.scene(), 96, 72, 1);
     f.pose = ScenePose{scene_time(1.9, 0.1, uint64_t(i), true, 2.0), glm::vec3(0.2f, -0.3f, 0.1f)};
     EXPECT_NEAR(f.pose.time, times[i], 1e-12);
+    f.camera = scene_camera(state.scene(), f.pose.time);
     state.set_pose(f.pose);
     RenderSettings s;
     s.method = MethodKind::Igi;
@@ -224,14 +259,15 @@ TEST(Distributed, SceneTimesAndMovedLightsReachTheWorkers) {
 }
 
 // Under Xvfb: the window shows an animation frame by frame, each frame the
-// very frame a headless run writes at that time. Which frame is third on
+// very frame a headless run writes at that time, from where the flying
+// camera stands then (the user has not moved it). Which frame is third on
 // screen depends on timing (frames planned before a view change are
 // dropped, and the animation's clock runs on), so the screenshot is looked
 // up among the headless frames: it is one of them, and at least frame 2.
 TEST(Window, AnAnimatedSceneIsShownFrameByFrameAsAHeadlessRunWritesIt) {
   if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run not installed";
   const std::string file = test::output_path("window-animated.gltf");
-  std::ofstream(file) << test::animated_document().dump();
+  std::ofstream(file) << test::animated_document(true).dump();  // the window follows the flying camera
   const std::string common = " --workers 2 --worker-threads 1 --scene " + file +
                              " --method igi --vpl-paths 8 --size 160x120 --quiet";
   const std::string shot = test::output_path("window-animated.png");

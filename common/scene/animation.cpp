@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 #include <glm/gtc/quaternion.hpp>
@@ -76,6 +77,12 @@ std::optional<SceneAnimation::OutOfRange> SceneAnimation::check_extent(double ma
   std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end()), times.end());
   auto beyond = [&](glm::dvec3 p) { return !(glm::all(glm::lessThanEqual(glm::abs(p), glm::dvec3(max_coordinate)))); };
+  auto reaches = [max_coordinate](const char* what, glm::dvec3 p) {
+    char text[160];
+    std::snprintf(text, sizeof text, "%s reaches (%f, %f, %f), expected coordinates within +-%.0fe15 m", what, p.x,
+                  p.y, p.z, max_coordinate / 1e15);
+    return std::string(text);
+  };
   // A part's vertices lie in the image of its object-space box: when the
   // box's corners stay in range, so do they (checked at 8 points a key).
   std::vector<Bounds> boxes(parts.size());
@@ -89,13 +96,39 @@ std::optional<SceneAnimation::OutOfRange> SceneAnimation::check_extent(double ma
         const glm::dvec3 p(corner & 1 ? boxes[i].upper.x : boxes[i].lower.x, corner & 2 ? boxes[i].upper.y : boxes[i].lower.y,
                            corner & 4 ? boxes[i].upper.z : boxes[i].lower.z);
         const glm::dvec3 q = glm::dvec3(worlds[size_t(parts[i].node)] * glm::dvec4(p, 1.0));
-        if (beyond(q)) return OutOfRange{time, q};
+        if (beyond(q)) return OutOfRange{time, reaches("a moving part or light", q)};
       }
     }
     for (const int node : light_node)
-      if (node >= 0 && beyond(glm::dvec3(worlds[size_t(node)][3]))) return OutOfRange{time, glm::dvec3(worlds[size_t(node)][3])};
+      if (node >= 0 && beyond(glm::dvec3(worlds[size_t(node)][3])))
+        return OutOfRange{time, reaches("a moving part or light", glm::dvec3(worlds[size_t(node)][3]))};
+    if (camera_node >= 0) {
+      const glm::dmat4& w = worlds[size_t(camera_node)];
+      if (beyond(glm::dvec3(w[3]))) return OutOfRange{time, reaches("the camera", glm::dvec3(w[3]))};
+      if (!camera_at_node(w, 1.0))
+        return OutOfRange{time, "the camera's view collapses: its node, or one above it, is scaled to nothing"};
+    }
   }
   return std::nullopt;
+}
+
+Camera SceneAnimation::camera(double time, const Camera& rest) const {
+  if (camera_node < 0) return rest;
+  return camera_at_node(world(time)[size_t(camera_node)], rest.vfov).value_or(rest);
+}
+
+Camera scene_camera(const Scene& scene, double time) {
+  if (scene.camera && scene.animation) return scene.animation->camera(time, *scene.camera);
+  return scene.camera_or_auto();
+}
+
+void place_camera(Scene& scene, const Camera& camera) {
+  scene.camera = camera;
+  if (scene.animation && scene.animation->camera_node >= 0) {
+    auto animation = std::make_shared<SceneAnimation>(*scene.animation);
+    animation->camera_node = -1;
+    scene.animation = std::move(animation);
+  }
 }
 
 namespace {

@@ -72,6 +72,7 @@ struct SceneAnimation {
   std::vector<DynamicPart> parts;
   std::vector<PunctualLight> rest_lights;  // Scene::lights as loaded
   std::vector<int> light_node;             // per light: index into nodes, or -1 (static)
+  int camera_node = -1;                    // the scene camera's node (index into nodes), or -1: it stays
   double duration = 0.0;                   // the last key time of any channel
 
   bool animated() const { return !channels.empty(); }
@@ -79,15 +80,27 @@ struct SceneAnimation {
   std::vector<NodeTrs> locals(double time) const;
   // Every moving node's world transform at `time`.
   std::vector<glm::dmat4> world(double time) const;
-  // The first key time at which a moving part's bounds or a light reach
-  // beyond +-max_coordinate (or are not finite), and the point that does;
-  // none when every key time keeps them within.
+  // The scene camera at `time` (`rest` is the camera as loaded, whose field
+  // of view it keeps): where its node stands then, by the loader's
+  // arithmetic; `rest` where the pose collapses the view between key times.
+  Camera camera(double time, const Camera& rest) const;
+  // The first key time at which a moving part's bounds, a light or the
+  // camera reach beyond +-max_coordinate (or are not finite), or the
+  // camera's view collapses; none when every key time keeps them within.
   struct OutOfRange {
     double time;
-    glm::dvec3 position;
+    std::string what;  // "a moving part or light reaches (x, y, z), expected coordinates within ...", or the camera's
   };
   std::optional<OutOfRange> check_extent(double max_coordinate) const;
 };
+
+// The camera a frame at `time` starts from: the scene's camera where its
+// node stands then, or the automatic camera of a scene without one.
+Camera scene_camera(const Scene& scene, double time);
+
+// Makes `camera` the scene's camera, which no animation moves from then on
+// (a camera the user gave, such as a bookmark file).
+void place_camera(Scene& scene, const Camera& camera);
 
 // Puts the scene's parts and lights where `pose` says. Touches only what
 // moves. A scene without an animation and without area lights is left as is.

@@ -225,12 +225,9 @@ std::shared_ptr<const SceneAnimation> make_animation(std::vector<AnimationChanne
   animation->parts = std::move(parts);
   animation->rest_lights = scene.lights;
   animation->light_node = std::move(nodes.light_pose_node);
-  if (const auto out = animation->check_extent(kMaxCoordinate)) {
-    const glm::dvec3 p = out->position;
-    diag.fail("animations", "at key time " + std::to_string(out->time) + " a moving part or light reaches (" +
-                                std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
-                                "), expected coordinates within +-1e15 m");
-  }
+  animation->camera_node = nodes.camera_pose_node;
+  if (const auto out = animation->check_extent(kMaxCoordinate))
+    diag.fail("animations", "at key time " + std::to_string(out->time) + " " + out->what);
   return animation;
 }
 

@@ -82,7 +82,7 @@ class NodeWalker {
   int add_pose_node(const Pending& pending, const tinygltf::Node& node, const std::string& name);
   void add_light(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world, int pose_node);
   std::optional<PunctualLight> to_punctual(const tinygltf::Light& light, size_t index);
-  void add_camera(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world);
+  void add_camera(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world, int pose_node);
 
   const tinygltf::Model& model_;
   const std::vector<bool>& animated_;
@@ -124,12 +124,7 @@ void NodeWalker::visit(const Pending& pending, std::vector<Pending>& stack) {
                            std::to_string(model_.meshes.size()) + ")");
     out_.instances.push_back({node.mesh, world, pose_node});
   }
-  if (node.camera >= 0) {
-    if (pose_node >= 0)
-      diag_.warn_once("camera animation", "camera animation ignored: the camera stays where the rest pose puts it (" +
-                                              name + ")");
-    add_camera(node, name, world);
-  }
+  if (node.camera >= 0) add_camera(node, name, world, pose_node);
   add_light(node, name, world, pose_node);
   for (auto it = node.children.rbegin(); it != node.children.rend(); ++it)
     stack.push_back({*it, pending.node, world, pose_node});
@@ -211,7 +206,8 @@ std::optional<PunctualLight> NodeWalker::to_punctual(const tinygltf::Light& ligh
   return out;
 }
 
-void NodeWalker::add_camera(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world) {
+void NodeWalker::add_camera(const tinygltf::Node& node, const std::string& name, const glm::dmat4& world,
+                            int pose_node) {
   if (size_t(node.camera) >= model_.cameras.size())
     diag_.fail(name, "camera " + std::to_string(node.camera) + " does not exist (the file has " +
                          std::to_string(model_.cameras.size()) + ")");
@@ -232,21 +228,13 @@ void NodeWalker::add_camera(const tinygltf::Node& node, const std::string& name,
   const double yfov = camera.perspective.yfov;
   if (!(yfov > 0.0 && yfov < std::numbers::pi))
     diag_.fail(camera_name, "yfov " + std::to_string(yfov) + ", expected in (0, pi)");
-  const glm::dvec3 forward = world_axis(world, glm::dvec3(0.0, 0.0, -1.0));
-  const glm::dvec3 up = world_axis(world, glm::dvec3(0.0, 1.0, 0.0));
-  // Re-orthogonalise: a sheared or non-uniformly scaled parent may tilt up.
-  const glm::dvec3 true_up = up - glm::dot(up, forward) * forward;
-  if (forward == glm::dvec3(0.0) || glm::length(true_up) < 1e-9)
-    diag_.fail(name, "the transform collapses the view of " + camera_name);
-  Camera out;
-  out.position = world_point(world, glm::dvec3(0.0));
-  if (!in_range(out.position))
-    diag_.fail(name, "the transform puts " + camera_name + " at " + show(out.position) +
+  const std::optional<Camera> out = camera_at_node(world, yfov);
+  if (!out) diag_.fail(name, "the transform collapses the view of " + camera_name);
+  if (!in_range(out->position))
+    diag_.fail(name, "the transform puts " + camera_name + " at " + show(out->position) +
                          ", expected coordinates within +-1e15 m");
-  out.forward = glm::vec3(forward);
-  out.up = glm::vec3(glm::normalize(true_up));
-  out.vfov = float(yfov);
   out_.camera = out;
+  out_.camera_pose_node = pose_node;
 }
 
 }  // namespace

@@ -31,6 +31,7 @@ struct FlattenedNodes {
   std::vector<MeshInstance> instances;
   std::vector<PunctualLight> lights;  // KHR_lights_punctual, radiometric
   std::optional<Camera> camera;       // first perspective camera, if any
+  int camera_pose_node = -1;          // the moving node it follows (pose_nodes), or -1: static
   std::string scene_name;             // the walked scene's name, may be empty
   // The nodes that move: those `animated` marks and every node below one,
   // parents first; and which of them each light follows (-1: static).

@@ -4,10 +4,13 @@
 // at a time, so both round identically and a posed frame equals the same
 // pose loaded from a static file, bit for bit.
 #include <cmath>
+#include <optional>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
+
+#include "scene/camera.h"
 
 namespace igi {
 
@@ -37,6 +40,22 @@ inline glm::dvec3 world_axis(const glm::dmat4& world, glm::dvec3 local) {
   const glm::dvec3 axis = glm::dmat3(world) * local;
   const double length = glm::length(axis);
   return length > 0.0 && std::isfinite(length) ? axis / length : glm::dvec3(0.0);
+}
+
+// A glTF perspective camera at a node: it looks down the node's -z with its
+// +y up, re-orthogonalised (a sheared or non-uniformly scaled parent may tilt
+// up). None when the transform collapses the view.
+inline std::optional<Camera> camera_at_node(const glm::dmat4& world, double yfov) {
+  const glm::dvec3 forward = world_axis(world, glm::dvec3(0.0, 0.0, -1.0));
+  const glm::dvec3 up = world_axis(world, glm::dvec3(0.0, 1.0, 0.0));
+  const glm::dvec3 true_up = up - glm::dot(up, forward) * forward;
+  if (forward == glm::dvec3(0.0) || !(glm::length(true_up) >= 1e-9)) return std::nullopt;
+  Camera out;
+  out.position = world_point(world, glm::dvec3(0.0));
+  out.forward = glm::vec3(forward);
+  out.up = glm::vec3(glm::normalize(true_up));
+  out.vfov = float(yfov);
+  return out;
 }
 
 }  // namespace igi

@@ -12,6 +12,14 @@ CameraController::CameraController(const Camera& home, float speed) : home_(home
   right_ = glm::normalize(glm::cross(home_forward_, home.up));
 }
 
+void CameraController::follow(const Camera& c) {
+  if (placed_) return;
+  home_ = camera_ = c;
+  yaw_ = pitch_ = 0.0f;
+  home_forward_ = glm::normalize(c.forward);
+  right_ = glm::normalize(glm::cross(home_forward_, c.up));
+}
+
 void CameraController::look(float dx, float dy) {
   if (dx == 0.0f && dy == 0.0f) return;
   yaw_ -= 0.004f * dx;
@@ -24,6 +32,7 @@ void CameraController::move(float forward, float right, float up, float seconds)
   const glm::vec3 f = glm::normalize(camera_.forward);
   const glm::vec3 r = glm::normalize(glm::cross(f, camera_.up));
   camera_.position += speed_ * seconds * (forward * f + right * r + up * glm::normalize(camera_.up));
+  placed_ = true;
   ++generation_;
 }
 
@@ -36,6 +45,7 @@ void CameraController::move_lights(float x, float y, float z, float seconds) {
 void CameraController::reset() {
   camera_ = home_;
   yaw_ = pitch_ = 0.0f;
+  placed_ = false;
   ++generation_;
 }
 
@@ -46,6 +56,7 @@ void CameraController::update() {
   glm::vec3 right = glm::vec3(turn * glm::vec4(right_, 0.0f));
   turn = glm::rotate(glm::mat4(1.0f), pitch_, right) * turn;
   camera_.forward = glm::normalize(glm::vec3(turn * glm::vec4(home_forward_, 0.0f)));
+  placed_ = true;
   ++generation_;
 }
 

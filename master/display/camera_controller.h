@@ -15,7 +15,17 @@ class CameraController {
   void look(float dx, float dy);
   // Axes in [-1, 1] (forward, right, up), held for `seconds`.
   void move(float forward, float right, float up, float seconds);
+  // Back home (where the last follow() put it, or the camera it started at).
   void reset();
+  // An animated camera: home and camera become `c`, unless the user has
+  // placed the camera since the start or the last reset(). Not a change
+  // (no new generation): the frames that follow the animation carry it.
+  void follow(const Camera& c);
+  // Whether the user placed the camera (look(), move(), hold()) since the
+  // start or the last reset(): then it no longer follows an animation.
+  bool placed() const { return placed_; }
+  // Placed where it is (a camera loaded from a bookmark).
+  void hold() { placed_ = true; }
   // Axes in [-1, 1] along world x, y, z, held for `seconds`.
   void move_lights(float x, float y, float z, float seconds);
   glm::vec3 light_offset() const { return light_offset_; }
@@ -30,6 +40,7 @@ class CameraController {
   glm::vec3 home_forward_, right_;
   glm::vec3 light_offset_{0.0f};
   uint64_t generation_ = 0;
+  bool placed_ = false;
 };
 
 }  // namespace igi

@@ -203,7 +203,7 @@ std::vector<Seed> scene_seeds(const std::string& scratch_dir) {
     seeds.push_back({glb.filename().string(), read_all(glb)});
     seeds.push_back({gltf.filename().string(), embedded_gltf(gltf)});
   }
-  const std::string animated = test::animated_document().dump();
+  const std::string animated = test::animated_document(true).dump();  // the camera flies too
   seeds.push_back({"animated.gltf", std::vector<uint8_t>(animated.begin(), animated.end())});
   return seeds;
 }

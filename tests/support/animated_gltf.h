@@ -2,8 +2,8 @@
 // A small animated glTF for the dynamic-scene tests and the fuzzers' seeds:
 // a floor and an emissive ceiling quad (static), a cube node "mover" that
 // translates (LINEAR) and turns (CUBICSPLINE), a smaller cube child that
-// scales (STEP), a point lamp riding on the mover, and a camera. All data in
-// one embedded buffer. posed_copy() writes the same scene with the animation
+// scales (STEP), a point lamp riding on the mover, and a camera (which can
+// fly too). All data in one embedded buffer. posed_copy() writes the same scene with the animation
 // replaced by the nodes' translation, rotation and scale at a time, as a
 // static file (nlohmann writes doubles that read back exactly).
 #include <cstdint>
@@ -102,7 +102,9 @@ inline nlohmann::json quad_primitive(GltfBuilder& b, float y, float half, bool d
   return {{"attributes", {{"POSITION", position}}}, {"indices", indices}, {"material", material}};
 }
 
-inline nlohmann::json animated_document() {
+// With camera_moves, the camera node flies too (translation and rotation,
+// LINEAR): a camera that follows the animation.
+inline nlohmann::json animated_document(bool camera_moves = false) {
   GltfBuilder b;
   nlohmann::json doc;
   doc["asset"] = {{"version", "2.0"}};
@@ -136,6 +138,15 @@ inline nlohmann::json animated_document() {
                         {"channels", {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}},
                                       {{"sampler", 1}, {"target", {{"node", 1}, {"path", "rotation"}}}},
                                       {{"sampler", 2}, {"target", {{"node", 2}, {"path", "scale"}}}}}}}};
+  if (camera_moves) {
+    const int flies = b.floats({0.3f, 1.2f, 3.5f, -0.6f, 1.5f, 3.0f}, 3);
+    const int looks = b.floats({-0.12f, 0.0f, 0.0f, 0.9928f, -0.1f, 0.2f, 0.02f, 0.9744f}, 4);
+    nlohmann::json& animation = doc["animations"][0];
+    animation["samplers"].push_back({{"input", times2}, {"output", flies}, {"interpolation", "LINEAR"}});
+    animation["samplers"].push_back({{"input", times2}, {"output", looks}, {"interpolation", "LINEAR"}});
+    animation["channels"].push_back({{"sampler", 3}, {"target", {{"node", 5}, {"path", "translation"}}}});
+    animation["channels"].push_back({{"sampler", 4}, {"target", {{"node", 5}, {"path", "rotation"}}}});
+  }
   b.finish(doc);
   return doc;
 }

@@ -184,6 +184,19 @@ doc = animated([0, 1, 2], moves)
 doc["nodes"][0]["matrix"] = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
 gltf("animation-of-matrix-node.gltf", doc, "nodes[0]: animated, but has a matrix")
 
+def animated_camera(values, path):
+    doc = animated([0, 1, 2], values, node=1, path=path)
+    doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}]
+    doc["nodes"].append({"camera": 0, "translation": [0, 0, 3]})
+    doc["scenes"][0]["nodes"].append(1)
+    return doc
+
+gltf("animation-camera-out-of-range.gltf",
+     animated_camera([(0, 0, 3), (0, 3e38, 3), (0, 0, 3)], "translation"),
+     "animations: at key time 1.000000 the camera reaches (0.000000, 3000000005")
+gltf("animation-camera-collapses.gltf", animated_camera([(1, 1, 1), (0, 0, 0), (1, 1, 1)], "scale"),
+     "animations: at key time 1.000000 the camera's view collapses")
+
 with open("MANIFEST", "w") as f:
     f.write("# file<TAB>substring igi-render's error must contain (written by make_bad_scenes.py)\n")
     for name, expected in manifest:
