@@ -103,11 +103,13 @@ TEST(Distributed, LightcutsWithReconstructionCutsMatchTheSingleProcessRenderBitF
   EXPECT_TRUE(test::images_identical("dist-lightcuts", read_image(out), p.render(s, kWidth, kHeight, 1, 1)));
 }
 
-// Forced copies go to the other worker as each job goes out; four frames, so
-// a second worker that starts late under load still gets its 40 copies.
+// Forced copies go to the other worker as each job goes out. The run waits
+// for both workers (--min-workers): under load the second one could join
+// after a short run had ended, and no copy would go out (seen in CI).
 TEST(Distributed, DuplicatedTilesGiveTheSameImage) {
   const std::string out = test::output_path("dist-dup.exr"), stats = test::output_path("dist-dup.json");
-  auto r = test::run(master("--workers 2 --frames 4 --credits 1 --test-force-duplicates 40 -o " + out + " --stats " + stats));
+  auto r = test::run(master("--workers 2 --min-workers 2 --frames 4 --credits 1 --test-force-duplicates 40 -o " + out +
+                            " --stats " + stats));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (int f = 0; f < 4; ++f) {
     const std::string name = "dist-dup-000" + std::to_string(f);
