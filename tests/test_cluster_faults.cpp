@@ -111,7 +111,7 @@ TEST(ClusterFaults, AWorkerThatCannotLoadTheSceneLeavesWithStatus6AndTheFramesCo
 TEST(ClusterFaults, AStoppedLocalWorkerDoesNotHoldUpTheMastersExit) {
   const auto start = Clock::now();
   auto r = test::run(std::string(IGI_MASTER_BINARY) +
-                         " --workers 2 --worker-threads 1 --scene cornell --method igi --vpl-paths 4 --size 64x48 "
+                         " --workers 2 --min-workers 2 --worker-threads 1 --scene cornell --method igi --vpl-paths 4 --size 64x48 "
                          "--tile 16 --frames 30 --heartbeat-ms 50 --timeout-ms 300 --test-stop-worker-after 20 --quiet -o " +
                          test::output_path("stopped.exr"),
                      int(60 * test::kSlowdown));

@@ -120,7 +120,7 @@ TEST(Distributed, DuplicatedTilesGiveTheSameImage) {
 
 TEST(Distributed, WorkerKilledMidFrameLosesNothing) {
   const std::string out = test::output_path("dist-kill.exr"), stats = test::output_path("dist-kill.json");
-  auto r = test::run(master("--workers 2 --frames 40 --heartbeat-ms 50 --timeout-ms 300 --test-kill-worker-after 30 -o " +
+  auto r = test::run(master("--workers 2 --min-workers 2 --frames 40 --heartbeat-ms 50 --timeout-ms 300 --test-kill-worker-after 30 -o " +
                             out + " --stats " + stats));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (int f = 0; f < 40; f += 3) {
@@ -153,7 +153,7 @@ TEST(Distributed, LightImportanceAndBidirectionalMatchOneProcessWithAWorkerKille
   const std::string out = test::output_path("dist-importance.exr"), stats = test::output_path("dist-importance.json");
   const std::string options = "--aa 4 --clamp 0.05 --importance 256 --bidir 12 ";
   const int frames = 6;
-  auto r = test::run(master("--workers 2 --frames " + std::to_string(frames) +
+  auto r = test::run(master("--workers 2 --min-workers 2 --frames " + std::to_string(frames) +
                             " --heartbeat-ms 50 --timeout-ms 300 --test-kill-worker-after 20 " + options + "-o " + out +
                             " --stats " + stats, "rooms"));
   ASSERT_EQ(r.exit_code, 0) << r.output;

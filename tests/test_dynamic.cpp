@@ -200,7 +200,7 @@ TEST(Distributed, AnimatedSequenceMatchesOneProcessWithAWorkerKilled) {
   const std::string out = test::output_path("dist-anim.exr"), stats = test::output_path("dist-anim.jsonl");
   const int frames = 8;
   auto r = test::run(std::string(IGI_MASTER_BINARY) + " --scene " + file.string() +
-                     " --method igi --vpl-paths 8 --size 96x72 --tile 16 --worker-threads 2 --workers 2 --frames " +
+                     " --method igi --vpl-paths 8 --size 96x72 --tile 16 --worker-threads 2 --workers 2 --min-workers 2 --frames " +
                      std::to_string(frames) + " --heartbeat-ms 50 --timeout-ms 300 --test-kill-worker-after 12 -o " +
                      out + " --stats " + stats);
   ASSERT_EQ(r.exit_code, 0) << r.output;
