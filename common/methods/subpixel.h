@@ -43,7 +43,8 @@ inline int group_of_subsample(int x, int y, int k, int samples) {
   return (k + subpixel_rotation(x, y, samples)) % samples;
 }
 inline int subsample_of_group(int x, int y, int group, int samples) {
-  return (group - subpixel_rotation(x, y, samples) + samples) % samples;
+  const int k = group - subpixel_rotation(x, y, samples);  // in (-samples, samples): no second division
+  return k < 0 ? k + samples : k;
 }
 
 }  // namespace igi
