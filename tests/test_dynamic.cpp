@@ -160,7 +160,9 @@ TEST(Animation, PosingTouchesOnlyWhatMovesAndComesBack) {
     for (uint32_t v : part.vertices) moving[v] = true;
   size_t moved = 0;
   for (size_t v = 0; v < rest.size(); ++v) {
-    if (!moving[v]) EXPECT_EQ(state.scene().positions[v], rest[v]) << "static vertex " << v << " moved";
+    if (!moving[v]) {
+      EXPECT_EQ(state.scene().positions[v], rest[v]) << "static vertex " << v << " moved";
+    }
     moved += state.scene().positions[v] != rest[v];
   }
   EXPECT_GT(moved, 1000u) << "the blob moved";
@@ -222,7 +224,9 @@ TEST(Distributed, AnimatedSequenceMatchesOneProcessWithAWorkerKilled) {
     s.paths_per_set = 8;
     const Image one = render_offline(state.context(), s, f, 1, FrameOptions{}).image;
     EXPECT_TRUE(test::images_identical(name, read_image(test::output_path(name)), one));
-    if (i > 0) EXPECT_FALSE(test::images_identical(std::string("moves-") + name, previous, one));
+    if (i > 0) {
+      EXPECT_FALSE(test::images_identical(std::string("moves-") + name, previous, one));
+    }
     previous = one;
   }
 }
@@ -254,7 +258,9 @@ TEST(Distributed, SceneTimesAndMovedLightsReachTheWorkers) {
     char name[64];
     std::snprintf(name, sizeof name, "dist-times-%04d.exr", i);
     EXPECT_TRUE(test::images_identical(name, read_image(test::output_path(name)), expected));
-    if (i == 0) EXPECT_TRUE(test::images_identical("render-at-time", read_image(one), expected));
+    if (i == 0) {
+      EXPECT_TRUE(test::images_identical("render-at-time", read_image(one), expected));
+    }
   }
 }
 

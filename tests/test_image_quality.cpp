@@ -237,7 +237,7 @@ bool reflects_the_light(const test::Prepared& p, const GSample& g) {
 // Specks: floor pixels, away from the light's reflection, brighter than 5x
 // the median of their 5 x 5 neighbourhood and than 5 % of the image's mean
 // (no near-black noise).
-int count_specks(const Image& image, const std::vector<GSample>& visible, const std::vector<bool>& judged) {
+int count_specks(const Image& image, const std::vector<bool>& judged) {
   const double floor_level = 0.05 * luminance(image.mean());
   int specks = 0;
   for (int y = 2; y < image.height - 2; ++y)
@@ -275,7 +275,7 @@ TEST(Glossy, SharpFloorShowsNoVplSpecks) {
     s.glossy_threshold = threshold;
     s.glossy_rays = rays;
     int n = 0;
-    for (uint32_t seed : {1u, 2u, 3u}) n += count_specks(p.render(s, w, h, 1, seed), visible, judged);
+    for (uint32_t seed : {1u, 2u, 3u}) n += count_specks(p.render(s, w, h, 1, seed), judged);
     return n;
   };
   const int vpls = specks(0.0f, 16, 1), more_vpls = specks(0.0f, 64, 1);  // the old way: VPLs shade the floor

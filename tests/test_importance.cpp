@@ -150,7 +150,9 @@ TEST(Bidirectional, EachSetKeepsItsDrawsInItsGroups) {
     EXPECT_LE(size, 16u) << "set " << k;
     for (int g = 0; g < 4; ++g) {
       EXPECT_LE(sets.group_first(k, g), sets.group_end(k, g)) << "set " << k << " group " << g;
-      if (g == 0) EXPECT_EQ(sets.group_first(k, g), sets.set_begin[size_t(k)]);
+      if (g == 0) {
+        EXPECT_EQ(sets.group_first(k, g), sets.set_begin[size_t(k)]);
+      }
     }
   }
   for (const Vpl& v : sets.vpls) {

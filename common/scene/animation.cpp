@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <utility>
 
 #include <glm/gtc/quaternion.hpp>
@@ -77,12 +76,6 @@ std::optional<SceneAnimation::OutOfRange> SceneAnimation::check_extent(double ma
   std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end()), times.end());
   auto beyond = [&](glm::dvec3 p) { return !(glm::all(glm::lessThanEqual(glm::abs(p), glm::dvec3(max_coordinate)))); };
-  auto reaches = [max_coordinate](const char* what, glm::dvec3 p) {
-    char text[160];
-    std::snprintf(text, sizeof text, "%s reaches (%f, %f, %f), expected coordinates within +-%.0fe15 m", what, p.x,
-                  p.y, p.z, max_coordinate / 1e15);
-    return std::string(text);
-  };
   // A part's vertices lie in the image of its object-space box: when the
   // box's corners stay in range, so do they (checked at 8 points a key).
   std::vector<Bounds> boxes(parts.size());
@@ -96,17 +89,17 @@ std::optional<SceneAnimation::OutOfRange> SceneAnimation::check_extent(double ma
         const glm::dvec3 p(corner & 1 ? boxes[i].upper.x : boxes[i].lower.x, corner & 2 ? boxes[i].upper.y : boxes[i].lower.y,
                            corner & 4 ? boxes[i].upper.z : boxes[i].lower.z);
         const glm::dvec3 q = glm::dvec3(worlds[size_t(parts[i].node)] * glm::dvec4(p, 1.0));
-        if (beyond(q)) return OutOfRange{time, reaches("a moving part or light", q)};
+        if (beyond(q)) return OutOfRange{time, "a moving part or light", q};
       }
     }
     for (const int node : light_node)
       if (node >= 0 && beyond(glm::dvec3(worlds[size_t(node)][3])))
-        return OutOfRange{time, reaches("a moving part or light", glm::dvec3(worlds[size_t(node)][3]))};
+        return OutOfRange{time, "a moving part or light", glm::dvec3(worlds[size_t(node)][3])};
     if (camera_node >= 0) {
       const glm::dmat4& w = worlds[size_t(camera_node)];
-      if (beyond(glm::dvec3(w[3]))) return OutOfRange{time, reaches("the camera", glm::dvec3(w[3]))};
+      if (beyond(glm::dvec3(w[3]))) return OutOfRange{time, "the camera", glm::dvec3(w[3])};
       if (!camera_at_node(w, 1.0))
-        return OutOfRange{time, "the camera's view collapses: its node, or one above it, is scaled to nothing"};
+        return OutOfRange{time, "the camera's view collapses: its node, or one above it, is scaled to nothing", {}};
     }
   }
   return std::nullopt;

@@ -89,7 +89,8 @@ struct SceneAnimation {
   // camera's view collapses; none when every key time keeps them within.
   struct OutOfRange {
     double time;
-    std::string what;  // "a moving part or light reaches (x, y, z), expected coordinates within ...", or the camera's
+    const char* what;                     // "a moving part or light", "the camera", or why the view collapses
+    std::optional<glm::dvec3> position;   // the point beyond range; none when the view collapses
   };
   std::optional<OutOfRange> check_extent(double max_coordinate) const;
 };
