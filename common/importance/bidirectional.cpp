@@ -243,7 +243,10 @@ class Builder {
       const glm::vec3 light = p.receives ? shading_.contribution(p.x, unit, q) : glm::vec3(0.0f);
       const bool lights = light.x + light.y + light.z > 0.0f;
       if (!(density > 0.0f) && !lights) continue;
-      if (!lights) q = ShadowQuery{offset_origin(p.x.surface, w), w, dist * (1.0f - kShadowEpsilon)};
+      if (!lights) {
+        const Ray ray = shadow_ray(p.x.surface, w, c.vpl.position, dist);
+        q = ShadowQuery{ray.origin, ray.direction, ray.tfar};
+      }
       // The camera path that found the VPL saw it: no ray needed (nor a miss by rounding).
       if (i != c.own && occluded(q, rays)) continue;
       c.density += density;

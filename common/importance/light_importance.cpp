@@ -155,7 +155,7 @@ class Estimator {
     const glm::vec3 c = throughput * f * ls.radiance * (std::abs(glm::dot(ls.direction, sp.shading_normal)) / ls.pdf);
     const float y = luminance(c);
     if (!(y > 0.0f) || !std::isfinite(y)) return;
-    Ray shadow{offset_origin(sp, ls.direction), ls.direction, 0.0f, ls.distance * (1.0f - kShadowEpsilon)};
+    const Ray shadow = shadow_ray(sp, ls.direction, ls.position, ls.distance);
     ++rays.shadow;
     if (!context_.accel.occluded(shadow)) {
       credit[l] += double(y);

@@ -63,10 +63,7 @@ glm::vec3 light_contribution(const LightingContext& context, const GatherPoint& 
   const glm::vec3 c = receiver_bsdf(g, wi) * emitted * g_term;
   // Nothing, or a light on the point itself (unclamped: infinite or NaN).
   if (!(c.x + c.y + c.z > 0.0f) || !std::isfinite(c.x + c.y + c.z)) return glm::vec3(0.0f);
-  shadow.origin = offset_origin(sp, wi);
-  shadow.direction = wi;
-  shadow.tnear = 0.0f;
-  shadow.tfar = std::isinf(distance) ? INFINITY : distance * (1.0f - kShadowEpsilon);
+  shadow = shadow_ray(sp, wi, leaf.position, distance);
   return c;
 }
 

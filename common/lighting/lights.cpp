@@ -73,6 +73,7 @@ LightSample LightSet::sample_light(uint32_t index, float select, glm::vec3 p, gl
     float dist2 = glm::dot(d, d);
     s.distance = std::sqrt(dist2);
     s.direction = d / s.distance;
+    s.position = q;
     float cos_light = -glm::dot(n, s.direction);
     if (cos_light <= 0.0f || dist2 <= 0.0f) return LightSample{};  // back face emits nothing
     s.radiance = scene_.materials[scene_.triangle_material[light.index]].emission;
@@ -92,6 +93,7 @@ LightSample LightSet::sample_light(uint32_t index, float select, glm::vec3 p, gl
   float dist2 = glm::dot(d, d);
   s.distance = std::sqrt(dist2);
   s.direction = d / s.distance;
+  s.position = pl.position;
   float falloff = light.kind == LightKind::Spot ? spot_attenuation(pl, -s.direction) : 1.0f;
   s.radiance = pl.intensity * (falloff / dist2);
   return s;

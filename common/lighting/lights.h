@@ -25,6 +25,7 @@ struct Light {
 struct LightSample {
   glm::vec3 direction;    // unit, from the shading point towards the light
   float distance = 0.0f;  // infinity for directional lights
+  glm::vec3 position{0.0f};  // the point on the light (area) or the light (point, spot); unused for directional
   glm::vec3 radiance;     // incident radiance (area) or irradiance-normalised intensity / r^2 (delta)
   float pdf = 0.0f;       // solid-angle density including selection; selection prob for delta lights
   bool delta = false;

@@ -79,7 +79,7 @@ glm::vec3 PathTracer::radiance(Ray ray, uint32_t sample_index, uint32_t pixel_se
       LightSample ls = context_.lights.sample(sp.position, u_light, u_light_point);
       glm::vec3 f = ls.pdf > 0.0f ? bsdf_eval(sp, wo, ls.direction) : glm::vec3(0.0f);
       if (f != glm::vec3(0.0f)) {
-        Ray shadow{offset_origin(sp, ls.direction), ls.direction, 0.0f, ls.distance * (1.0f - kShadowEpsilon)};
+        const Ray shadow = shadow_ray(sp, ls.direction, ls.position, ls.distance);
         ++rays.shadow;
         if (!context_.accel.occluded(shadow)) {
           float cos_i = std::abs(glm::dot(ls.direction, sp.shading_normal));

@@ -60,6 +60,9 @@ void fill_fast_lanes(const PixelBatch& b, size_t first, const Vpl& vpl, float bo
   const float* __restrict gx = b.gx.data() + first;
   const float* __restrict gy = b.gy.data() + first;
   const float* __restrict gz = b.gz.data() + first;
+  const float* __restrict ox = b.ox.data() + first;
+  const float* __restrict oy = b.oy.data() + first;
+  const float* __restrict oz = b.oz.data() + first;
   float* __restrict dir_x = rays.dir_x;
   float* __restrict dir_y = rays.dir_y;
   float* __restrict dir_z = rays.dir_z;
@@ -78,8 +81,12 @@ void fill_fast_lanes(const PixelBatch& b, size_t first, const Vpl& vpl, float bo
     // point itself (dist2 0, unclamped) gives an infinite or NaN g: no light.
     const bool visible = (cos_x > 0.0f) & (side > 0.0f) & (cos_y > 0.0f) & (g <= FLT_MAX);
     g_out[k] = visible ? g : 0.0f;
-    dir_x[k] = wx; dir_y[k] = wy; dir_z[k] = wz;
-    tfar[k] = dist * (1.0f - kShadowEpsilon);
+    // The ray aims from the nudged origin at the VPL itself (scene/surface.h shadow_ray).
+    const float rx = vx - ox[k], ry = vy - oy[k], rz = vz - oz[k];
+    const float length = std::sqrt(rx * rx + ry * ry + rz * rz);
+    const float inv_length = 1.0f / length;
+    dir_x[k] = rx * inv_length; dir_y[k] = ry * inv_length; dir_z[k] = rz * inv_length;
+    tfar[k] = length * (1.0f - kShadowEpsilon);
   }
   std::copy_n(b.ox.data() + first, 16, rays.org_x);
   std::copy_n(b.oy.data() + first, 16, rays.org_y);

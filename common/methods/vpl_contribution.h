@@ -78,9 +78,8 @@ struct VplShading {
     glm::vec3 c = f * emitted * g_term;
     // Nothing, or a VPL on the point itself (unclamped: infinite or NaN).
     if (!(c.x + c.y + c.z > 0.0f) || !std::isfinite(c.x + c.y + c.z)) return glm::vec3(0.0f);
-    q.origin = offset_origin(sp, wi);
-    q.direction = wi;
-    q.tfar = std::isinf(distance) ? INFINITY : distance * (1.0f - kShadowEpsilon);
+    const Ray ray = shadow_ray(sp, wi, v.position, distance);
+    q = ShadowQuery{ray.origin, ray.direction, ray.tfar};
     return c;
   }
 };

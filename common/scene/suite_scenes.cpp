@@ -132,6 +132,22 @@ Scene make_corner_scene() {
   return s;
 }
 
+Scene make_tilted_light_scene() {
+  Scene s;
+  s.name = "tilted-light";
+  const uint32_t walls = diffuse(s, "walls", glm::vec3(0.8f));
+  const uint32_t floor = diffuse(s, "floor", glm::vec3(0.5f));
+  add_room_box(s, {0, 0, 0}, {4, 3, 4}, walls, floor, walls);
+  // A 0.2 m square, one-sided, facing down and towards the corner x = z = 4:
+  // the walls beside the corner see it at 75-80 degrees from its normal.
+  const uint32_t lamp = emitter(s, "lamp", {100.0f, 85.0f, 70.0f});
+  add_quad(s, {3.168f, 2.650f, 3.310f}, {3.310f, 2.650f, 3.168f}, {3.432f, 2.750f, 3.290f},
+           {3.290f, 2.750f, 3.432f}, lamp);
+  s.camera = look_at({0.5f, 1.6f, 0.5f}, {4.0f, 1.8f, 4.0f}, 60.0f);
+  group_by_material(s);
+  return s;
+}
+
 Scene make_rooms_scene(int n) {
   if (n < 1 || n > kMaxRooms)
     throw SceneError("rooms scene: N = " + std::to_string(n) + ", expected 1.." + std::to_string(kMaxRooms));

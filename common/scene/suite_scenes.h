@@ -25,6 +25,9 @@
 //           glass sphere hung so its caustic focuses on the floor in view:
 //           light that reaches a diffuse surface through mirrors and glass
 //           (caustics, common/photons/), and glass seen from the camera.
+//   tilted-light  closed 4 x 3 x 4 m room lit by a small one-sided quad
+//           tilted towards a corner: the walls beside it see the light at
+//           grazing angles (area-light sampling far from the normal).
 #include <string>
 
 #include "scene/scene.h"
@@ -34,6 +37,7 @@ namespace igi {
 inline constexpr int kMaxRooms = 10;
 
 Scene make_corner_scene();
+Scene make_tilted_light_scene();
 // 1 <= n <= kMaxRooms; throws SceneError otherwise.
 Scene make_rooms_scene(int n);
 inline constexpr float kCorridorLamp = 100.0f;  // the lamp's radiance (red channel), W/(m^2 sr)

@@ -40,4 +40,13 @@ glm::vec3 offset_origin(const SurfacePoint& sp, glm::vec3 direction) {
   return p + (glm::dot(direction, n) >= 0.0f ? eps : -eps) * n;
 }
 
+Ray shadow_ray(const SurfacePoint& sp, glm::vec3 wi, glm::vec3 target, float distance) {
+  const glm::vec3 origin = offset_origin(sp, wi);
+  if (std::isinf(distance)) return Ray{origin, wi, 0.0f, INFINITY};
+  const glm::vec3 d = target - origin;
+  const float length = glm::length(d);
+  if (!(length > 0.0f)) return Ray{origin, wi, 0.0f, 0.0f};
+  return Ray{origin, d / length, 0.0f, length * (1.0f - kShadowEpsilon)};
+}
+
 }  // namespace igi

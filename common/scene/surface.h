@@ -35,4 +35,13 @@ glm::vec3 offset_origin(const SurfacePoint& sp, glm::vec3 direction);
 // tfar that stops a shadow ray just short of `target`, relative to its length.
 inline constexpr float kShadowEpsilon = 1e-4f;
 
+// The shadow ray from sp towards `target` (direction wi from sp, `distance`
+// away; infinity for a directional light, which has no target). It is aimed
+// from the nudged origin at the target itself, not along wi: a ray shifted
+// parallel to wi meets the target's surface before the target wherever that
+// surface is seen at a grazing angle (by offset x cos between the normals /
+// cos at the target), and that false occlusion hid a tilted area light from
+// every wall beside it.
+Ray shadow_ray(const SurfacePoint& sp, glm::vec3 wi, glm::vec3 target, float distance);
+
 }  // namespace igi
