@@ -23,6 +23,7 @@ FrameSetup plan_frame(const RenderOptions& render, const std::string& camera_pat
       f.sample_begin = uint32_t(i * render.samples);
     } else {   // a new estimate: new VPLs, and the next point of one 2D sample set for the sub-pixel position
       f.seed += uint32_t(i);
+      f.sample_begin = uint32_t(i);  // the pass: the clamp relaxes with it
       const glm::vec2 j = sample_2d(uint32_t(i), 0, render.seed);
       f.jitter_x = j.x;
       f.jitter_y = j.y;

@@ -5,6 +5,7 @@
 
 #include "cli/option_checks.h"
 #include "lightcuts/lightcuts_settings.h"
+#include "methods/clamp.h"
 #include "photons/caustic_settings.h"
 #include "protocol/messages.h"
 #include "scene/builtin_scenes.h"
@@ -82,14 +83,16 @@ void add_vpl_options(CLI::App& app, RenderSettings& s) {
   app.add_option("--vpl-paths", s.paths_per_set, "ir/igi: light paths per VPL set [16]")
       ->check(integer(1, kMaxPathsPerSet))->type_name("M");
   app.add_option("--aa", s.aa_samples, "ir/igi: S sub-samples per pixel (1, 4, 9, ...), each shaded by 1/S of the "
-                 "pixel's light paths (anti-aliasing by VPL groups); needs --vpl-paths >= S [1]")
+                 "pixel's light paths (anti-aliasing by VPL groups); needs --vpl-paths >= S [4]")
       ->check(integer(1, kMaxAntialiasText))->type_name("S");
   app.add_option("--glossy-threshold", s.glossy_threshold, "ir/igi: GGX surfaces with alpha below A gather their "
                  "lobe with rays instead of VPL light; 0 = VPLs shade every glossy surface [0.2]")
       ->check(non_negative_number())->type_name("A");
   app.add_option("--glossy-rays", s.glossy_rays, "ir/igi: gather rays per sub-sample of such a surface [1]")
       ->check(integer(1, kMaxGlossyRays))->type_name("K");
-  app.add_option("--clamp", s.clamp, "ir/igi: clamp 1/r^2 below distance C x scene diagonal, 0 = off [0]")
+  app.add_option("--clamp", s.clamp, "ir/igi/lightcuts: clamp 1/r^2 below distance C x the scene's mean chord (about "
+                 "a room); pass k of --spp clamps at C / (k + 1)^(1/4) of it, so passes converge; 0 = off, at most "
+                 + std::to_string(int(kMaxClamp)) + " [0.3]")
       ->check(non_negative_number())->type_name("C");
   app.add_option("--compensate", s.compensation_samples,
                  "ir/igi: bias compensation, N eye samples per pixel (needs --clamp), 0 = off [0]")

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "lightcuts/lightcuts_settings.h"
+#include "methods/clamp.h"
 #include "methods/subpixel.h"
 #include "photons/caustic_settings.h"
 #include "protocol/wire.h"
@@ -139,7 +140,7 @@ void read(Reader& r, RenderSettings& s) {
   s.glossy_rays = r.i32("settings.glossy_rays");
   check_range(r, "settings.glossy_rays", s.glossy_rays, 1, kMaxGlossyRays);
   s.clamp = r.f32("settings.clamp");
-  check_finite_non_negative(r, "settings.clamp", s.clamp);
+  check_closed(r, "settings.clamp", s.clamp, 0.0f, kMaxClamp);
   s.compensation_samples = r.i32("settings.compensation_samples");
   check_range(r, "settings.compensation_samples", s.compensation_samples, 0, kMaxCompensationSamples);
   s.filter = r.boolean("settings.filter");

@@ -35,8 +35,10 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // glossy gather, lightcuts. 5: glass branches, caustic photons. 6: settings
 // carry light importance and bidirectional IR. 7: FrameSetup carries the
 // frame's settings (the window changes them live). 8: FrameSetup carries the
-// scene's pose (animation time, moved lights).
-inline constexpr uint16_t kVersion = 8;
+// scene's pose (animation time, moved lights). 9: settings.clamp is a fraction of the
+// scene's mean chord, at most kMaxClamp; FrameSetup.sample_begin is the ir/igi/lightcuts
+// pass the clamp relaxes with (methods/clamp.h).
+inline constexpr uint16_t kVersion = 9;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;

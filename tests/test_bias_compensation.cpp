@@ -51,16 +51,18 @@ TEST(BiasCompensation, CornerRegainsTheClampedEnergy) {
       }
     return a / b - 1.0;
   };
+  // 8 frames of one clamp each (no relaxation across them).
   auto render = [&](float clamp, int samples) {
-    return p.render(vpl_settings(MethodKind::InstantRadiosity, 8, clamp, true, samples), kWidth, kHeight, 8, 1);
+    return p.render_frames(vpl_settings(MethodKind::InstantRadiosity, 8, clamp, true, samples), kWidth, kHeight, 8);
   };
-  std::printf("[corner] ir M=8 x 8 passes, unclamped: corner against pt %+.1f %% (the estimate's own spread)\n",
+  std::printf("[corner] ir M=8 x 8 frames, unclamped: corner against pt %+.1f %% (the estimate's own spread)\n",
               100 * bias(render(0.0f, 0)));
-  // 0.62 m and 1.24 m: test_stability measures a 30 % corner loss at the first.
-  for (float clamp : {0.1f, 0.2f}) {
+  // test_stability measures a 12 % corner loss against the unclamped render at 0.62 m.
+  for (float distance : {0.62f, 1.24f}) {
+    const float clamp = p.clamp_at(distance);
     const double without = bias(render(clamp, 0)), with = bias(render(clamp, 4));
-    std::printf("[corner] clamp %.2f: corner against pt %+.1f %% without, %+.1f %% with 4 compensation samples\n",
-                clamp, 100 * without, 100 * with);
+    std::printf("[corner] clamp at %.2f m: corner against pt %+.1f %% without, %+.1f %% with 4 compensation samples\n",
+                distance, 100 * without, 100 * with);
     // 10 %: the unclamped ir's spread against pt in this region (test_stability).
     EXPECT_LT(std::abs(with), 0.10) << "bound: compensated corner within 10 % of pt, clamp " << clamp;
     EXPECT_LT(without, -0.10) << "the clamp alone darkens the corner by more than 10 %";
@@ -79,16 +81,17 @@ TEST(BiasCompensation, FurnaceHoldsAndOneLevelIsExactlyOneLevel) {
   const test::Prepared p(make_furnace(albedo, le));
   const double exact = le / (1.0 - albedo), reflected = exact - le;
   auto mean = [&](float clamp, int samples) {
-    const Image image = p.render(vpl_settings(MethodKind::InstantRadiosity, 8, clamp, true, samples), 32, 24, 4, 1);
+    const Image image = p.render_frames(vpl_settings(MethodKind::InstantRadiosity, 8, clamp, true, samples), 32, 24, 4);
     return luminance(image.mean());
   };
-  // clamp 0.1 is 0.35 m: b = 8.3 > G = 0.25, nothing is cut, nothing added.
-  const double mild = mean(0.1f, 2);
-  // clamp 1 is the whole diagonal, 2 sqrt(3): b = 1/12, c = 1/3.
+  // 0.35 m: b = 8.3 > G = 0.25, nothing is cut, nothing added.
+  const double mild = mean(p.clamp_at(0.35f), 2);
+  // The whole diagonal, 2 sqrt(3): b = 1/12, c = 1/3.
   const double diagonal = p.scene.bounds().diagonal(), b = 1.0 / (diagonal * diagonal), c = b / 0.25;
-  const double clamped = mean(1.0f, 0), compensated = mean(1.0f, 4);
+  const float far = p.clamp_at(float(diagonal));
+  const double clamped = mean(far, 0), compensated = mean(far, 4);
   const double one_level = le + c * reflected + albedo * (1 - c) * (le + c * reflected);
-  std::printf("[furnace] exact %.3f; clamp 0.1 + compensation %.4f; clamp 1: %.4f (analytic %.4f), "
+  std::printf("[furnace] exact %.3f; clamp at 0.35 m + compensation %.4f; at the diagonal: %.4f (analytic %.4f), "
               "compensated %.4f (one level, analytic %.4f)\n",
               exact, mild, clamped, le + c * reflected, compensated, one_level);
   EXPECT_NEAR(mild, exact, 0.02 * exact) << "bound: 2 %, the VPL estimate's spread at this size";

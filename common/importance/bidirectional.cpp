@@ -7,6 +7,7 @@
 #include "importance/parallel.h"
 #include "importance/resample.h"
 #include "material/bsdf.h"
+#include "methods/clamp.h"
 #include "methods/direct_lights.h"
 #include "methods/vpl_contribution.h"
 #include "sampling/hash.h"
@@ -80,7 +81,8 @@ class Builder {
   Builder(const SceneContext& context, const RenderSettings& settings, const FrameSetup& frame,
           const LightPathOptions& light_paths, RayCounts& rays)
       : context_(context), settings_(settings), frame_(frame), selection_(light_paths.selection), rays_(rays),
-        shading_{context.scene, clamp_bound(context, settings), settings.glossy_threshold},
+        shading_{context.scene, clamp_bound(settings.clamp, context.accel.mean_chord(), frame.sample_begin),
+                 settings.glossy_threshold},
         gathering_{context.scene, INFINITY, settings.glossy_threshold},
         exact_(exact_lights(context.scene)), camera_(frame.camera, frame.width, frame.height),
         camera_seed_(hash(frame.seed, kCameraTag)),
@@ -128,12 +130,6 @@ class Builder {
   }
 
  private:
-  static float clamp_bound(const SceneContext& context, const RenderSettings& settings) {
-    if (!(settings.clamp > 0.0f)) return INFINITY;
-    const float d = settings.clamp * context.scene.bounds().diagonal();
-    return 1.0f / (d * d);
-  }
-
   float selection_probability(uint32_t light) const {
     return selection_ ? selection_->probability(light) : context_.lights.selection_probability(light);
   }

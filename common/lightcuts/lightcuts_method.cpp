@@ -4,6 +4,7 @@
 
 #include "lightcuts/lightcuts_settings.h"
 #include "lightcuts/reconstruction.h"
+#include "methods/clamp.h"
 #include "sampling/content_hash.h"
 #include "sampling/hash.h"
 #include "vpl/vpl_generator.h"
@@ -13,14 +14,11 @@ namespace igi::lightcuts {
 LightcutsMethod::LightcutsMethod(const SceneContext& context, const RenderSettings& settings)
     : context_(context), settings_(settings) {
   if (std::string error = lightcuts::settings_error(settings); !error.empty()) throw std::invalid_argument(error);
-  if (settings.clamp > 0.0f) {
-    const float d = settings.clamp * context.scene.bounds().diagonal();
-    clamp_bound_ = 1.0f / (d * d);
-  }
 }
 
 void LightcutsMethod::begin_frame(const FrameSetup& frame) {
   frame_ = frame;
+  clamp_bound_ = clamp_bound(settings_.clamp, context_.accel.mean_chord(), frame.sample_begin);
   vpls_ = generate_vpls(context_, settings_, frame.seed);
   tree_ = build_light_tree(make_light_leaves(context_.scene, vpls_), context_.scene.bounds().diagonal(), frame.seed);
   state_hash_ = combine_content_hashes(vpls_.hash, tree_.hash);

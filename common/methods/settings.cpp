@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "lightcuts/lightcuts_settings.h"
+#include "methods/clamp.h"
 #include "methods/subpixel.h"
 #include "photons/caustic_settings.h"
 
@@ -72,8 +73,9 @@ std::optional<std::string> settings_error(const RenderSettings& s) {
   if (!(s.glossy_threshold >= 0.0f && s.glossy_threshold <= 1.0f))
     return "--glossy-threshold: expected a GGX alpha in [0, 1] (0 = VPLs shade every glossy surface), got " +
            std::to_string(s.glossy_threshold);
-  if (!(s.clamp >= 0.0f) || !std::isfinite(s.clamp))
-    return "--clamp: expected a finite number >= 0, got " + std::to_string(s.clamp);
+  if (!(s.clamp >= 0.0f && s.clamp <= kMaxClamp))
+    return "--clamp: expected a fraction of the scene's mean chord in [0, " + std::to_string(int(kMaxClamp)) +
+           "] (0 = off), got " + std::to_string(s.clamp);
   if (!(s.filter_normal_cos >= -1.0f && s.filter_normal_cos <= 1.0f))
     return "--filter-normal: expected a cosine in [-1, 1], got " + std::to_string(s.filter_normal_cos);
   if (!(s.filter_depth_ratio >= 0.0f) || !std::isfinite(s.filter_depth_ratio))

@@ -48,10 +48,12 @@ struct RenderSettings {
   // paths pass through them without leaving VPLs. 0 = VPLs shade every GGX surface.
   float glossy_threshold = 0.2f;
   int glossy_rays = 1;         // gather rays per sub-sample of such a surface
-  // Geometry-term bound, scale-free: G <= 1 / (clamp * scene diagonal)^2, so
-  // clamp is the distance (a fraction of the diagonal) below which 1/r^2 stops
-  // growing. 0 turns clamping off.
-  float clamp = 0.1f;
+  // Geometry-term bound (methods/clamp.h), scale-free and consistent: clamp
+  // is the distance, a fraction of the scene's mean chord (about a room),
+  // below which 1/r^2 stops growing in one frame; progressive pass k clamps
+  // at clamp / (k + 1)^(1/4) of it, so passes converge to the unclamped
+  // estimate. 0 turns clamping off.
+  float clamp = 0.3f;
   // Bias compensation (Kollig and Keller): eye-path samples per pixel that
   // add back the light the clamp cut (methods/bias_compensation.h). 0 = off;
   // no effect without a clamp.

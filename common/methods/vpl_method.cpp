@@ -7,6 +7,7 @@
 #include "filter/discontinuity_buffer.h"
 #include "importance/view_vpls.h"
 #include "methods/bias_compensation.h"
+#include "methods/clamp.h"
 #include "methods/direct_lights.h"
 #include "methods/subpixel.h"
 #include "methods/vpl_contribution.h"
@@ -35,14 +36,11 @@ VplMethod::VplMethod(const SceneContext& context, const RenderSettings& settings
     : context_(context), settings_(settings), exact_(exact_lights(context.scene)) {
   if (auto error = settings_error(settings)) throw std::invalid_argument(*error);
   if (settings.caustics) caustics_.emplace(context, settings);
-  if (settings.clamp > 0.0f) {
-    float d = settings.clamp * context.scene.bounds().diagonal();
-    clamp_bound_ = 1.0f / (d * d);
-  }
 }
 
 void VplMethod::begin_frame(const FrameSetup& frame) {
   frame_ = frame;
+  clamp_bound_ = clamp_bound(settings_.clamp, context_.accel.mean_chord(), frame.sample_begin);
   setup_rays_ = RayCounts{};
   vpls_ = importance::generate_view_vpls(context_, settings_, frame, setup_rays_);
   if (caustics_) caustics_->build(frame.seed);

@@ -14,7 +14,10 @@ struct FrameSetup {
   int width = 0;
   int height = 0;
   uint32_t seed = 0;          // scrambles every sample of the frame
-  uint32_t sample_begin = 0;  // pt: first sample index of this pass
+  // pt: first sample index of this pass. ir/igi/lightcuts: the progressive
+  // pass this frame is (0 for a frame on its own): the clamp relaxes with it
+  // (methods/clamp.h).
+  uint32_t sample_begin = 0;
   uint32_t sample_count = 1;  // pt: samples per pixel in this pass
   // ir/igi: where in each pixel the primary ray goes ((0.5, 0.5) = centre);
   // progressive passes move it to antialias.

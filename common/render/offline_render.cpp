@@ -28,6 +28,7 @@ OfflineResult render_offline(const SceneContext& context, const RenderSettings& 
     } else if (passes > 1) {
       // Fresh VPLs and a new sub-pixel position per pass (stratified over passes).
       frame.seed = base.seed + uint32_t(pass);
+      frame.sample_begin = uint32_t(pass);
       glm::vec2 jitter = sample_2d(uint32_t(pass), 0, base.seed);
       frame.jitter_x = jitter.x;
       frame.jitter_y = jitter.y;

@@ -8,6 +8,9 @@
 #include <pmmintrin.h>
 #include <xmmintrin.h>
 
+#include "sampling/distribution.h"
+#include "sampling/sobol.h"
+#include "sampling/warp.h"
 #include "scene/animation.h"
 #include "scene/triangle.h"
 
@@ -16,6 +19,40 @@ namespace igi {
 void enable_flush_to_zero() {
   _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
   _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+}
+
+// Accel::mean_chord(): see the header.
+static float measure_mean_chord(const Scene& scene, const Accel& accel) {
+  std::vector<float> areas(scene.triangles.size());
+  for (size_t t = 0; t < areas.size(); ++t) areas[t] = glm::length(triangle_cross(scene, uint32_t(t)));
+  const Distribution1D by_area(areas);
+  const float diagonal = scene.bounds().empty() ? 1.0f : std::max(1e-6f, scene.bounds().diagonal());
+  if (!(by_area.total() > 0.0f)) return diagonal;
+  constexpr uint32_t kRays = 4096, kSeed = 0x63686f72u;  // "chor"
+  // Traced as the render threads trace (FTZ/DAZ on), whatever this thread's mode.
+  const unsigned ftz = _MM_GET_FLUSH_ZERO_MODE(), daz = _MM_GET_DENORMALS_ZERO_MODE();
+  enable_flush_to_zero();
+  double sum = 0.0;
+  uint32_t hits = 0;
+  for (uint32_t i = 0; i < kRays; ++i) {
+    SampleStream u(i, kSeed);
+    const uint32_t t = by_area.sample(u.next_1d());
+    const glm::vec2 b = uniform_triangle(u.next_2d());
+    const glm::vec3 local = cosine_hemisphere(u.next_2d());
+    const glm::uvec3& tri = scene.triangles[t];
+    const glm::vec3 p0 = scene.positions[tri[0]], p1 = scene.positions[tri[1]], p2 = scene.positions[tri[2]];
+    const glm::vec3 n = triangle_normal(p0, p1, p2) * (i % 2 ? -1.0f : 1.0f);
+    const glm::vec3 p = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
+    const float scale = std::max(std::max(std::abs(p.x), std::abs(p.y)), std::abs(p.z));
+    Hit hit;
+    if (accel.intersect(Ray{p + (2e-5f * scale + 1e-7f) * n, Onb(n).to_world(local)}, hit)) {
+      sum += hit.t;
+      ++hits;
+    }
+  }
+  _MM_SET_FLUSH_ZERO_MODE(ftz);
+  _MM_SET_DENORMALS_ZERO_MODE(daz);
+  return hits > 0 ? std::max(1e-6f, float(sum / hits)) : diagonal;
 }
 
 static void device_error(void*, RTCError code, const char* message) {
@@ -67,6 +104,7 @@ Accel::Accel(const Scene& scene) : scene_(scene) {
   } else {
     rtcCommitScene(top_);
   }
+  mean_chord_ = measure_mean_chord(scene, *this);
 }
 
 void Accel::add_group(const std::vector<uint32_t>& triangles, RTCBuildQuality quality) {

@@ -83,6 +83,15 @@ class Accel {
   bool intersect(const Ray& ray, Hit& hit) const;
   bool occluded(const Ray& ray) const;
 
+  // The scene's length scale, measured once as built (before any pose): the
+  // mean length of chords through its free space, from 4,096 cosine-
+  // distributed rays leaving points spread over the surfaces by area, half
+  // from each side, counting the rays that hit (4 V / S for a closed room,
+  // Cauchy's formula; about a room in a building of many). Deterministic.
+  // The scene's diagonal when no ray hits. The VPL clamp is relative to it
+  // (methods/clamp.h).
+  float mean_chord() const { return mean_chord_; }
+
   RTCScene handle() const { return top_; }
   const Scene& scene() const { return scene_; }
   // Maps an Embree hit (instID[0], geomID, primID) back to Scene::triangles.
@@ -113,6 +122,7 @@ class Accel {
   RTCDevice device_ = nullptr;
   RTCScene top_ = nullptr;
   std::vector<Group> groups_;  // index = instance id; 0 is the static group
+  float mean_chord_ = 1.0f;
 };
 
 }  // namespace igi

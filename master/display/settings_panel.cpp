@@ -9,6 +9,7 @@
 #include <imgui.h>
 
 #include "lightcuts/lightcuts_settings.h"
+#include "methods/clamp.h"
 #include "methods/subpixel.h"
 #include "photons/caustic_settings.h"
 
@@ -42,7 +43,7 @@ RenderSettings bounded(RenderSettings s) {
   s.aa_samples = bounded_aa(s.aa_samples, s.paths_per_set);
   s.glossy_threshold = std::clamp(s.glossy_threshold, 0.0f, 1.0f);
   s.glossy_rays = std::clamp(s.glossy_rays, 1, kMaxGlossyRays);
-  s.clamp = std::clamp(s.clamp, 0.0f, 1.0f);
+  s.clamp = std::clamp(s.clamp, 0.0f, kMaxClamp);
   s.compensation_samples = std::clamp(s.compensation_samples, 0, kMaxCompensationSamples);
   s.filter_normal_cos = std::clamp(s.filter_normal_cos, -1.0f, 1.0f);
   s.filter_depth_ratio = std::clamp(s.filter_depth_ratio, 0.0f, 1.0f);
@@ -125,7 +126,7 @@ void SettingsPanel::draw_vpls(RenderSettings& s) {
   ImGui::DragInt("VPL paths per set", &s.paths_per_set, 1.0f, 1, kPanelMaxPaths, "%d", kBound);
   int side = std::max(1, int(subpixel_side(s.aa_samples)));
   if (ImGui::SliderInt("anti-aliasing s (s x s)", &side, 1, 8, "%d", kBound)) s.aa_samples = side * side;
-  ImGui::SliderFloat("clamp (0 = off)", &s.clamp, 0.0f, 1.0f, "%.3f", kBound);
+  ImGui::SliderFloat("clamp (0 = off)", &s.clamp, 0.0f, kMaxClamp, "%.3f", kBound | ImGuiSliderFlags_Logarithmic);
   ImGui::SliderInt("compensation samples", &s.compensation_samples, 0, kMaxCompensationSamples, "%d", kBound);
   ImGui::SliderFloat("glossy threshold", &s.glossy_threshold, 0.0f, 1.0f, "%.2f", kBound);
   ImGui::SliderInt("glossy rays", &s.glossy_rays, 1, kMaxGlossyRays, "%d", kBound);

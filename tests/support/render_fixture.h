@@ -7,6 +7,7 @@
 #include "image/image.h"
 #include "methods/gbuffer.h"
 #include "render/offline_render.h"
+#include "sampling/sobol.h"
 #include "scene/animation.h"
 #include "scene/scene.h"
 
@@ -65,6 +66,27 @@ struct Prepared {
     options.threads = threads;
     options.tile_size = tile;
     return render_offline(context(), settings, frame(width, height, seed), samples, options).image;
+  }
+
+  // The clamp (methods/clamp.h) that bounds G at `distance` metres in one frame.
+  float clamp_at(float distance) const { return distance / accel->mean_chord(); }
+
+  // `passes` frames as render() takes them (seeds seed, seed + 1, ...; the
+  // same sub-pixel positions), each clamped as a frame on its own, averaged:
+  // for tests of one clamp's bias, which progressive passes relax.
+  Image render_frames(const RenderSettings& settings, int width, int height, int passes, uint32_t seed = 1) const {
+    Image sum(width, height);
+    for (int pass = 0; pass < passes; ++pass) {
+      FrameSetup f = frame(width, height, seed + uint32_t(pass));
+      if (passes > 1) {
+        const glm::vec2 jitter = sample_2d(uint32_t(pass), 0, seed);
+        f.jitter_x = jitter.x;
+        f.jitter_y = jitter.y;
+      }
+      const Image image = render_offline(context(), settings, f, 1, FrameOptions{}).image;
+      for (size_t i = 0; i < sum.pixels.size(); ++i) sum.pixels[i] += image.pixels[i] / float(passes);
+    }
+    return sum;
   }
 };
 

@@ -1,0 +1,29 @@
+#pragma once
+// The VPL clamp: one bound on the geometry term G = cos_x cos_y / r^2 for
+// every VPL method (ir, igi, lightcuts, bidirectional IR, compensation).
+//
+// Scale-free: the clamp distance is a fraction C (--clamp) of the scene's
+// mean chord L, the mean free path between its surfaces (scene/accel.h:
+// Accel::mean_chord). In a box L is about the box; in a building of rooms it
+// is about a room, however many rooms there are, so a building keeps its
+// light where a bound relative to the scene's diagonal darkened it.
+//
+// Consistent: progressive pass k (0-based) clamps at distance
+// d_k = C L / (k + 1)^(1/4), that is G <= sqrt(k + 1) / (C L)^2. The bias of
+// the average of K passes (about the mean of d_k) falls like K^(-1/4) while
+// the variance the relaxing bound lets in (about the mean of 1/d_k^2 over K)
+// falls like K^(-1/2): the balance of the two, so the accumulated image
+// converges to the unclamped estimator, as progressive photon mapping
+// shrinks its radius pass by pass. Pass 0 is the clamp one frame shows.
+#include <cstdint>
+
+namespace igi {
+
+// Above this the clamp distance would exceed several rooms: nothing is left
+// unclamped, and the image is a blur of VPL light.
+inline constexpr float kMaxClamp = 4.0f;
+
+// Infinity when clamp <= 0 (off).
+float clamp_bound(float clamp, float mean_chord, uint32_t pass);
+
+}  // namespace igi
