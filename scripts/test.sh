@@ -32,6 +32,7 @@ stage() {
   if [ "$dir" != - ]; then
     rm -f "$dir/Testing/Temporary/LastTestsFailed.log"
     log="$dir/stage.log"
+    mkdir -p "$dir"  # a fresh clone has no build-asan/ or build-tsan/ before its stage builds them
   fi
   "$@" 2>&1 | tee "$log" || status=${PIPESTATUS[0]}
   # CI keeps only the end of the log: the summary names the tests.
