@@ -675,5 +675,18 @@ TEST(GltfLoader, UnsupportedRequiredExtensionIsAnError) {
   EXPECT_TRUE(load_gltf(supported.write_gltf(test_dir(), "supported").string()).warnings.empty());
 }
 
+// 4,000 instances of a 50,000-triangle mesh: 200 million triangles from a
+// 1 MB file, refused by count before a vertex is expanded (Embree ran out of
+// memory on them and the renderer wrote through the null buffer it returned).
+TEST(GltfLoader, InstancedTrianglesOverTheBudgetAreRefusedBeforeExpanding) {
+  GltfBuilder b;
+  std::vector<uint32_t> indices;
+  for (int t = 0; t < 50000; ++t) indices.insert(indices.end(), {0, 1, 2});
+  const int mesh = b.add_quad_mesh(b.add("materials", emissive_material()), indices);
+  for (int i = 0; i < 4000; ++i) b.add_root({{"mesh", mesh}, {"translation", {i, 0, 0}}});
+  expect_scene_error(b.write_glb(test_dir(), "instances"),
+                     {"200000000 triangles", "over the limit of " + std::to_string(kMaxTriangles) + " triangles"});
+}
+
 }  // namespace
 }  // namespace igi
