@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <utility>
 
-#include "build_info.h"
+#include "build_id.h"
 #include "protocol/pixels.h"
 #include "protocol/socket.h"
 #include "render/frame_renderer.h"
@@ -250,8 +250,8 @@ void MasterSession::handle(const std::string& identity, const protocol::Message&
 }
 
 void MasterSession::on_hello(const std::string& identity, const protocol::Hello& hello) {
-  if (hello.build_id != kBuildId) {
-    const std::string reason = "build '" + hello.build_id + "' differs from the master's '" + kBuildId +
+  if (hello.build_id != igi::build_id()) {
+    const std::string reason = "build '" + hello.build_id + "' differs from the master's '" + igi::build_id() +
                                "': tiles would not match bit for bit";
     log("refused a worker: " + reason);
     scheduler_.remove_worker(identity);

@@ -54,9 +54,17 @@ static bool monitor_memory(void* user, ssize_t bytes, bool post) {
   return false;
 }
 
+// Embree picks its kernels by the CPU, and kernels of different widths round
+// differently (AVX2 and up fuse multiply-adds; a wider BVH meets ties in
+// another order): a cluster of mixed machines would trace different hits.
+// Pinning one ISA (CMake's IGI_EMBREE_ISA, carried in the build id) makes
+// every machine that has it trace alike, AVX-512 ones included; a machine
+// without it gets this error instead of different pixels.
 static RTCDevice new_device(EmbreeMemoryBudget& budget) {
-  RTCDevice device = rtcNewDevice(nullptr);
-  check_embree(nullptr, device != nullptr, "create a device");
+  const std::string config = std::string("isa=") + IGI_EMBREE_ISA;
+  RTCDevice device = rtcNewDevice(config.c_str());
+  check_embree(nullptr, device != nullptr, "create a device with " + config + " (configure with "
+               "-DIGI_EMBREE_ISA=sse4.2 for every machine of a cluster that lacks it)");
   rtcSetDeviceErrorFunction(device, device_error, nullptr);
   if (budget.limit > 0) rtcSetDeviceMemoryMonitorFunction(device, monitor_memory, &budget);
   return device;
