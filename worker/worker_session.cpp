@@ -85,7 +85,7 @@ WorkerSession::Outcome WorkerSession::serve(zmq::context_t& context) {
                                   ZMQ_EVENT_HANDSHAKE_SUCCEEDED | ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL |
                                       ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL | ZMQ_EVENT_HANDSHAKE_FAILED_AUTH |
                                       ZMQ_EVENT_DISCONNECTED);
-  socket.connect(options_.endpoint);
+  protocol::connect(socket, options_.endpoint);
   send(socket, protocol::Hello{options_.build_id, "native", uint32_t(options_.threads)});
   auto last_heard = Clock::now();
   for (;;) {
