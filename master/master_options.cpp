@@ -20,7 +20,6 @@ using cli::OptionError;
 constexpr int kMaxLocalWorkers = 1024;
 constexpr int kMaxFrames = 100000000;     // --frames and --first-frame: their sum stays an int
 constexpr int kMaxWaitSeconds = 86400;    // --min-workers-wait
-constexpr int kMaxCredits = 1024;
 
 const char* kWindowHelp =
     "window: drag with the left button to look, W/A/S/D/Q/E to move, R to reset, Esc to quit;\n"
@@ -46,7 +45,7 @@ void add_network_options(CLI::App& app, MasterOptions& o) {
       ->type_name("PATH")->group(group);
   app.add_flag("--curve", o.curve, "CURVE on a loopback endpoint too (needs --key)")->group(group);
   app.add_option("--credits", o.credits, "jobs a worker holds at once [2]")
-      ->check(integer(1, kMaxCredits))->group(group)->type_name("K");
+      ->check(integer<int>(1, protocol::kMaxCredits))->group(group)->type_name("K");
   protocol::add_liveness_options(app, o.heartbeat_ms, o.timeout_ms, group);
   app.add_option("--pixels", o.pixels, "pixels on the wire: float, half (6 bytes a pixel, display frames) or auto: "
                  "float when -o is a float file (.exr, .hdr, .pfm, .tif), else half [auto]")

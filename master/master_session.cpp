@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <utility>
 
-#include "build_info.h"
+#include "build_id.h"
 #include "protocol/pixels.h"
 #include "protocol/socket.h"
 #include "render/frame_renderer.h"
@@ -78,7 +78,7 @@ MasterSession::MasterSession(const MasterOptions& options, SceneSource scene, zm
     monitor_ = std::make_unique<protocol::SocketMonitor>(
         context, router_, ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL | ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL);
   }
-  router_.bind(options.listen);
+  protocol::bind(router_, options.listen);
   endpoint_ = router_.get(zmq::sockopt::last_endpoint);
   scheduler_.force_duplicates(options.force_duplicates);
   next_sweep_ = Clock::now();
@@ -250,8 +250,8 @@ void MasterSession::handle(const std::string& identity, const protocol::Message&
 }
 
 void MasterSession::on_hello(const std::string& identity, const protocol::Hello& hello) {
-  if (hello.build_id != kBuildId) {
-    const std::string reason = "build '" + hello.build_id + "' differs from the master's '" + kBuildId +
+  if (hello.build_id != igi::build_id()) {
+    const std::string reason = "build '" + hello.build_id + "' differs from the master's '" + igi::build_id() +
                                "': tiles would not match bit for bit";
     log("refused a worker: " + reason);
     scheduler_.remove_worker(identity);
@@ -270,7 +270,8 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
   peer.failed_results = 0;
   scheduler_.remove_worker(identity);  // a reconnect: its old jobs go back first
   // Enough jobs to keep every thread busy while results travel.
-  const int credits = std::min(64, std::max<int>(options_.credits, 2 * int(std::min<uint32_t>(hello.threads, 32))));
+  const int wanted = std::max<int>(options_.credits, 2 * int(std::min<uint32_t>(hello.threads, 32)));
+  const int credits = std::min<int>(wanted, protocol::kMaxCredits);  // --credits is within it already
   scheduler_.add_worker(identity, credits);
   log(peer.name + " joined (" + std::to_string(hello.threads) + " threads)");
   protocol::Welcome w;

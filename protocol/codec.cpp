@@ -19,9 +19,8 @@ namespace {
 
 constexpr size_t kHeaderBytes = 8;
 constexpr int64_t kMaxThreads = 4096;
-// Settings bounds are the command lines' (methods/settings.h).
-constexpr int64_t kMaxCredits = 64;
-constexpr int64_t kMinHeartbeatMs = 10, kMaxHeartbeatMs = 60000;
+// Settings bounds are the command lines' (methods/settings.h); liveness and
+// credits are messages.h's, which the master's command line checks too.
 constexpr int64_t kMaxBorder = 64;
 // sin of the smallest angle allowed between camera forward and up.
 constexpr float kMinSinForwardUp = 1e-4f;

@@ -7,11 +7,9 @@
 
 namespace igi::protocol {
 
-constexpr int kMinHeartbeatMs = 10;
-
 void add_liveness_options(CLI::App& app, int& heartbeat_ms, int& timeout_ms, const std::string& group) {
   app.add_option("--heartbeat-ms", heartbeat_ms, "how often the master and its workers send a message at least")
-      ->check(cli::integer<int>(kMinHeartbeatMs, kMaxTimeoutMs))->capture_default_str()->type_name("MS")
+      ->check(cli::integer<int>(kMinHeartbeatMs, kMaxHeartbeatMs))->capture_default_str()->type_name("MS")
       ->group(group);
   app.add_option("--timeout-ms", timeout_ms, "a silent worker is declared dead after this, > --heartbeat-ms")
       ->check(cli::integer<int>(kMinTimeoutMs, kMaxTimeoutMs))->capture_default_str()->type_name("MS")

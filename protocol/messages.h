@@ -47,7 +47,12 @@ inline constexpr int kMaxImageSide = 16384;
 inline constexpr int kMaxTileSide = 1024;
 inline constexpr size_t kMaxMessageBytes = kMaxSceneBytes + 65536;
 inline constexpr double kMaxSceneTime = 1e9;  // seconds
+// Welcome's liveness and flow control: the decoder refuses a Welcome outside
+// these, and the master's command line refuses the options that would fill
+// them in (protocol/liveness_options.h, --credits), so both say the same.
 inline constexpr uint32_t kMinTimeoutMs = 50, kMaxTimeoutMs = 3600000;
+inline constexpr uint32_t kMinHeartbeatMs = 10, kMaxHeartbeatMs = 60000;
+inline constexpr uint32_t kMaxCredits = 64;  // jobs a worker holds at once
 
 enum class MessageType : uint8_t {
   Hello = 1,

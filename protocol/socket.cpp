@@ -4,6 +4,8 @@
 #include <cerrno>
 #include <chrono>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "protocol/codec.h"
@@ -29,6 +31,18 @@ bool wait_readable(zmq::socket_t& socket, int timeout_ms) {
     if (e.num() == EINTR) return false;  // a signal: the caller's loop decides
     throw;
   }
+}
+
+// The HOST of tcp://HOST:PORT (brackets kept); empty for other transports.
+std::string tcp_host(const std::string& endpoint) {
+  if (endpoint.rfind("tcp://", 0) != 0) return {};
+  const std::string address = endpoint.substr(6);
+  return address.substr(0, address.rfind(':'));
+}
+
+// ZMQ_IPV6 where the host is an IPv6 address; IPv4 still works on such a socket.
+void allow_ipv6(zmq::socket_t& socket, const std::string& endpoint) {
+  if (tcp_host(endpoint).find(':') != std::string::npos) socket.set(zmq::sockopt::ipv6, true);
 }
 
 // Receives every frame of one message; keeps the first `keep`, counts all.
@@ -57,6 +71,26 @@ Frames receive_frames(zmq::socket_t& socket, size_t keep) {
 void configure(zmq::socket_t& socket, size_t max_bytes) {
   socket.set(zmq::sockopt::maxmsgsize, static_cast<int64_t>(max_bytes));
   socket.set(zmq::sockopt::linger, 0);
+}
+
+void bind(zmq::socket_t& socket, const std::string& endpoint) {
+  std::string address = endpoint;
+  if (tcp_host(endpoint) == "localhost") address = "tcp://127.0.0.1" + endpoint.substr(endpoint.rfind(':'));
+  allow_ipv6(socket, address);
+  try {
+    socket.bind(address);
+  } catch (const zmq::error_t& e) {
+    throw std::runtime_error(endpoint + ": cannot listen there (" + e.what() + ")");
+  }
+}
+
+void connect(zmq::socket_t& socket, const std::string& endpoint) {
+  allow_ipv6(socket, endpoint);
+  try {
+    socket.connect(endpoint);
+  } catch (const zmq::error_t& e) {
+    throw std::runtime_error(endpoint + ": cannot connect there (" + e.what() + ")");
+  }
 }
 
 void send(zmq::socket_t& socket, const Message& m) {

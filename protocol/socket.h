@@ -25,6 +25,14 @@ inline constexpr size_t kMaxWorkerMessageBytes = size_t(kMaxTileSide) * kMaxTile
 // linger 0 (close never waits for unsent messages).
 void configure(zmq::socket_t& socket, size_t max_bytes = kMaxMessageBytes);
 
+// Bind and connect as the command lines accept endpoints (--listen,
+// --connect): tcp://localhost:P binds to 127.0.0.1 (libzmq binds only to
+// interface names and addresses, and would fail with "No such device"), and
+// an IPv6 address (tcp://[::1]:P) turns on ZMQ_IPV6 for the socket first.
+// Throws std::runtime_error naming the endpoint when it cannot.
+void bind(zmq::socket_t& socket, const std::string& endpoint);
+void connect(zmq::socket_t& socket, const std::string& endpoint);
+
 // Sends one message as one frame (DEALER side). Queues without blocking until
 // the socket's high-water mark (1000 messages by default); blocks past it.
 void send(zmq::socket_t& socket, const Message& m);

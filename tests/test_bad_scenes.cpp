@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <iterator>
 #include <set>
 #include <string>
 #include <vector>
@@ -90,6 +91,26 @@ TEST(BadScenes, IgiRenderRejectsEachWithAClearErrorAndExitStatus) {
     EXPECT_EQ(r.output.find("runtime error:"), std::string::npos) << r.output;
   }
   EXPECT_FALSE(fs::exists(output));
+}
+
+// The attack's size: 41 kB of '[' crashed igi-render (SIGSEGV) in tinygltf's
+// recursion. deep-extras.gltf, deepened from 65 levels to 20,000.
+TEST(BadScenes, JsonNestedTwentyThousandDeepIsAnErrorNotACrash) {
+  std::ifstream in(fs::path(IGI_BAD_SCENES_DIR) / "deep-extras.gltf");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string nested = std::string(65, '[') + std::string(65, ']');
+  const size_t at = text.find(nested);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, nested.size(), std::string(20000, '[') + std::string(20000, ']'));
+  const fs::path scene = fs::path(IGI_TEST_OUTPUT_DIR) / "bad_scenes" / "deeper-extras.gltf";
+  fs::create_directories(scene.parent_path());
+  std::ofstream(scene) << text;
+  const test::RunResult r = test::run(std::string(IGI_RENDER_BINARY) + " --scene '" + scene.string() +
+                                      "' --size 8x8 --spp 1 --threads 1 --quiet -o /dev/null", 120);
+  EXPECT_GE(r.exit_code, 1) << r.output;
+  EXPECT_LE(r.exit_code, 125) << r.output;
+  EXPECT_NE(r.output.find(scene.string() + ": JSON: arrays and objects nested deeper than 64 levels"),
+            std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -14,7 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "build_info.h"
+#include "build_id.h"
 #include "master_session.h"
 #include "protocol/socket.h"
 #include "support/image_compare.h"
@@ -134,7 +134,7 @@ TEST(ClusterFaults, ASendToAPeerThatStoppedReadingNeverBlocks) {
   deaf.set(zmq::sockopt::rcvhwm, 1);
   deaf.set(zmq::sockopt::linger, 0);
   deaf.connect("inproc://igi-deaf-peer");
-  protocol::send(deaf, protocol::Hello{kBuildId, "deaf", 1});
+  protocol::send(deaf, protocol::Hello{igi::build_id(), "deaf", 1});
   bool joined = false;
   const auto end = Clock::now() + std::chrono::seconds(3);
   while (Clock::now() < end) {

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "io/file_bytes.h"
+#include "scene/gltf_json.h"
 #include "scene/gltf_loader.h"
 #include "support/image_compare.h"
 
@@ -102,9 +104,11 @@ class GltfBuilder {
     return path;
   }
 
-  fs::path write_glb(const fs::path& dir, const std::string& stem) {
+  // `to_text` writes the JSON chunk (tests that need text nlohmann::json cannot make).
+  fs::path write_glb(const fs::path& dir, const std::string& stem,
+                     const std::function<std::string(const json&)>& to_text = [](const json& d) { return d.dump(); }) {
     doc["buffers"] = json::array({{{"byteLength", bin.size()}}});
-    std::string text = doc.dump();
+    std::string text = to_text(doc);
     text.resize((text.size() + 3) / 4 * 4, ' ');
     std::vector<unsigned char> chunk = bin;
     chunk.resize((chunk.size() + 3) / 4 * 4, 0);
@@ -602,6 +606,86 @@ TEST(GltfLoader, EmitterTooSmallForFloatIsNoLight) {
   b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", diffuse_material()))}});
   const fs::path path = b.write_gltf(test_dir(), "tiny");
   expect_scene_error(path, {"no light"});
+}
+
+// The document's text with `placeholder` (a JSON string) replaced by `text`:
+// nesting too deep for nlohmann::json to write.
+std::string with_text(const json& doc, const std::string& placeholder, const std::string& text) {
+  std::string dumped = doc.dump();
+  const std::string quoted = "\"" + placeholder + "\"";
+  dumped.replace(dumped.find(quoted), quoted.size(), text);
+  return dumped;
+}
+
+std::string nested_arrays(int depth) { return std::string(size_t(depth), '[') + std::string(size_t(depth), ']'); }
+
+// tinygltf converts extras and extensions recursively: 20,000 levels overflowed
+// the stack (SIGSEGV). They are refused from a scan of the bytes first.
+TEST(GltfLoader, JsonNestedTooDeepIsRefusedBeforeParsing) {
+  const fs::path dir = test_dir();
+  GltfBuilder b = lit_quad();
+  b.doc["nodes"][0]["extras"] = "DEEP";
+  const fs::path gltf = b.write_gltf(dir, "deep-extras");
+  std::ofstream(gltf) << with_text(b.doc, "DEEP", nested_arrays(20000));
+  expect_scene_error(gltf, {"JSON", "nested deeper than 64 levels"});
+
+  GltfBuilder glb = lit_quad();
+  glb.doc["extensions"]["EXT_deep"] = "DEEP";
+  std::string objects;
+  for (int i = 0; i < 20000; ++i) objects += "{\"a\":";
+  objects += "0" + std::string(20000, '}');
+  const fs::path binary =
+      glb.write_glb(dir, "deep-extensions", [&objects](const json& d) { return with_text(d, "DEEP", objects); });
+  expect_scene_error(binary, {"JSON", "nested deeper than 64 levels"});
+}
+
+// The scan counts brackets outside strings only, escaped quotes included.
+TEST(GltfLoader, BracketsInsideStringsAndModestNestingLoad) {
+  GltfBuilder b = lit_quad();
+  b.doc["nodes"][0]["extras"] = {{"note", std::string(200, '[') + "\\\"[[[{{{" + std::string(200, '{')},
+                                 {"nested", "NESTED"}};
+  const fs::path path = b.write_gltf(test_dir(), "strings");
+  std::ofstream(path) << with_text(b.doc, "NESTED", nested_arrays(kMaxJsonDepth - 4));
+  EXPECT_EQ(load_gltf(path.string()).scene.triangles.size(), 2u);
+}
+
+// tinygltf reads a negative or fractional offset as absent (0): glTF asks for integers >= 0.
+TEST(GltfLoader, NegativeOrFractionalOffsetsAndStridesAreAnError) {
+  const fs::path dir = test_dir();
+  GltfBuilder offset = lit_quad();
+  offset.doc["accessors"][0]["byteOffset"] = -12;
+  expect_scene_error(offset.write_gltf(dir, "offset"), {"accessors[0]", "byteOffset -12", "expected an integer >= 0"});
+  GltfBuilder view = lit_quad();
+  view.doc["bufferViews"][1]["byteOffset"] = -48;
+  expect_scene_error(view.write_gltf(dir, "view"), {"bufferViews[1]", "byteOffset -48"});
+  GltfBuilder stride = lit_quad();
+  stride.doc["bufferViews"][0]["byteStride"] = 12.5;
+  expect_scene_error(stride.write_glb(dir, "stride"), {"bufferViews[0]", "byteStride 12.5"});
+}
+
+// glTF: a loader must refuse a file whose extensionsRequired it does not support.
+TEST(GltfLoader, UnsupportedRequiredExtensionIsAnError) {
+  GltfBuilder b = lit_quad();
+  b.doc["extensionsUsed"].push_back("EXT_made_up");
+  b.doc["extensionsRequired"] = json::array({"KHR_materials_emissive_strength", "EXT_made_up"});
+  expect_scene_error(b.write_gltf(test_dir(), "required"),
+                     {"extensionsRequired[1]", "EXT_made_up is required but not supported"});
+  GltfBuilder supported = lit_quad();
+  supported.doc["extensionsRequired"] = json::array({"KHR_materials_emissive_strength"});
+  EXPECT_TRUE(load_gltf(supported.write_gltf(test_dir(), "supported").string()).warnings.empty());
+}
+
+// 4,000 instances of a 50,000-triangle mesh: 200 million triangles from a
+// 1 MB file, refused by count before a vertex is expanded (Embree ran out of
+// memory on them and the renderer wrote through the null buffer it returned).
+TEST(GltfLoader, InstancedTrianglesOverTheBudgetAreRefusedBeforeExpanding) {
+  GltfBuilder b;
+  std::vector<uint32_t> indices;
+  for (int t = 0; t < 50000; ++t) indices.insert(indices.end(), {0, 1, 2});
+  const int mesh = b.add_quad_mesh(b.add("materials", emissive_material()), indices);
+  for (int i = 0; i < 4000; ++i) b.add_root({{"mesh", mesh}, {"translation", {i, 0, 0}}});
+  expect_scene_error(b.write_glb(test_dir(), "instances"),
+                     {"200000000 triangles", "over the limit of " + std::to_string(kMaxTriangles) + " triangles"});
 }
 
 }  // namespace

@@ -2,12 +2,18 @@
 // is refused before any work with one line that names the option and the
 // value, and the program's usage exit status (1: igi-render, igi-master;
 // 2: igi-worker, igi-soak).
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "master_options.h"
+#include "protocol/codec.h"
+#include "protocol/messages.h"
+#include "support/image_compare.h"
 #include "support/process.h"
 
 namespace igi {
@@ -80,6 +86,52 @@ TEST(Options, TheTimeoutMustExceedTheHeartbeat) {
   expect_refused({std::string(IGI_SOAK_BINARY) + " --heartbeat-ms 200 --timeout-ms 200 --dir " +
                       std::string(IGI_TEST_OUTPUT_DIR) + "/soak-bad-option", 2,
                   {"--timeout-ms 200", "--heartbeat-ms 200"}});
+}
+
+// What the command line lets through, the wire takes: the largest heartbeat
+// and credits the master accepts make a Welcome that decodes, one more is
+// refused naming the option (the Welcome would be refused by every worker).
+TEST(Options, TheMastersLivenessAndCreditLimitsAreTheWires) {
+  const std::string max_heartbeat = std::to_string(protocol::kMaxHeartbeatMs);
+  const MasterOptions o = parse_master_options({"--workers", "0", "--frames", "1", "--heartbeat-ms", max_heartbeat,
+                                                "--timeout-ms", std::to_string(protocol::kMaxHeartbeatMs + 1),
+                                                "--credits", std::to_string(protocol::kMaxCredits)});
+  protocol::Welcome welcome;
+  welcome.scene_name = "cornell";
+  welcome.heartbeat_ms = uint32_t(o.heartbeat_ms);
+  welcome.timeout_ms = uint32_t(o.timeout_ms);
+  welcome.credits = uint32_t(o.credits);
+  const protocol::DecodeResult decoded = protocol::decode(protocol::encode(welcome));
+  EXPECT_TRUE(decoded.message) << decoded.error;
+  expect_refused({std::string(IGI_MASTER_BINARY) + " --workers 0 --frames 1 --timeout-ms 90000 --heartbeat-ms " +
+                      std::to_string(protocol::kMaxHeartbeatMs + 1), 1,
+                  {"igi-master: --heartbeat-ms", "<= " + max_heartbeat}});
+  expect_refused({std::string(IGI_MASTER_BINARY) + " --workers 0 --frames 1 --credits " +
+                      std::to_string(protocol::kMaxCredits + 1), 1,
+                  {"igi-master: --credits", "<= " + std::to_string(protocol::kMaxCredits)}});
+}
+
+bool has_ipv6_loopback() {
+  std::ifstream interfaces("/proc/net/if_inet6");
+  for (std::string line; std::getline(interfaces, line);)
+    if (line.rfind("00000000000000000000000000000001", 0) == 0) return true;
+  return false;
+}
+
+// The loopback names that pass the local-endpoint check also bind (they
+// failed with "No such device"): a frame rendered by a local worker.
+TEST(Options, LocalhostAndIpv6LoopbackListenEndpointsWork) {
+  std::vector<std::string> endpoints = {"tcp://localhost:0"};
+  if (has_ipv6_loopback()) endpoints.push_back("tcp://[::1]:0");
+  for (const std::string& endpoint : endpoints) {
+    const std::string out = test::output_path("listen-loopback.png");
+    std::filesystem::remove(out);
+    const test::RunResult r = test::run(std::string(IGI_MASTER_BINARY) + " --workers 1 --worker-threads 1 --frames 1 "
+                                        "--size 16x16 --quiet --listen '" + endpoint + "' -o " + out, 60);
+    EXPECT_EQ(r.exit_code, 0) << endpoint << "\n" << r.output;
+    EXPECT_TRUE(std::filesystem::exists(out)) << endpoint;
+  }
+  if (!has_ipv6_loopback()) GTEST_SKIP() << "no IPv6 loopback here: only tcp://localhost was tried";
 }
 
 TEST(Options, HelpListsTheOptionsAndExitsZero) {

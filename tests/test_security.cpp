@@ -20,7 +20,7 @@
 #include <nlohmann/json.hpp>
 #include <zmq.hpp>
 
-#include "build_info.h"
+#include "build_id.h"
 #include "protocol/codec.h"
 #include "protocol/curve.h"
 #include "protocol/socket.h"
@@ -326,7 +326,7 @@ TEST(Security, PlainWorkersAndWrongMasterKeysCannotConnect) {
   zmq::socket_t dealer(context, zmq::socket_type::dealer);
   protocol::configure(dealer);
   dealer.connect(endpoint);
-  protocol::send(dealer, protocol::Hello{kBuildId, "native", 1});
+  protocol::send(dealer, protocol::Hello{igi::build_id(), "native", 1});
   EXPECT_FALSE(protocol::receive(dealer, 1000, false)) << "a plain peer heard from a CURVE master";
   test::stop(m);
 }
@@ -422,13 +422,13 @@ TEST(Security, CurveTrafficCarriesNoPlaintext) {
   make_keys(dir / "workers", "render01");
   // The worker's hello names its build and the master's welcome the scene: in the clear without CURVE ...
   const std::string plain = recorded_session(dir, false);
-  EXPECT_NE(plain.find(kBuildId), std::string::npos) << "the recorder saw the plain session";
+  EXPECT_NE(plain.find(igi::build_id()), std::string::npos) << "the recorder saw the plain session";
   EXPECT_NE(plain.find("cornell"), std::string::npos);
   // ... and nowhere with it.
   const std::string curve = recorded_session(dir, true);
   EXPECT_GT(curve.size(), 1000u) << "the recorder saw the CURVE session";
   EXPECT_NE(curve.find("CURVE"), std::string::npos) << "the ZMTP greeting names the mechanism";
-  EXPECT_EQ(curve.find(kBuildId), std::string::npos);
+  EXPECT_EQ(curve.find(igi::build_id()), std::string::npos);
   EXPECT_EQ(curve.find("cornell"), std::string::npos);
 }
 

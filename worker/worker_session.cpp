@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <thread>
 
-#include "build_info.h"
+#include "build_id.h"
 #include "protocol/codec.h"
 #include "protocol/socket.h"
 #include "render/frame_renderer.h"
@@ -29,7 +29,7 @@ struct WorkerSession::Loaded {
 WorkerSession::WorkerSession(WorkerOptions options)
     : options_(std::move(options)), cache_(std::make_shared<SceneCache>(options_.cache_dir, options_.search_dirs)) {
   if (options_.threads <= 0) options_.threads = default_thread_count();
-  if (options_.build_id.empty()) options_.build_id = kBuildId;
+  if (options_.build_id.empty()) options_.build_id = igi::build_id();
 }
 
 WorkerSession::~WorkerSession() {
@@ -85,7 +85,7 @@ WorkerSession::Outcome WorkerSession::serve(zmq::context_t& context) {
                                   ZMQ_EVENT_HANDSHAKE_SUCCEEDED | ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL |
                                       ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL | ZMQ_EVENT_HANDSHAKE_FAILED_AUTH |
                                       ZMQ_EVENT_DISCONNECTED);
-  socket.connect(options_.endpoint);
+  protocol::connect(socket, options_.endpoint);
   send(socket, protocol::Hello{options_.build_id, "native", uint32_t(options_.threads)});
   auto last_heard = Clock::now();
   for (;;) {

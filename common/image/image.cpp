@@ -1,12 +1,22 @@
 #include "image/image.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <functional>
 #include <stdexcept>
+#include <thread>
+
+#include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
 
 namespace igi {
+
+namespace fs = std::filesystem;
 
 glm::vec3 Image::mean() const {
   glm::dvec3 sum(0.0);
@@ -37,12 +47,16 @@ static bool is_float_format(const std::string& path) {
   return ext == "exr" || ext == "hdr" || ext == "pfm" || ext == "tif" || ext == "tiff";
 }
 
-void write_image(const Image& image, const std::string& path, float exposure) {
+// OpenImageIO picks the format from `path` and writes `file`. EXR headers get
+// no DateTime (OpenImageIO adds the clock's otherwise): equal images give
+// equal files.
+static void write_image_file(const Image& image, const std::string& path, const std::string& file, float exposure) {
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw std::runtime_error(path + ": cannot write image (" + OIIO::geterror() + ")");
   const bool linear = is_float_format(path);
   OIIO::ImageSpec spec(image.width, image.height, 3, linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  if (!out->open(path, spec)) throw std::runtime_error(path + ": " + out->geterror());
+  spec.attribute("DateTime", "");
+  if (!out->open(file, spec)) throw std::runtime_error(path + ": " + out->geterror());
   bool ok;
   if (linear) {
     ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
@@ -50,6 +64,50 @@ void write_image(const Image& image, const std::string& path, float exposure) {
     ok = out->write_image(OIIO::TypeDesc::UINT8, to_srgb8(image, exposure).data());
   }
   if (!ok || !out->close()) throw std::runtime_error(path + ": " + out->geterror());
+}
+
+// A hidden name beside `path`, unique to this process and thread (the only
+// writers that could race for it).
+static std::string temporary_name(const std::string& path) {
+  const fs::path target(path);
+  char suffix[64];
+  std::snprintf(suffix, sizeof suffix, ".%ld-%zx.tmp", long(::getpid()),
+                std::hash<std::thread::id>{}(std::this_thread::get_id()));
+  return (target.parent_path() / ("." + target.filename().string() + suffix)).string();
+}
+
+// The file a write to `path` replaces: `path`, or the file its link names.
+static std::string replaced_file(const std::string& path) {
+  std::error_code absent;  // a path that does not exist yet is the common case
+  if (!fs::is_symlink(fs::symlink_status(path, absent))) return path;
+  std::error_code error;
+  const fs::path target = fs::canonical(path, error);
+  if (error) throw std::runtime_error(path + ": cannot follow the link (" + error.message() + ")");
+  return target.string();
+}
+
+// The image goes to a temporary file in the same folder, renamed over `path`
+// once whole: a process killed mid-write leaves the old file or none under
+// `path`, never a truncated one (rename is atomic within a file system). A
+// link is followed (its target is replaced); a device or pipe (-o /dev/null)
+// is written in place, as renaming over it would replace the device.
+void write_image(const Image& image, const std::string& path, float exposure) {
+  std::error_code absent;
+  const fs::file_status status = fs::status(path, absent);
+  if (fs::exists(status) && !fs::is_regular_file(status)) return write_image_file(image, path, path, exposure);
+  const std::string target = replaced_file(path);
+  const std::string temporary = temporary_name(target);
+  try {
+    write_image_file(image, path, temporary, exposure);
+  } catch (...) {
+    std::remove(temporary.c_str());
+    throw;
+  }
+  if (std::rename(temporary.c_str(), target.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::remove(temporary.c_str());
+    throw std::runtime_error(path + ": cannot replace the file (" + reason + ")");
+  }
 }
 
 Image read_image(const std::string& path) {

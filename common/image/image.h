@@ -27,7 +27,9 @@ struct Image {
   }
 };
 
-// Throws std::runtime_error naming the path on failure.
+// Replaces `path` whole or not at all (written beside it, then renamed), and
+// equal images give byte-identical files (no time stamp in the header).
+// Throws std::runtime_error naming the path on failure; the old file stays.
 void write_image(const Image& image, const std::string& path, float exposure = 1.0f);
 Image read_image(const std::string& path);
 

@@ -4,6 +4,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <sys/types.h>
 
 #include <pmmintrin.h>
 #include <xmmintrin.h>
@@ -59,6 +60,53 @@ static void device_error(void*, RTCError code, const char* message) {
   std::fprintf(stderr, "embree error %d: %s\n", int(code), message ? message : "");
 }
 
+static const char* error_name(RTCError code) {
+  switch (code) {
+    case RTC_ERROR_NONE: return "no error";
+    case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU: return "the CPU lacks the instructions asked for";
+    case RTC_ERROR_CANCELLED: return "cancelled";
+    default: return "unknown error";
+  }
+}
+
+// Embree says a call failed through a null handle or the device's error code
+// (read and cleared here): either ends the build with an error naming `what`.
+static void check_embree(RTCDevice device, bool ok, const std::string& what) {
+  const RTCError code = rtcGetDeviceError(device);
+  if (ok && code == RTC_ERROR_NONE) return;
+  const RTCError reported = code == RTC_ERROR_NONE ? RTC_ERROR_UNKNOWN : code;  // a null handle, no code
+  throw std::runtime_error("embree: cannot " + what + ": " + error_name(reported));
+}
+
+// Counts what the device allocates and frees; refuses an allocation past the
+// limit before it happens (Embree may call this from many threads at once).
+static bool monitor_memory(void* user, ssize_t bytes, bool post) {
+  auto& budget = *static_cast<EmbreeMemoryBudget*>(user);
+  const int64_t used = budget.used.fetch_add(bytes) + bytes;
+  if (bytes <= 0 || post || used <= budget.limit) return true;
+  budget.used.fetch_sub(bytes);  // refused: the allocation will not happen
+  return false;
+}
+
+// Embree picks its kernels by the CPU, and kernels of different widths round
+// differently (AVX2 and up fuse multiply-adds; a wider BVH meets ties in
+// another order): a cluster of mixed machines would trace different hits.
+// Pinning one ISA (CMake's IGI_EMBREE_ISA, carried in the build id) makes
+// every machine that has it trace alike, AVX-512 ones included; a machine
+// without it gets this error instead of different pixels.
+static RTCDevice new_device(EmbreeMemoryBudget& budget) {
+  const std::string config = std::string("isa=") + IGI_EMBREE_ISA;
+  RTCDevice device = rtcNewDevice(config.c_str());
+  check_embree(nullptr, device != nullptr, "create a device with " + config + " (configure with "
+               "-DIGI_EMBREE_ISA=sse4.2 for every machine of a cluster that lacks it)");
+  rtcSetDeviceErrorFunction(device, device_error, nullptr);
+  if (budget.limit > 0) rtcSetDeviceMemoryMonitorFunction(device, monitor_memory, &budget);
+  return device;
+}
+
 // One callback serves rtcIntersect* and rtcOccluded*, any packet width.
 static void filter_hits(const RTCFilterFunctionNArguments* args) {
   const auto* accel = static_cast<const Accel*>(args->geometryUserPtr);
@@ -75,11 +123,14 @@ static void filter_hits(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-Accel::Accel(const Scene& scene) : scene_(scene) {
-  device_ = rtcNewDevice(nullptr);
-  if (!device_) throw std::runtime_error("embree: cannot create device");
-  rtcSetDeviceErrorFunction(device_, device_error, nullptr);
+Accel::Accel(const Scene& scene, size_t memory_limit, Empty) : scene_(scene) { budget_.limit = int64_t(memory_limit); }
+
+// Delegating: once the empty Accel exists, a throw from this body runs the
+// destructor, which releases whatever Embree objects were made.
+Accel::Accel(const Scene& scene, size_t memory_limit) : Accel(scene, memory_limit, Empty{}) {
+  device_ = new_device(budget_);
   top_ = rtcNewScene(device_);
+  check_embree(device_, top_ != nullptr, "create the top-level scene");
 
   // Which group each triangle belongs to: 0 static, then one per moving node
   // (the light group's node is -1), in the order the parts name them.
@@ -107,51 +158,68 @@ Accel::Accel(const Scene& scene) : scene_(scene) {
   mean_chord_ = measure_mean_chord(scene, *this);
 }
 
+// One triangle geometry of a group, committed: its vertices written, and the
+// alpha-mask and single-sided filter where `filtered`. `g` is already the
+// group's, so that a throw leaves its handle to the destructor.
+void Accel::build_triangles(Geometry& g, const std::vector<uint32_t>& triangles, bool moving, bool filtered) {
+  const std::string what = std::to_string(triangles.size()) + " triangles";
+  g.triangles = triangles;
+  g.handle = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  check_embree(device_, g.handle != nullptr, "create a geometry of " + what);
+  g.vertices = static_cast<float*>(rtcSetNewGeometryBuffer(g.handle, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                           3 * sizeof(float), 3 * triangles.size()));
+  // An empty buffer may come back null (a geometry of no triangles: nothing filtered).
+  check_embree(device_, g.vertices != nullptr || triangles.empty(), "allocate the vertices of " + what);
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      g.handle, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles.size()));
+  check_embree(device_, indices != nullptr || triangles.empty(), "allocate the indices of " + what);
+  // Unshared vertices: simple, and the BVH cost dominates memory anyway.
+  for (size_t i = 0; i < 3 * triangles.size(); ++i) indices[i] = unsigned(i);
+  write_vertices(g);
+  // A moving part's BVH is refitted to its posed vertices (Embree honours
+  // REFIT in a LOW-quality scene): tight boxes under translation, looser
+  // under rotation and deformation.
+  if (moving) rtcSetGeometryBuildQuality(g.handle, RTC_BUILD_QUALITY_REFIT);
+  if (filtered) {
+    rtcSetGeometryUserData(g.handle, const_cast<Accel*>(this));
+    rtcSetGeometryIntersectFilterFunction(g.handle, filter_hits);
+    rtcSetGeometryOccludedFilterFunction(g.handle, filter_hits);
+  }
+  rtcCommitGeometry(g.handle);
+  check_embree(device_, true, "commit a geometry of " + what);
+}
+
 void Accel::add_group(const std::vector<uint32_t>& triangles, RTCBuildQuality quality) {
-  Group group;
-  group.scene = rtcNewScene(device_);
-  rtcSetSceneBuildQuality(group.scene, quality);
-  const bool moving = !groups_.empty();
-  if (moving) rtcSetSceneFlags(group.scene, RTC_SCENE_FLAG_DYNAMIC);
+  RTCScene scene = rtcNewScene(device_);
+  check_embree(device_, scene != nullptr, "create a scene");
+  // The group's from here, so that the destructor releases what a throw leaves.
+  Group& added = groups_.emplace_back();
+  added.scene = scene;
+  rtcSetSceneBuildQuality(added.scene, quality);
+  const bool moving = groups_.size() > 1;
+  if (moving) rtcSetSceneFlags(added.scene, RTC_SCENE_FLAG_DYNAMIC);
   std::vector<uint32_t> plain, filtered;
   for (uint32_t t : triangles) {
     const Material& m = scene_.materials[scene_.triangle_material[t]];
     (m.alpha_mask || !m.double_sided ? filtered : plain).push_back(t);
   }
   for (const std::vector<uint32_t>* list : {&plain, &filtered}) {
-    Geometry g;
-    g.triangles = *list;
-    g.handle = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    g.vertices = static_cast<float*>(rtcSetNewGeometryBuffer(g.handle, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                             3 * sizeof(float), 3 * list->size()));
-    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        g.handle, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), list->size()));
-    // Unshared vertices: simple, and the BVH cost dominates memory anyway.
-    for (size_t i = 0; i < 3 * list->size(); ++i) indices[i] = unsigned(i);
-    write_vertices(g);
-    // A moving part's BVH is refitted to its posed vertices (Embree honours
-    // REFIT in a LOW-quality scene): tight boxes under translation, looser
-    // under rotation and deformation.
-    if (moving) rtcSetGeometryBuildQuality(g.handle, RTC_BUILD_QUALITY_REFIT);
-    if (list == &filtered) {
-      rtcSetGeometryUserData(g.handle, const_cast<Accel*>(this));
-      rtcSetGeometryIntersectFilterFunction(g.handle, filter_hits);
-      rtcSetGeometryOccludedFilterFunction(g.handle, filter_hits);
-    }
-    rtcCommitGeometry(g.handle);
-    if (rtcAttachGeometry(group.scene, g.handle) != group.geometries.size())
+    build_triangles(added.geometries.emplace_back(), *list, moving, list == &filtered);
+    if (rtcAttachGeometry(added.scene, added.geometries.back().handle) != added.geometries.size() - 1)
       throw std::logic_error("embree: unexpected geometry id");
-    group.geometries.push_back(std::move(g));
   }
-  rtcCommitScene(group.scene);
+  rtcCommitScene(added.scene);
+  check_embree(device_, true, "build the BVH of " + std::to_string(triangles.size()) + " triangles");
 
-  group.instance = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
-  rtcSetGeometryInstancedScene(group.instance, group.scene);
+  added.instance = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+  check_embree(device_, added.instance != nullptr, "create an instance");
+  rtcSetGeometryInstancedScene(added.instance, added.scene);
   const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
-  rtcSetGeometryTransform(group.instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
-  rtcCommitGeometry(group.instance);
-  if (rtcAttachGeometry(top_, group.instance) != groups_.size()) throw std::logic_error("embree: unexpected instance id");
-  groups_.push_back(std::move(group));
+  rtcSetGeometryTransform(added.instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
+  rtcCommitGeometry(added.instance);
+  check_embree(device_, true, "commit an instance");
+  if (rtcAttachGeometry(top_, added.instance) != groups_.size() - 1)
+    throw std::logic_error("embree: unexpected instance id");
 }
 
 void Accel::write_vertices(const Geometry& geometry) const {
@@ -177,16 +245,19 @@ void Accel::update() {
     rtcCommitGeometry(group.instance);
   }
   rtcCommitScene(top_);
+  check_embree(device_, true, "rebuild the moving parts' BVHs");
 }
 
+// Null handles are those a failed construction never made.
 Accel::~Accel() {
-  rtcReleaseScene(top_);
+  if (top_) rtcReleaseScene(top_);
   for (Group& group : groups_) {
     if (group.instance) rtcReleaseGeometry(group.instance);
-    for (Geometry& g : group.geometries) rtcReleaseGeometry(g.handle);
+    for (Geometry& g : group.geometries)
+      if (g.handle) rtcReleaseGeometry(g.handle);
     rtcReleaseScene(group.scene);
   }
-  rtcReleaseDevice(device_);
+  if (device_) rtcReleaseDevice(device_);
 }
 
 bool Accel::rejects(uint32_t triangle, glm::vec2 b, glm::vec3 direction, bool camera_ray) const {

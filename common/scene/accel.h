@@ -25,6 +25,7 @@
 // interiors, which exporters write single-sided. A ray says which it is by
 // its mask (Embree passes it to the filter): kCameraRayMask culls,
 // kOpaqueRayMask (all bits, the default) does not.
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -69,9 +70,18 @@ inline void set_rtc_lane(RTCRay16& r, int k, const Ray& ray) {
 
 void enable_flush_to_zero();
 
+// Embree's memory for one Accel, counted by its device; an allocation past a
+// non-zero limit fails (Embree's RTC_ERROR_OUT_OF_MEMORY, then our exception).
+struct EmbreeMemoryBudget {
+  std::atomic<int64_t> used{0};
+  int64_t limit = 0;  // bytes; 0: no limit
+};
+
 class Accel {
  public:
-  explicit Accel(const Scene& scene);
+  // Throws std::runtime_error naming what Embree could not do (out of memory,
+  // a CPU without the pinned ISA); memory_limit bounds Embree's memory (0: none).
+  explicit Accel(const Scene& scene, size_t memory_limit = 0);
   ~Accel();
   Accel(const Accel&) = delete;
   Accel& operator=(const Accel&) = delete;
@@ -115,10 +125,14 @@ class Accel {
     RTCGeometry instance = nullptr;
     std::vector<Geometry> geometries;  // plain, then filtered
   };
+  struct Empty {};
+  Accel(const Scene& scene, size_t memory_limit, Empty);  // no Embree object yet
   void add_group(const std::vector<uint32_t>& triangles, RTCBuildQuality quality);
+  void build_triangles(Geometry& g, const std::vector<uint32_t>& triangles, bool moving, bool filtered);
   void write_vertices(const Geometry& geometry) const;
 
   const Scene& scene_;
+  EmbreeMemoryBudget budget_;  // before the device, which reports to it
   RTCDevice device_ = nullptr;
   RTCScene top_ = nullptr;
   std::vector<Group> groups_;  // index = instance id; 0 is the static group

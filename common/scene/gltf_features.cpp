@@ -1,6 +1,7 @@
 #include "scene/gltf_features.h"
 
 #include <algorithm>
+#include <iterator>
 #include <set>
 
 #include <tiny_gltf.h>
@@ -8,9 +9,11 @@
 namespace igi {
 namespace {
 
+constexpr const char* kSupported[] = {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
+                                      "KHR_materials_emissive_strength"};
+
 bool supported(const std::string& extension) {
-  return extension == "KHR_lights_punctual" || extension == "KHR_materials_transmission" ||
-         extension == "KHR_materials_ior" || extension == "KHR_materials_emissive_strength";
+  return std::find(std::begin(kSupported), std::end(kSupported), extension) != std::end(kSupported);
 }
 
 bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
@@ -86,16 +89,26 @@ bool has_morph_targets(const tinygltf::Model& model) {
                      [](const tinygltf::Node& node) { return !node.weights.empty(); });
 }
 
+// Required ones have been refused already (check_required_extensions).
 void warn_extensions(const tinygltf::Model& model, GltfDiagnostics& diag) {
-  const Names required(model.extensionsRequired.begin(), model.extensionsRequired.end());
-  for (const std::string& extension : extensions_in(model)) {
-    if (supported(extension)) continue;
-    const std::string kind = required.count(extension) ? "required extension " : "extension ";
-    diag.warn_once("extension " + extension, kind + extension + " ignored: " + consequence(extension));
-  }
+  for (const std::string& extension : extensions_in(model))
+    if (!supported(extension))
+      diag.warn_once("extension " + extension, "extension " + extension + " ignored: " + consequence(extension));
 }
 
 }  // namespace
+
+void check_required_extensions(const tinygltf::Model& model, const GltfDiagnostics& diag) {
+  for (size_t i = 0; i < model.extensionsRequired.size(); ++i) {
+    const std::string& extension = model.extensionsRequired[i];
+    if (supported(extension)) continue;
+    std::string known;
+    for (const char* name : kSupported) known += std::string(known.empty() ? "" : ", ") + name;
+    diag.fail(gltf_element("extensionsRequired", i),
+              extension + " is required but not supported, so the file cannot be read as meant (supported: " +
+                  known + ")");
+  }
+}
 
 void warn_unsupported_features(const tinygltf::Model& model, GltfDiagnostics& diag) {
   const bool skinned = std::any_of(model.nodes.begin(), model.nodes.end(),

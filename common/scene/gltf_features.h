@@ -8,6 +8,9 @@
 //
 // Features the mesh and material readers meet on their way (primitive modes,
 // extra attributes, textures other than baseColor) are reported there.
+//
+// An extension in extensionsRequired that is not one of the four is an
+// error: glTF asks a loader to refuse a file it cannot read as meant.
 #include "scene/gltf_diagnostics.h"
 
 namespace tinygltf {
@@ -16,6 +19,8 @@ class Model;
 
 namespace igi {
 
+// Throws SceneError naming the first required extension the loader does not read.
+void check_required_extensions(const tinygltf::Model& model, const GltfDiagnostics& diag);
 void warn_unsupported_features(const tinygltf::Model& model, GltfDiagnostics& diag);
 
 }  // namespace igi

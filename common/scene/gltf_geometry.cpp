@@ -225,6 +225,12 @@ void GeometryBuilder::reserve(const std::vector<MeshInstance>& instances) {
       vertices += flat ? 3 * geometry.triangles.size() : geometry.positions.size();
       triangles += geometry.triangles.size();
     }
+  // The budget, before anything is expanded: instancing multiplies a small file.
+  if (triangles > kMaxTriangles || vertices > kMaxVertices)
+    diag_.fail("meshes", "the instanced meshes hold " + std::to_string(triangles) + " triangles and " +
+                             std::to_string(vertices) + " vertices, over the limit of " +
+                             std::to_string(kMaxTriangles) + " triangles and " + std::to_string(kMaxVertices) +
+                             " vertices");
   scene_.positions.reserve(scene_.positions.size() + vertices);
   if (any_normals_) scene_.normals.reserve(scene_.normals.size() + vertices);
   if (any_uvs_) scene_.uvs.reserve(scene_.uvs.size() + vertices);

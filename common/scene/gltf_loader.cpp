@@ -17,6 +17,7 @@
 #include "scene/gltf_diagnostics.h"
 #include "scene/gltf_features.h"
 #include "scene/gltf_geometry.h"
+#include "scene/gltf_json.h"
 #include "scene/gltf_materials.h"
 #include "scene/gltf_nodes.h"
 
@@ -142,6 +143,14 @@ void check_glb(std::span<const uint8_t> bytes, const GltfDiagnostics& diag) {
   }
 }
 
+// The JSON text: the file, or a .glb's first chunk (after check_glb, which
+// leaves at least the headers; a chunk cut short is tinygltf's error).
+std::span<const uint8_t> json_text(std::span<const uint8_t> bytes, bool binary) {
+  if (!binary) return bytes;
+  const size_t start = kGlbHeaderBytes + kChunkHeaderBytes;
+  return bytes.subspan(start, std::min<size_t>(read_u32(bytes, kGlbHeaderBytes), bytes.size() - start));
+}
+
 // tinygltf would decode images while parsing, before anything has checked
 // bufferViews against their buffers. Keep the encoded bytes of external and
 // data-URI images instead; gltf_materials.cpp decodes the ones in use.
@@ -171,6 +180,8 @@ tinygltf::Model parse_model(std::span<const uint8_t> bytes, const std::string& r
   if (bytes.size() > UINT32_MAX) throw SceneError(diag.file + ": exceeds 4 GiB");
   const bool binary = is_glb(diag.file, bytes);
   if (binary) check_glb(bytes, diag);
+  check_json_depth(json_text(bytes, binary), diag);  // before any parser recurses into it
+  check_unsigned_fields(json_text(bytes, binary), diag);
   ResourceFolder folder = resource_folder(resource_dir);
   tinygltf::TinyGLTF parser;
   parser.SetImageLoader(&keep_encoded_image, nullptr);
@@ -257,6 +268,7 @@ LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& 
   GltfDiagnostics diag;
   diag.file = name;
   const tinygltf::Model model = parse_model(bytes, resource_dir, diag);
+  check_required_extensions(model, diag);
   check_buffer_views(model, diag);
   warn_unsupported_features(model, diag);
 

@@ -62,6 +62,10 @@ static bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y
 void Scene::validate() const {
   const std::string where = "scene '" + name + "': ";
   if (triangles.empty()) throw SceneError(where + "no geometry (no triangles)");
+  if (triangles.size() > kMaxTriangles || positions.size() > kMaxVertices)
+    throw SceneError(where + std::to_string(triangles.size()) + " triangles and " + std::to_string(positions.size()) +
+                     " vertices, over the limit of " + std::to_string(kMaxTriangles) + " and " +
+                     std::to_string(kMaxVertices));
   if (triangle_material.size() != triangles.size())
     throw SceneError(where + "triangle_material has " + std::to_string(triangle_material.size()) +
                      " entries, expected one per triangle (" + std::to_string(triangles.size()) + ")");

@@ -80,6 +80,13 @@ struct Bounds {
 
 struct SceneAnimation;  // scene/animation.h
 
+// The most triangles (instances counted) and vertices a scene may hold: about
+// 200 bytes a triangle between the scene, Embree's copy and its BVH, so
+// 13 GiB at the limit. Loaders refuse more before expanding instances (a 1 kB
+// glTF can instance a mesh a million times); Scene::validate checks it again.
+inline constexpr size_t kMaxTriangles = size_t(1) << 26;
+inline constexpr size_t kMaxVertices = 3 * kMaxTriangles;
+
 struct Scene {
   std::string name;
   // Per-vertex data; normals and uvs are either empty or one per position.

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "build_info.h"
+#include "build_id.h"
 #include "protocol/codec.h"
 #include "protocol/socket.h"
 
@@ -58,7 +58,7 @@ void SimWorker::connect(Clock::time_point now) {
   std::fill(lanes_.begin(), lanes_.end(), now);
   last_heard_ = now;
   ++outcome_.connections;
-  send(protocol::Hello{kBuildId, "simulated", uint32_t(std::max(1, behaviour_.threads))}, now);
+  send(protocol::Hello{igi::build_id(), "simulated", uint32_t(std::max(1, behaviour_.threads))}, now);
 }
 
 void SimWorker::disconnect() {

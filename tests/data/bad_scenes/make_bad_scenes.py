@@ -56,10 +56,11 @@ def gltf(name, doc, expected):
     write(name, json.dumps(doc, indent=1), expected)
 
 
-def glb(doc, data, version=2, magic=b"glTF"):
+def glb(doc, data, version=2, magic=b"glTF", edit=lambda text: text):
+    """`edit` changes the JSON text (for text json.dumps cannot write)."""
     doc = copy.deepcopy(doc)
     del doc["buffers"][0]["uri"]
-    text = json.dumps(doc).encode()
+    text = edit(json.dumps(doc)).encode()
     text += b" " * (-len(text) % 4)
     data += b"\0" * (-len(data) % 4)
     chunks = struct.pack("<I4s", len(text), b"JSON") + text + struct.pack("<I4s", len(data), b"BIN\0") + data
@@ -97,6 +98,29 @@ doc["buffers"][0]["byteLength"] = 2**40
 gltf("huge-buffer.gltf", doc, "Failed to decode 'uri'")
 write("indices-out-of-range.glb", glb(base, pack_bin(indices=[0, 1, 2, 0, 2, 7])),
       "index 7 at element 5 is out of range: the primitive has 4 vertices")
+# tinygltf reads a negative or fractional offset or stride as absent (0).
+doc = copy.deepcopy(base)
+doc["accessors"][0]["byteOffset"] = -4
+gltf("negative-byte-offset.gltf", doc, "accessors[0]: byteOffset -4, expected an integer >= 0")
+doc = copy.deepcopy(base)
+doc["bufferViews"][0]["byteStride"] = 12.5
+write("fractional-byte-stride.glb", glb(doc, data), "bufferViews[0]: byteStride 12.5, expected an integer >= 0")
+
+# JSON nested past the loader's 64 levels (20,000 overflowed tinygltf's stack:
+# test_bad_scenes.cpp deepens deep-extras.gltf to that).
+doc = copy.deepcopy(base)
+doc["nodes"][0]["extras"] = "DEEP"
+write("deep-extras.gltf", json.dumps(doc).replace('"DEEP"', "[" * 65 + "]" * 65), "nested deeper than 64 levels")
+doc = copy.deepcopy(base)
+doc["extensions"] = {"EXT_deep": "DEEP"}
+write("deep-extensions.glb", glb(doc, data, edit=lambda text: text.replace('"DEEP"', '{"a":' * 65 + "0" + "}" * 65)),
+      "nested deeper than 64 levels")
+
+# Extensions: one the loader does not read, marked required, must be refused.
+doc = copy.deepcopy(base)
+doc["extensionsUsed"] = doc["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+gltf("unknown-required-extension.gltf", doc,
+     "extensionsRequired[0]: KHR_draco_mesh_compression is required but not supported")
 
 # Values.
 nan = float("nan")
