@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <cstdio>
 
 #include "cli/option_checks.h"
 #include "lightcuts/lightcuts_settings.h"
@@ -16,6 +17,18 @@ namespace {
 using cli::integer;
 using cli::non_negative_number;
 using cli::OptionError;
+
+// Every default --help shows is read from the structs, never typed twice.
+const RenderOptions kDefaults{};
+
+std::string shown_default(const std::string& value) { return " [" + value + "]"; }
+std::string shown_default(int value) { return shown_default(std::to_string(value)); }
+std::string shown_default(uint32_t value) { return shown_default(std::to_string(value)); }
+std::string shown_default(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return shown_default(std::string(text));
+}
 
 constexpr int kMaxSamples = 1 << 20;    // --spp: samples per pixel or passes
 constexpr int kMaxAntialiasText = 1 << 20;  // --aa: the square numbers up to 64 are checked with the settings
@@ -41,107 +54,109 @@ void check_caustics(const RenderSettings& s) {
 void add_image_options(CLI::App& app, RenderOptions& o) {
   std::string scenes;
   for (const std::string& n : builtin_scene_names()) scenes += " " + n;
-  app.add_option("--scene", o.scene, "built-in scene (" + scenes + " ) or .gltf/.glb file [cornell]")
+  app.add_option("--scene", o.scene, "built-in scene (" + scenes + " ) or .gltf/.glb file" + shown_default(kDefaults.scene))
       ->type_name("NAME|FILE");
   app.add_option_function<std::string>(
-         "--method", [&o](const std::string& m) { o.settings.method = *parse_method(m); }, "rendering method [igi]")
+         "--method", [&o](const std::string& m) { o.settings.method = *parse_method(m); }, "rendering method" + shown_default(std::string(method_name(kDefaults.settings.method))))
       ->check(cli::one_of({"pt", "ir", "igi", "lightcuts"}))->type_name("pt|ir|igi|lightcuts");
-  app.add_option("--spp", o.samples, "pt: samples per pixel; ir/igi: passes with fresh VPLs [1]")
+  app.add_option("--spp", o.samples, "pt: samples per pixel; ir/igi: passes with fresh VPLs" + shown_default(kDefaults.samples))
       ->check(integer(1, kMaxSamples))->type_name("N");
-  cli::add_size_option(app, "--size", o.width, o.height, protocol::kMaxImageSide, "image size [640x480]");
-  app.add_option("-o,--output", o.output, "output image: .exr/.hdr linear, .png sRGB [render.png]")->type_name("FILE");
-  app.add_option("--exposure", o.exposure, "scale before writing PNG [1]")
+  cli::add_size_option(app, "--size", o.width, o.height, protocol::kMaxImageSide, "image size" + shown_default(std::to_string(kDefaults.width) + "x" + std::to_string(kDefaults.height)));
+  app.add_option("-o,--output", o.output, "output image: .exr/.hdr linear, .png sRGB" + shown_default(kDefaults.output))->type_name("FILE");
+  app.add_option("--exposure", o.exposure, "scale before writing PNG" + shown_default(kDefaults.exposure))
       ->check(non_negative_number())->type_name("E");
-  app.add_option("--threads", o.threads, "render threads, 0 = all [0]")
+  app.add_option("--threads", o.threads, "render threads, 0 = all" + shown_default(kDefaults.threads))
       ->check(integer(0, cli::kMaxThreads))->type_name("T");
-  app.add_option("--tile", o.tile_size, "tile size in pixels [32]")
+  app.add_option("--tile", o.tile_size, "tile size in pixels" + shown_default(kDefaults.tile_size))
       ->check(integer(1, protocol::kMaxTileSide))->type_name("T");
-  app.add_option("--seed", o.seed, "frame seed [1]")->check(integer<uint32_t>(0, UINT32_MAX))->type_name("S");
+  app.add_option("--seed", o.seed, "frame seed" + shown_default(kDefaults.seed))->check(integer<uint32_t>(0, UINT32_MAX))->type_name("S");
   app.add_option("--export-gltf", o.export_gltf, "write the scene as glTF and exit")->type_name("FILE");
   app.add_flag("--quiet", o.quiet, "no progress output");
   app.add_flag("--show", o.show, "show the result in a window (Esc closes it)");
   app.add_option_function<std::string>(
          "--screenshot", [&o](const std::string& f) { o.show = true, o.screenshot = f; },
          "show, save the window's pixels to FILE, close")->type_name("FILE");
-  app.add_option("--time", o.time, "animated scenes: seconds of animation time of the (first) frame [0]")
+  app.add_option("--time", o.time, "animated scenes: seconds of animation time of the (first) frame" + shown_default(kDefaults.time))
       ->check(cli::bounded_number(protocol::kMaxSceneTime))->type_name("T");
   cli::add_vec3_option(app, "--move-lights", o.light_offset, 1e6,
                        "metres to move the scene's lights by, as the window's J/L, U/O, I/K keys do [0,0,0]");
 }
 
 void add_vpl_options(CLI::App& app, RenderSettings& s) {
-  app.add_option("--path-depth", s.path_depth, "pt: longest path in bounces, 0 = unbounded (Russian roulette) [0]")
+  app.add_option("--path-depth", s.path_depth, "pt: longest path in bounces, 0 = unbounded (Russian roulette)" + shown_default(kDefaults.settings.path_depth))
       ->check(integer(0, kMaxDepth))->type_name("D");
-  app.add_option("--light-depth", s.light_depth, "ir/igi: longest VPL light path, 0 = unbounded (Russian roulette) [0]")
+  app.add_option("--light-depth", s.light_depth, "ir/igi: longest VPL light path, 0 = unbounded (Russian roulette)" + shown_default(kDefaults.settings.light_depth))
       ->check(integer(0, kMaxDepth))->type_name("D");
   app.add_option("--specular-depth", s.specular_depth,
-                 "ir/igi: mirrors and glass followed from the camera, 0 = unbounded [16]")
+                 "ir/igi: mirrors and glass followed from the camera, 0 = unbounded" + shown_default(kDefaults.settings.specular_depth))
       ->check(integer(0, kMaxDepth))->type_name("D");
   app.add_option("--max-depth")->group("");  // split: refused with a message that says how
-  app.add_option("--vpl-sets", s.interleave, "ir/igi: N x N interleaved VPL sets [3]")
+  app.add_option("--vpl-sets", s.interleave, "ir/igi: N x N interleaved VPL sets" + shown_default(kDefaults.settings.interleave))
       ->check(integer(1, kMaxInterleave))->type_name("N");
-  app.add_option("--vpl-paths", s.paths_per_set, "ir/igi: light paths per VPL set [16]")
+  app.add_option("--vpl-paths", s.paths_per_set, "ir/igi: light paths per VPL set" + shown_default(kDefaults.settings.paths_per_set))
       ->check(integer(1, kMaxPathsPerSet))->type_name("M");
   app.add_option("--aa", s.aa_samples, "ir/igi: S sub-samples per pixel (1, 4, 9, ...), each shaded by 1/S of the "
-                 "pixel's light paths (anti-aliasing by VPL groups); needs --vpl-paths >= S [4]")
+                 "pixel's light paths (anti-aliasing by VPL groups); needs --vpl-paths >= S" + shown_default(kDefaults.settings.aa_samples))
       ->check(integer(1, kMaxAntialiasText))->type_name("S");
   app.add_option("--glossy-threshold", s.glossy_threshold, "ir/igi: GGX surfaces with alpha below A gather their "
-                 "lobe with rays instead of VPL light; 0 = VPLs shade every glossy surface [0.2]")
+                 "lobe with rays instead of VPL light; 0 = VPLs shade every glossy surface" + shown_default(kDefaults.settings.glossy_threshold))
       ->check(non_negative_number())->type_name("A");
-  app.add_option("--glossy-rays", s.glossy_rays, "ir/igi: gather rays per sub-sample of such a surface [1]")
+  app.add_option("--glossy-rays", s.glossy_rays, "ir/igi: gather rays per sub-sample of such a surface" + shown_default(kDefaults.settings.glossy_rays))
       ->check(integer(1, kMaxGlossyRays))->type_name("K");
   app.add_option("--clamp", s.clamp, "ir/igi/lightcuts: clamp 1/r^2 below distance C x the scene's mean chord (about "
                  "a room); pass k of --spp clamps at C / (k + 1)^(1/4) of it, so passes converge; 0 = off, at most "
-                 + std::to_string(int(kMaxClamp)) + " [0.3]")
+                 + std::to_string(int(kMaxClamp)) + shown_default(kDefaults.settings.clamp))
       ->check(non_negative_number())->type_name("C");
   app.add_option("--compensate", s.compensation_samples,
-                 "ir/igi: bias compensation, N eye samples per pixel (needs --clamp), 0 = off [0]")
+                 "ir/igi: bias compensation, N eye samples per pixel (needs --clamp), 0 = off" + shown_default(kDefaults.settings.compensation_samples))
       ->check(integer(0, kMaxCompensationSamples))->type_name("N");
   app.add_option("--glass-branches", s.glass_branches, "ir/igi: glass seen from the camera splits into reflection "
                  "and refraction at its first B - 1 surfaces, each branch filtered on its own; 1 = pick one by "
-                 "Fresnel [3]")->check(integer(1, kMaxGlassBranches))->type_name("B");
+                 "Fresnel" + shown_default(kDefaults.settings.glass_branches))->check(integer(1, kMaxGlassBranches))->type_name("B");
 }
 
 void add_filter_and_caustic_options(CLI::App& app, RenderSettings& s) {
   app.add_flag_callback("--no-filter", [&s] { s.filter = false; }, "igi: skip the discontinuity buffer");
-  app.add_option("--filter-normal", s.filter_normal_cos, "igi: neighbours need normal dot above C [0.9]")
+  app.add_option("--filter-normal", s.filter_normal_cos, "igi: neighbours need normal dot above C" + shown_default(kDefaults.settings.filter_normal_cos))
       ->check(non_negative_number())->type_name("C");
   app.add_option("--filter-depth", s.filter_depth_ratio,
-                 "igi: neighbours need relative depth difference below R [0.05]")
+                 "igi: neighbours need relative depth difference below R" + shown_default(kDefaults.settings.filter_depth_ratio))
       ->check(non_negative_number())->type_name("R");
   app.add_flag("--caustics", s.caustics, "ir/igi: add caustics from a photon map (light through mirrors and glass)");
   app.add_option_function<int>(
          "--caustic-photons", [&s](int n) { s.caustic_photons = n, s.caustics = true; },
-         "ir/igi: photon paths shot per frame, >= 1; implies --caustics [20000]")
+         "ir/igi: photon paths shot per frame, >= 1; implies --caustics" +
+             shown_default(kDefaults.settings.caustic_photons))
       ->check(integer(0, photons::kMaxCausticPhotons))->type_name("N");
   app.add_option_function<float>(
          "--caustic-radius", [&s](float r) { s.caustic_radius = r, s.caustics = true; },
-         "ir/igi: photon gather radius, a fraction of the scene diagonal; implies --caustics [0.01]")
+         "ir/igi: photon gather radius, a fraction of the scene diagonal; implies --caustics" +
+             shown_default(kDefaults.settings.caustic_radius))
       ->check(non_negative_number())->type_name("R");
 }
 
 void add_lightcuts_and_importance_options(CLI::App& app, RenderSettings& s) {
   app.add_option("--lightcuts-error", s.lightcuts_error, "lightcuts (over all --vpl-sets x --vpl-paths VPLs): refine "
-                 "until every cluster's error bound is below E x the pixel's total, 0 < E < 1 [0.02]")
+                 "until every cluster's error bound is below E x the pixel's total, 0 < E < 1" + shown_default(kDefaults.settings.lightcuts_error))
       ->check(cli::number())->type_name("E");
-  app.add_option("--lightcuts-max-cut", s.lightcuts_max_cut, "lightcuts: at most N nodes (shadow rays) in a cut [1000]")
+  app.add_option("--lightcuts-max-cut", s.lightcuts_max_cut, "lightcuts: at most N nodes (shadow rays) in a cut" + shown_default(kDefaults.settings.lightcuts_max_cut))
       ->check(integer(1, lightcuts::kMaxCut))->type_name("N");
   app.add_option("--lightcuts-spacing", s.lightcuts_spacing,
-                 "lightcuts: reconstruction cuts, full cuts every S pixels only, 0 = off [0]")
+                 "lightcuts: reconstruction cuts, full cuts every S pixels only, 0 = off" + shown_default(kDefaults.settings.lightcuts_spacing))
       ->check(integer(0, lightcuts::kMaxSpacing))->type_name("S");
   app.add_option("--lightcuts-samples", s.lightcuts_samples,
-                 "lightcuts: K = 1, 4, 9 ... 64 gather points per pixel (multidimensional) [1]")
+                 "lightcuts: K = 1, 4, 9 ... 64 gather points per pixel (multidimensional)" + shown_default(kDefaults.settings.lightcuts_samples))
       ->check(integer(1, lightcuts::kMaxSamples))->type_name("K");
   app.add_option("--importance", s.importance_paths, "ir/igi: start VPL light paths at lights by their estimated "
-                 "share of the image, from N camera paths (light importance for the view), 0 = by power [0]")
+                 "share of the image, from N camera paths (light importance for the view), 0 = by power" + shown_default(kDefaults.settings.importance_paths))
       ->check(integer(0, kMaxImportancePaths))->type_name("N");
   app.add_option("--importance-floor", s.importance_floor, "ir/igi: share of light paths still started by power, "
-                 "0..1 [0.2]")->check(non_negative_number())->type_name("F");
+                 "0..1" + shown_default(kDefaults.settings.importance_floor))->check(non_negative_number())->type_name("F");
   app.add_option("--bidir", s.bidir_vpls, "ir/igi: bidirectional instant radiosity: per set, keep K of the VPLs of "
-                 "--vpl-paths light paths and R camera paths, by their estimated contribution [0]")
+                 "--vpl-paths light paths and R camera paths, by their estimated contribution" + shown_default(kDefaults.settings.bidir_vpls))
       ->check(integer(0, kMaxBidirVpls))->type_name("K");
   app.add_option("--bidir-camera-paths", s.bidir_camera_paths,
-                 "ir/igi with --bidir: camera paths per set, 0 = --vpl-paths [0]")
+                 "ir/igi with --bidir: camera paths per set, 0 = --vpl-paths" + shown_default(kDefaults.settings.bidir_camera_paths))
       ->check(integer(0, kMaxBidirPaths))->type_name("R");
 }
 

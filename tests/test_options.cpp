@@ -2,6 +2,7 @@
 // is refused before any work with one line that names the option and the
 // value, and the program's usage exit status (1: igi-render, igi-master;
 // 2: igi-worker, igi-soak).
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -11,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "master_options.h"
+#include "render_options.h"
 #include "protocol/codec.h"
 #include "protocol/messages.h"
 #include "support/image_compare.h"
@@ -143,6 +145,45 @@ TEST(Options, HelpListsTheOptionsAndExitsZero) {
     const test::RunResult r = test::run(binary + " --help", 30);
     EXPECT_EQ(r.exit_code, 0) << binary << "\n" << r.output;
     EXPECT_NE(r.output.find(option), std::string::npos) << binary << "\n" << r.output;
+  }
+}
+
+// --help shows the defaults the code has: each option's line ends in the
+// struct's value (RenderOptions, RenderSettings), in both programs.
+TEST(Options, HelpShowsTheDefaultsOfTheSettingsStructs) {
+  const RenderOptions o{};
+  const RenderSettings& s = o.settings;
+  auto g = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return std::string(text);
+  };
+  const std::pair<const char*, std::string> defaults[] = {
+      {"--method", method_name(s.method)}, {"--spp", std::to_string(o.samples)},
+      {"--size", std::to_string(o.width) + "x" + std::to_string(o.height)}, {"--seed", std::to_string(o.seed)},
+      {"--tile", std::to_string(o.tile_size)}, {"--path-depth", std::to_string(s.path_depth)},
+      {"--light-depth", std::to_string(s.light_depth)}, {"--specular-depth", std::to_string(s.specular_depth)},
+      {"--vpl-sets", std::to_string(s.interleave)}, {"--vpl-paths", std::to_string(s.paths_per_set)},
+      {"--aa", std::to_string(s.aa_samples)}, {"--glossy-threshold", g(s.glossy_threshold)},
+      {"--glossy-rays", std::to_string(s.glossy_rays)}, {"--clamp", g(s.clamp)},
+      {"--compensate", std::to_string(s.compensation_samples)}, {"--glass-branches", std::to_string(s.glass_branches)},
+      {"--filter-normal", g(s.filter_normal_cos)}, {"--filter-depth", g(s.filter_depth_ratio)},
+      {"--caustic-photons", std::to_string(s.caustic_photons)}, {"--caustic-radius", g(s.caustic_radius)},
+      {"--lightcuts-error", g(s.lightcuts_error)}, {"--lightcuts-max-cut", std::to_string(s.lightcuts_max_cut)},
+      {"--importance", std::to_string(s.importance_paths)}, {"--importance-floor", g(s.importance_floor)},
+      {"--bidir", std::to_string(s.bidir_vpls)}};
+  for (const std::string binary : {IGI_RENDER_BINARY, IGI_MASTER_BINARY}) {
+    const test::RunResult r = test::run(binary + " --help", 30);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    for (const auto& [option, value] : defaults) {
+      // The option's entry: from "  --name " to the next line that starts an option.
+      const size_t at = r.output.find("  " + std::string(option) + " ");
+      ASSERT_NE(at, std::string::npos) << binary << " lists " << option;
+      const size_t next = r.output.find("\n  -", at + 1);
+      const std::string entry = r.output.substr(at, next == std::string::npos ? std::string::npos : next - at);
+      EXPECT_NE(entry.find("[" + value + "]"), std::string::npos)
+          << binary << ": " << option << " should show [" << value << "]:\n" << entry;
+    }
   }
 }
 
