@@ -28,8 +28,8 @@ inline constexpr int kMaxImportancePaths = 1 << 20;  // camera paths of the ligh
 inline constexpr int kMaxBidirPaths = 4096;          // bidirectional: light and camera paths per set
 inline constexpr int kMaxBidirVpls = 1 << 16;        // bidirectional: VPLs kept per set
 
-// The defaults of anti-aliasing, clamp and compensation are the best trade-off
-// measured at interactive frame times (README, "Defaults").
+// The defaults of anti-aliasing, clamp and compensation: README, "Defaults";
+// their measurements in tests/bench/RESULTS.md, "Convergence".
 struct RenderSettings {
   MethodKind method = MethodKind::Igi;
   // Path lengths, in surface interactions after the camera or the light; 0 = unbounded.
@@ -56,8 +56,11 @@ struct RenderSettings {
   float clamp = 0.3f;
   // Bias compensation (Kollig and Keller): eye-path samples per pixel that
   // add back the light the clamp cut (methods/bias_compensation.h). 0 = off;
-  // no effect without a clamp.
-  int compensation_samples = 0;
+  // no effect without a clamp. On by default since the clamp is a fraction of
+  // the mean chord: its rays are short, so it costs 1.1-1.2x a frame, and it
+  // takes the corner scene's 16-pass mean from 0.958 to 0.981 of pt
+  // (tests/bench/RESULTS.md, "Convergence").
+  int compensation_samples = 4;
   // Discontinuity buffer (igi).
   bool filter = true;
   float filter_normal_cos = 0.9f;   // neighbours need dot(n, n') above this
