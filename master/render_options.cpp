@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "cli/option_checks.h"
+#include "image/image.h"
 #include "lightcuts/lightcuts_settings.h"
 #include "methods/clamp.h"
 #include "photons/caustic_settings.h"
@@ -174,6 +175,9 @@ void check_render_options(const CLI::App& app, const RenderOptions& o) {
     throw OptionError("--max-depth was split: --path-depth (pt), --light-depth (VPL light paths) and "
                       "--specular-depth (mirrors and glass from the camera)");
   if (auto error = settings_error(o.settings)) throw OptionError(*error);
+  // Before any work: an image that could not be written after the render.
+  if (o.export_gltf.empty())
+    if (auto error = image_path_error(o.output)) throw OptionError("-o " + *error);
   check_lightcuts(o.settings);
   check_caustics(o.settings);
 }

@@ -56,6 +56,15 @@ TEST(Options, IgiSoakNamesTheOptionAndTheBadValue) {
                       "/soak-bad-option", 2, {"igi-soak: --frames", "'ten'"}});
 }
 
+// An output that could not be written is refused before the first ray, not after the render.
+TEST(Options, AnUnwritableOutputIsRefusedBeforeTheRender) {
+  for (const std::string& binary :
+       {std::string(IGI_RENDER_BINARY), std::string(IGI_MASTER_BINARY) + " --workers 0 --frames 1"}) {
+    expect_refused({binary + " -o /no/such/folder/x.png", 1, {"/no/such/folder does not exist"}});
+    expect_refused({binary + " -o render.xyz", 1, {"render.xyz: no image format for its extension"}});
+  }
+}
+
 TEST(Options, UnknownOptionsAreNamed) {
   expect_refused({std::string(IGI_RENDER_BINARY) + " --vpl-set 4", 1, {"unknown option '--vpl-set'"}});
   expect_refused({std::string(IGI_WORKER_BINARY) + " --connect tcp://127.0.0.1:1 --thread 2", 2,

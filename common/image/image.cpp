@@ -86,6 +86,18 @@ static std::string replaced_file(const std::string& path) {
   return target.string();
 }
 
+std::optional<std::string> image_path_error(const std::string& path) {
+  std::error_code absent;
+  const fs::file_status status = fs::status(path, absent);
+  if (fs::exists(status) && !fs::is_regular_file(status)) return std::nullopt;  // a device: written in place
+  if (!OIIO::ImageOutput::create(path))
+    return path + ": no image format for its extension (.exr, .hdr, .pfm and .tif are written as float, "
+                  ".png and .jpg as 8-bit sRGB)";
+  const fs::path folder = fs::path(path).parent_path();
+  if (!folder.empty() && !fs::is_directory(folder, absent)) return path + ": the folder " + folder.string() + " does not exist";
+  return std::nullopt;
+}
+
 // The image goes to a temporary file in the same folder, renamed over `path`
 // once whole: a process killed mid-write leaves the old file or none under
 // `path`, never a truncated one (rename is atomic within a file system). A

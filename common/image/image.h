@@ -3,6 +3,7 @@
 // OpenImageIO knows) stores linear values; PNG/JPEG store clamped sRGB.
 #include <algorithm>
 #include <span>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,10 @@ struct Image {
 // equal images give byte-identical files (no time stamp in the header).
 // Throws std::runtime_error naming the path on failure; the old file stays.
 void write_image(const Image& image, const std::string& path, float exposure = 1.0f);
+// Why write_image() could not write `path`, asked before any work: a format
+// no writer has for its extension, or a folder that does not exist. Nothing
+// for a device such as /dev/null. Writes nothing.
+std::optional<std::string> image_path_error(const std::string& path);
 Image read_image(const std::string& path);
 
 // 8-bit sRGB, three bytes a pixel, row 0 at the top; clamps after `exposure`.
