@@ -151,7 +151,7 @@ TEST(Distributed, WorkerKilledMidFrameLosesNothing) {
 // and a tile reissued after a worker's death comes out the same.
 TEST(Distributed, LightImportanceAndBidirectionalMatchOneProcessWithAWorkerKilled) {
   const std::string out = test::output_path("dist-importance.exr"), stats = test::output_path("dist-importance.json");
-  const std::string options = "--aa 4 --clamp 0.05 --importance 256 --bidir 12 ";
+  const std::string options = "--aa 4 --clamp 0.05 --compensate 0 --importance 256 --bidir 12 ";
   const int frames = 6;
   auto r = test::run(master("--workers 2 --min-workers 2 --frames " + std::to_string(frames) +
                             " --heartbeat-ms 50 --timeout-ms 300 --test-kill-worker-after 20 " + options + "-o " + out +

@@ -246,6 +246,8 @@ void Accel::update() {
   }
   rtcCommitScene(top_);
   check_embree(device_, true, "rebuild the moving parts' BVHs");
+  // A posed scene measures as the same pose loaded static (the clamp follows it).
+  mean_chord_ = measure_mean_chord(scene_, *this);
 }
 
 // Null handles are those a failed construction never made.

@@ -93,7 +93,8 @@ class Accel {
   bool intersect(const Ray& ray, Hit& hit) const;
   bool occluded(const Ray& ray) const;
 
-  // The scene's length scale, measured once as built (before any pose): the
+  // The scene's length scale, measured as built and again by each update()
+  // (so a posed scene has the value of the same pose loaded static): the
   // mean length of chords through its free space, from 4,096 cosine-
   // distributed rays leaving points spread over the surfaces by area, half
   // from each side, counting the rays that hit (4 V / S for a closed room,
