@@ -41,6 +41,17 @@ zmq::message_t shared_frame(const std::shared_ptr<const std::vector<uint8_t>>& b
   return zmq::message_t(const_cast<uint8_t*>(bytes->data()), bytes->size(), release, keep);
 }
 
+// Two jobs for a newcomer until it answers, then one more per result up to
+// its threads' worth: a peer that claims 32 threads and never answers holds two.
+SchedulerConfig session_scheduler_config(const MasterOptions& options) {
+  SchedulerConfig c;
+  c.credits = options.credits;
+  c.frames_in_flight = 2;
+  c.first_credits = 2;
+  c.failures_need_standing = true;
+  return c;
+}
+
 }  // namespace
 
 SceneSource make_scene_source(const std::string& scene) {
@@ -63,7 +74,7 @@ MasterSession::MasterSession(const MasterOptions& options, SceneSource scene, zm
       pixel_format_(session_pixel_format(options)),
       detailed_stats_(!options.stats.empty()),
       router_(context, zmq::socket_type::router),
-      scheduler_(SchedulerConfig{options.credits, 2}),
+      scheduler_(session_scheduler_config(options)),
       session_id_(uint64_t(Clock::now().time_since_epoch().count())) {
   protocol::configure(router_, protocol::kMaxWorkerMessageBytes);
   router_.set(zmq::sockopt::router_mandatory, 1);  // a send to a vanished peer fails instead of vanishing
@@ -114,6 +125,11 @@ size_t MasterSession::send(const std::string& identity, const protocol::Message&
 
 // ---- The loop.
 
+void MasterSession::judge_by(Scene scene) {
+  scheduler_.judge_by_reference();
+  referee_ = std::make_unique<ReferenceHashes>(std::move(scene));
+}
+
 void MasterSession::add_frame(const FrameSetup& frame) { add_frame(frame, options_.render.settings); }
 
 void MasterSession::add_frame(const FrameSetup& frame, const RenderSettings& settings) {
@@ -130,6 +146,7 @@ void MasterSession::add_frame(const FrameSetup& frame, const RenderSettings& set
     tiles_cut_ = {frame.width, frame.height, border};
   }
   scheduler_.add_frame(frame.frame_id, tiles_);
+  if (referee_) referee_->request(frame, settings);
 }
 
 std::vector<CompletedFrame> MasterSession::pump(int timeout_ms) {
@@ -156,6 +173,7 @@ std::vector<CompletedFrame> MasterSession::pump(int timeout_ms) {
 // Everything but receiving: timers, jobs for free credit, completed frames.
 void MasterSession::step(Clock::time_point now, std::vector<CompletedFrame>& done) {
   if (now >= next_sweep_) sweep(now);
+  take_references();
   dispatch(scheduler_.assign(now));
   take_quarantined();
   for (const std::string& identity : std::exchange(congested_, {}))
@@ -168,6 +186,7 @@ void MasterSession::wait_for_traffic(Clock::time_point until) {
   const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(until - Clock::now());
   std::vector<zmq::pollitem_t> items{{router_.handle(), 0, ZMQ_POLLIN, 0}};
   if (zap_) items.push_back({zap_->socket().handle(), 0, ZMQ_POLLIN, 0});
+  if (referee_) items.push_back({nullptr, referee_->fd(), ZMQ_POLLIN, 0});
   try {
     // Round up: a wake a millisecond early would only poll again.
     zmq::poll(items, std::chrono::milliseconds(std::max<int64_t>(0, wait.count() + 1)));
@@ -416,9 +435,23 @@ void MasterSession::quarantine_peer(const std::string& identity, const std::stri
 }
 
 void MasterSession::take_quarantined() {
-  for (const WorkerId& id : scheduler_.take_quarantined())
-    quarantine_peer(id, "its VPL-set hash differs from the one its frame's other workers agreed on "
-                        "(another build, CPU or a fault)");
+  const char* why = referee_ ? "its VPL-set hash differs from the master's own for the frame "
+                               "(another build, CPU, a fault, or a peer that does not render)"
+                             : "its VPL-set hash differs from the one most of its frame's workers reported "
+                               "(another build, CPU or a fault)";
+  for (const WorkerId& id : scheduler_.take_quarantined()) quarantine_peer(id, why);
+}
+
+// The master's own hashes, as they are computed. One it could not compute
+// (the scene does not fit here, say) is left to a vote among the workers.
+void MasterSession::take_references() {
+  if (!referee_) return;
+  for (const ReferenceHashes::Answer& a : referee_->take()) {
+    if (!a.hash && ++referee_errors_ <= kLogFirst)
+      log("frame " + std::to_string(a.frame_id) + ": the master cannot compute its VPL-set hash (" + a.error +
+          "): its workers vote on it");
+    scheduler_.set_reference(a.frame_id, a.hash);
+  }
 }
 
 // Liveness and heartbeats, a few times per heartbeat interval: O(peers), not per message.

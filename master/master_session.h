@@ -8,8 +8,9 @@
 // for timeout_ms is dead and its jobs are issued again, a result is checked
 // against the scheduler's own job before its pixels are used, a result that
 // fails validation sends its job to another worker, a worker whose VPL sets
-// lose the quorum is quarantined (told so: it exits with status 5), and a
-// frame is complete only when every job id is back and its hash is decided.
+// differ from the master's own (judge_by()) or, without it, lose the vote is
+// quarantined (told so: it exits with status 5), and a frame is complete only
+// when every job id is back and its hash is decided.
 // Sends never block: a peer whose queue is full (it stopped reading) is
 // dropped like a dead one.
 //
@@ -41,6 +42,7 @@
 #include "protocol/messages.h"
 #include "protocol/monitor.h"
 #include "protocol/zap.h"
+#include "reference_hashes.h"
 #include "scheduler.h"
 
 namespace igi {
@@ -108,6 +110,10 @@ class MasterSession {
   std::string endpoint() const { return endpoint_; }
   PixelFormat pixel_format() const { return pixel_format_; }
 
+  // Judges every worker's VPL sets against the master's own, computed from
+  // `scene` as the workers load it (reference_hashes.h), instead of by a vote
+  // among workers. Before the first frame.
+  void judge_by(Scene scene);
   // Queues a frame; jobs go out as workers have credit (at most two frames open).
   // Its settings travel with its FrameSetup (default: the options').
   bool can_add_frame() const { return scheduler_.can_add_frame(); }
@@ -173,6 +179,7 @@ class MasterSession {
   void drop_peer(const std::string& identity, const std::string& why);
   void quarantine_peer(const std::string& identity, const std::string& why);
   void take_quarantined();
+  void take_references();
   void sweep(Clock::time_point now);
   void dispatch(const std::vector<JobAssignment>& jobs);
   void report_stall();
@@ -192,6 +199,7 @@ class MasterSession {
   std::unique_ptr<protocol::SocketMonitor> monitor_;  // after router_: it watches it
   std::string endpoint_;
   Scheduler scheduler_;
+  std::unique_ptr<ReferenceHashes> referee_;  // the master's own frame hashes; null: workers vote
   FrameBufferPool pool_;
   std::map<std::string, Peer> peers_;
   std::set<std::string> quarantined_ids_;        // their later messages are ignored
@@ -204,7 +212,7 @@ class MasterSession {
   uint64_t accepted_ = 0;
   uint64_t bad_messages_ = 0;
   uint64_t refused_keys_ = 0, failed_handshakes_ = 0;
-  uint64_t nonfinite_pixels_ = 0, nonfinite_logged_ = 0, failures_logged_ = 0;
+  uint64_t nonfinite_pixels_ = 0, nonfinite_logged_ = 0, failures_logged_ = 0, referee_errors_ = 0;
   std::optional<uint64_t> stall_reported_;  // the frame whose split was logged
   std::string fatal_;
   double session_cpu_ = 0.0;

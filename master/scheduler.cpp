@@ -23,7 +23,8 @@ double seconds_between(TimePoint from, TimePoint to) { return std::chrono::durat
 
 void Scheduler::add_worker(const WorkerId& id, int credits) {
   Worker& w = workers_[id];
-  w.credits = credits > 0 ? credits : config_.credits;
+  w.max_credits = credits > 0 ? credits : config_.credits;
+  w.credits = config_.first_credits > 0 ? std::min(config_.first_credits, w.max_credits) : w.max_credits;
   if (int(w.jobs.size()) < w.credits) hungry_.insert(id);
 }
 
@@ -56,11 +57,6 @@ bool Scheduler::holds(const WorkerId& id, uint64_t job_id) const {
                                            [&](const Holder& h) { return h.worker == id; });
 }
 
-bool Scheduler::trusted(const WorkerId& id) const {
-  auto w = workers_.find(id);
-  return w != workers_.end() && w->second.trusted;
-}
-
 std::vector<WorkerId> Scheduler::take_quarantined() { return std::exchange(newly_quarantined_, {}); }
 
 // The worker no longer holds the job: its credit is free again.
@@ -75,6 +71,7 @@ void Scheduler::take_back(Worker& w, const WorkerId& id, uint64_t job_id) {
 
 void Scheduler::add_frame(uint64_t frame_id, const std::vector<TileJob>& tiles) {
   Frame& frame = frames_[frame_id];
+  frame.by_vote = !config_.master_reference;
   for (const TileJob& tile : tiles) {
     const uint64_t id = next_job_id_++;
     Job& job = jobs_[id];
@@ -254,7 +251,12 @@ void Scheduler::assign_stragglers(TimePoint now, std::vector<JobAssignment>& out
     const Issue issue = issued_[i];
     if (seconds_between(issue.at, now) < late) break;
     if (!is_outstanding(issue) || !straggler_eligible(issue, now)) continue;
-    auto w = std::find_if(hungry_.begin(), hungry_.end(), [&](const WorkerId& id) { return id != issue.worker; });
+    // A proven worker (one that has answered) first: a copy given to another
+    // silent newcomer could be held as long as the original.
+    auto other = [&](const WorkerId& id) { return id != issue.worker; };
+    auto w = std::find_if(hungry_.begin(), hungry_.end(),
+                          [&](const WorkerId& id) { return other(id) && workers_.at(id).answered > 0; });
+    if (w == hungry_.end()) w = std::find_if(hungry_.begin(), hungry_.end(), other);
     if (w == hungry_.end()) break;
     const WorkerId id = *w;
     ++frames_.at(jobs_.at(issue.job_id).frame_id).copies;
@@ -283,7 +285,8 @@ void Scheduler::assign_verifications(TimePoint now, std::vector<JobAssignment>& 
   for (auto& entry : frames_) {
     const Frame& frame = entry.second;  // a plain reference: clang 14 lambdas cannot capture structured bindings
     if (hungry_.empty()) return;
-    if (frame.reference || frame.held.empty() || frame.done + frame.held.size() != frame.jobs.size()) continue;
+    if (frame.reference || !frame.by_vote || frame.held.empty() || frame.done + frame.held.size() != frame.jobs.size())
+      continue;
     release_lost_copies(frame, now);
     const bool copy_out = std::any_of(frame.held.begin(), frame.held.end(),
                                       [&](uint64_t j) { return !jobs_.at(j).holders.empty(); });
@@ -348,13 +351,16 @@ void Scheduler::drop_result(const WorkerId& id, uint64_t job_id) {
 
 bool Scheduler::on_bad_result(const WorkerId& id, uint64_t job_id) {
   ++stats_.failed_results;
+  auto w = workers_.find(id);
+  const bool standing = !config_.failures_need_standing || (w != workers_.end() && w->second.answered > 0);
   drop_result(id, job_id);
   auto it = jobs_.find(job_id);
   if (it == jobs_.end()) return false;
   Job& job = it->second;
+  requeue(job_id);
+  if (!standing) return false;  // a peer that never returned a result cannot condemn a job
   ++job.failures;
   job.failed_on.insert(id);
-  requeue(job_id);
   return job.failures >= config_.max_failures || int(job.failed_on.size()) >= config_.max_failed_workers;
 }
 
@@ -369,14 +375,19 @@ ResultVerdict Scheduler::on_result(const WorkerId& id, uint64_t job_id, uint64_t
   const bool first = !job.done && !job.held_by;
   release_holder(job, id, now, first);
   auto w = workers_.find(id);
-  if (w != workers_.end()) take_back(w->second, id, job_id);
+  if (w != workers_.end()) {
+    if (first) {
+      ++w->second.answered;
+      w->second.credits = std::min(w->second.credits + 1, w->second.max_credits);
+    }
+    take_back(w->second, id, job_id);
+  }
   if (frame.reference) {
     if (hash != *frame.reference) {
       quarantine(id);
       requeue(job_id);
       return ResultVerdict::Rejected;
     }
-    if (w != workers_.end()) w->second.trusted = true;  // agrees with a reference two workers (or a trusted one) set
     if (!first) {
       ++stats_.late_dropped;
       return ResultVerdict::Late;
@@ -411,34 +422,37 @@ size_t Scheduler::possible_voters(const Frame& frame) const {
   return n + gone.size();
 }
 
-// Two agreeing workers decide, or one trusted worker. A worker decides alone
-// only when it is the frame's only possible voter and has answered every job:
-// it earns no trust by that, so a newcomer is not judged by it.
+void Scheduler::set_reference(uint64_t frame_id, std::optional<uint64_t> hash) {
+  auto it = frames_.find(frame_id);
+  if (it == frames_.end() || it->second.reference) return;
+  if (hash) return decide(it->second, *hash);
+  it->second.by_vote = true;
+  try_decide(it->second);
+}
+
+// At least two voters and a strict majority of the possible ones: the losers
+// are always fewer than the winners. A worker decides alone only when it is
+// the frame's only possible voter and has answered every job.
 void Scheduler::try_decide(Frame& frame) {
-  if (frame.votes.empty()) return;
-  for (const auto& [hash, voters] : frame.votes) {
-    const bool trusted_vote = std::any_of(voters.begin(), voters.end(), [&](const WorkerId& v) { return trusted(v); });
-    if (voters.size() >= 2 || trusted_vote) {
+  if (!frame.by_vote || frame.votes.empty()) return;
+  const size_t possible = possible_voters(frame);
+  for (const auto& [hash, voters] : frame.votes)
+    if (voters.size() >= 2 && 2 * voters.size() > possible) {
       const uint64_t reference = hash;  // decide() clears the votes
-      decide(frame, reference, true);
-      return;
+      return decide(frame, reference);
     }
-  }
   const bool all_answered = frame.done + frame.held.size() == frame.jobs.size();
-  if (frame.votes.size() == 1 && all_answered && possible_voters(frame) == 1) {
+  if (frame.votes.size() == 1 && all_answered && possible == 1) {
     const uint64_t reference = frame.votes.begin()->first;
-    decide(frame, reference, false);
+    decide(frame, reference);
   }
 }
 
-void Scheduler::decide(Frame& frame, uint64_t reference, bool earns_trust) {
+void Scheduler::decide(Frame& frame, uint64_t reference) {
   frame.reference = reference;
   std::vector<WorkerId> losers;
   for (const auto& [hash, voters] : frame.votes)
-    for (const WorkerId& v : voters) {
-      if (hash != reference) losers.push_back(v);
-      else if (auto w = workers_.find(v); w != workers_.end() && earns_trust) w->second.trusted = true;
-    }
+    if (hash != reference) losers.insert(losers.end(), voters.begin(), voters.end());
   frame.votes.clear();
   const std::vector<uint64_t> held = std::exchange(frame.held, {});
   for (uint64_t job_id : held) {
@@ -478,7 +492,7 @@ void Scheduler::quarantine(const WorkerId& id) {
 
 std::optional<HashSplit> Scheduler::stalled_split() const {
   for (const auto& [frame_id, frame] : frames_) {
-    if (frame.reference || frame.votes.size() < 2) continue;
+    if (frame.reference || !frame.by_vote || frame.votes.size() < 2) continue;
     bool everyone_voted = true;
     for (const auto& [id, worker] : workers_) {
       bool voted = false;

@@ -5,7 +5,10 @@
 //
 // Rules:
 //  - Pull by credits: a worker holds at most `credits` jobs at once; jobs go
-//    out when credit comes back (assign()), oldest frame first.
+//    out when credit comes back (assign()), oldest frame first. With
+//    `first_credits`, a new worker starts with that many and gains one per
+//    result it returns, up to its own: a peer that claims many threads and
+//    never answers holds a job or two, not dozens.
 //  - Frames are pipelined: at most `frames_in_flight` frames are open.
 //  - Stragglers: when nothing unassigned is left, a worker with free credit
 //    gets a copy of the oldest outstanding job, but only of one older than
@@ -20,20 +23,26 @@
 //  - A result that fails validation (it does not decode, non-finite pixels,
 //    a rectangle that is not its job's) releases the job to the pool; a job whose results failed
 //    on `max_failed_workers` distinct workers, or `max_failures` times in all,
-//    fails deterministically and the caller must end the run.
+//    fails deterministically and the caller must end the run. With
+//    `failures_need_standing` only failures from workers that have returned a
+//    result count (fresh identities that fail on purpose cannot end a run).
 //  - A worker declared dead gives its outstanding jobs back to the pool.
 //
 // The VPL-set hash (a frame's per-frame state, identical on every correct
-// worker) is decided by agreement, never by whoever answers first:
-//  - A frame's reference hash is the first one reported by two distinct
-//    workers (a quorum), or by one trusted worker: one that has agreed with
-//    another worker on a frame's reference before. A worker that is the only
-//    one there (alive, or among the frame's voters) decides alone once it has
-//    answered every job of the frame, and earns no trust by it: a worker that
-//    joins later is not judged by a hash nobody confirmed.
+// worker) is the frame's reference, never whatever the first to answer says:
+//  - With `master_reference` (the master's default) the caller computes each
+//    frame's hash itself (reference_hashes.h) and hands it to set_reference();
+//    every worker is judged against it, so no number of agreeing peers can
+//    outvote it. Until it comes, results are held.
+//  - Otherwise, or for a frame whose hash the caller could not compute, the
+//    workers vote: a hash decides when at least two workers and a strict
+//    majority of the frame's possible voters (workers present, and voters
+//    since gone) reported it, so never more workers are quarantined than
+//    agree. A worker that is the only possible voter decides alone once it
+//    has answered every job.
 //  - Until then results are held: their pixels are kept, but they do not
-//    count. A held job is not reissued; if no other worker has voted on the
-//    frame once all its jobs are held, an idle worker gets a copy to verify
+//    count. A held job is not reissued; when a vote lacks voters once all its
+//    jobs are held, an idle worker that has not voted gets a copy to verify
 //    (a late copy still out on a held job counts as lost, and its worker's
 //    credit comes back so it can be the one).
 //  - When the reference is decided, held results with it count, the others go
@@ -41,8 +50,8 @@
 //    frame is quarantined: removed, its jobs reissued, its unconfirmed results
 //    elsewhere dropped. A late result whose hash differs from its frame's
 //    reference quarantines its worker too.
-//  - Two workers that disagree with no third to break the tie: the frame
-//    waits (stalled_split() reports it) until another worker joins.
+//  - A vote with no majority among the workers present: the frame waits
+//    (stalled_split() reports it) until another worker joins.
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -69,6 +78,9 @@ struct SchedulerConfig {
   double duplicate_budget = 0.1;       // straggler copies per frame, as a fraction of its jobs (at least 1)
   int max_failed_workers = 2;          // distinct workers whose result for a job failed validation
   int max_failures = 3;                // failed results for one job, from any workers
+  bool failures_need_standing = false; // only failures from workers that have returned a result count
+  bool master_reference = false;       // frames' hashes come from set_reference(), not from votes
+  int first_credits = 0;               // a new worker's credits until it answers (0: all of them at once)
 };
 
 struct JobAssignment {
@@ -106,7 +118,7 @@ struct SchedulerStats {
   uint64_t quarantined = 0;   // workers quarantined for a hash that lost
 };
 
-// A frame whose voters disagree with no quorum possible among the workers present.
+// A frame whose voters disagree with no majority possible among the workers present.
 struct HashSplit {
   uint64_t frame_id = 0;
   std::map<uint64_t, std::vector<WorkerId>> voters;  // hash -> workers that reported it
@@ -126,6 +138,8 @@ class Scheduler {
   bool has_worker(const WorkerId& id) const { return workers_.count(id) > 0; }
   size_t worker_count() const { return workers_.size(); }
 
+  // Frames added from now on wait for set_reference() (master_reference). Before the first frame.
+  void judge_by_reference() { config_.master_reference = true; }
   void add_frame(uint64_t frame_id, const std::vector<TileJob>& tiles);
   bool can_add_frame() const { return int(frames_.size()) < config_.frames_in_flight; }
   size_t open_frames() const { return frames_.size(); }
@@ -137,6 +151,10 @@ class Scheduler {
   std::optional<TimePoint> next_straggler_time();
 
   ResultCheck check_result(const WorkerId& id, uint64_t job_id, uint64_t frame_id, const TileJob& tile) const;
+  // The frame's hash as the caller computed it (master_reference); none: the
+  // caller could not, and the frame's workers vote. Results held for it count
+  // now, or go back to the pool and quarantine their workers.
+  void set_reference(uint64_t frame_id, std::optional<uint64_t> hash);
   // A result may decide its frame's reference hash and so quarantine workers
   // that contradicted it: take_quarantined() names them.
   ResultVerdict on_result(const WorkerId& id, uint64_t job_id, uint64_t frame_state_hash, TimePoint now);
@@ -157,7 +175,6 @@ class Scheduler {
 
   int outstanding(const WorkerId& id) const;
   bool holds(const WorkerId& id, uint64_t job_id) const;  // the worker has this job and has not answered it
-  bool trusted(const WorkerId& id) const;
   const SchedulerStats& stats() const { return stats_; }
   double median_round_trip() const;  // seconds; 0 before any
   // Test hook: hand the next `n` jobs out twice on purpose (the copy at once, to another worker, whatever its credit).
@@ -189,13 +206,15 @@ class Scheduler {
     size_t done = 0;
     size_t copies = 0;  // straggler copies handed out
     std::optional<uint64_t> reference;
+    bool by_vote = true;  // false while the caller's reference is awaited
     std::map<uint64_t, std::set<WorkerId>> votes;  // until the reference is decided
     std::vector<uint64_t> held;
   };
   struct Worker {
     std::vector<uint64_t> jobs;  // in the order given (at most its credits)
-    int credits = 1;
-    bool trusted = false;
+    int credits = 1;             // now: grows with results up to max_credits
+    int max_credits = 1;
+    uint64_t answered = 0;       // results it returned first (it renders: a proven worker)
   };
   struct Issue {
     TimePoint at;
@@ -220,7 +239,7 @@ class Scheduler {
   bool release_holder(Job& job, const WorkerId& id, TimePoint now, bool sample);
   void complete(Frame& frame, Job& job);
   void try_decide(Frame& frame);
-  void decide(Frame& frame, uint64_t reference, bool earns_trust);
+  void decide(Frame& frame, uint64_t reference);
   void quarantine(const WorkerId& id);
   size_t possible_voters(const Frame& frame) const;
 

@@ -1,7 +1,7 @@
 // Faults between real masters and real workers (issue 12): a master restart
 // costs the worker no scene reload, a worker waits longer for the master than
-// the master for it, a worker whose scene does not load leaves with its own
-// status, a stopped local worker does not hold up the master's exit, and a
+// the master for it, a worker whose scene does not load or whose frames do
+// not fit in its memory leaves with its own status, a stopped local worker does not hold up the master's exit, and a
 // send to a peer that stopped reading never blocks the session.
 #include <chrono>
 #include <csignal>
@@ -105,6 +105,22 @@ TEST(ClusterFaults, AWorkerThatCannotLoadTheSceneLeavesWithStatus6AndTheFramesCo
   EXPECT_NE(failing.output.find("cannot load the scene cornell"), std::string::npos) << failing.output;
   pid_t good = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --quiet");
   EXPECT_EQ(test::wait_exit(m, 30 * test::kSlowdown), 0);
+  EXPECT_EQ(test::wait_exit(good, 10 * test::kSlowdown), 0);
+}
+
+// The master checks settings against its own memory; a smaller worker checks
+// them again against its own and says why it cannot render, not abort.
+TEST(ClusterFaults, AWorkerWithTooLittleMemoryForTheFramesSaysWhyAndLeavesWithStatus7) {
+  const std::string endpoint = endpoint_here();
+  pid_t m = test::start(master(endpoint, "--frames 3 --caustics -o " + test::output_path("memory-fail.exr")));
+  auto small = test::run(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint +
+                             " --threads 1 --test-memory-bytes 1000000",
+                         int(30 * test::kSlowdown));
+  EXPECT_EQ(small.exit_code, 7) << small.output;
+  EXPECT_NE(small.output.find("cannot render here: --caustic-photons"), std::string::npos) << small.output;
+  EXPECT_NE(small.output.find("this machine's 0.0 GiB"), std::string::npos) << small.output;
+  pid_t good = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --quiet");
+  EXPECT_EQ(test::wait_exit(m, 60 * test::kSlowdown), 0) << "another worker renders the frames";
   EXPECT_EQ(test::wait_exit(good, 10 * test::kSlowdown), 0);
 }
 

@@ -222,7 +222,7 @@ TEST(Scheduler, AWrongFirstHashQuarantinesOnlyTheDivergingWorker) {
   const auto jobs = s.assign(at(0));
   ASSERT_EQ(jobs.size(), 6u);
   const auto bad = for_worker(jobs, "bad"), good1 = for_worker(jobs, "good1"), good2 = for_worker(jobs, "good2");
-  // The diverging worker answers first: its result is held, not trusted.
+  // The diverging worker answers first: its result is held, not believed.
   EXPECT_EQ(s.on_result("bad", bad[0].job_id, 666, at(1)), ResultVerdict::Held);
   EXPECT_EQ(s.on_result("good1", good1[0].job_id, 42, at(2)), ResultVerdict::Held) << "one against one: undecided";
   EXPECT_TRUE(s.take_quarantined().empty());
@@ -231,7 +231,6 @@ TEST(Scheduler, AWrongFirstHashQuarantinesOnlyTheDivergingWorker) {
   EXPECT_EQ(s.take_quarantined(), std::vector<WorkerId>{"bad"});
   EXPECT_FALSE(s.has_worker("bad"));
   EXPECT_TRUE(s.has_worker("good1") && s.has_worker("good2"));
-  EXPECT_TRUE(s.trusted("good1") && s.trusted("good2"));
   EXPECT_EQ(s.stats().quarantined, 1u);
   // good1's held result now counts; bad's two jobs (held and outstanding) go out again.
   answer(s, {good1[1], good2[1]}, 42, at(4));
@@ -263,7 +262,7 @@ TEST(Scheduler, TwoWorkersThatDisagreeWaitForAThird) {
   EXPECT_FALSE(s.stalled_split());
 }
 
-TEST(Scheduler, ALoneWorkerDecidesOnceItHasAnsweredEveryJobAndEarnsNoTrust) {
+TEST(Scheduler, ALoneWorkerDecidesOnceItHasAnsweredEveryJobButJudgesNoNewcomer) {
   Scheduler s(4, 2);
   s.add_worker("a");
   s.add_frame(0, tiles(3));
@@ -273,7 +272,6 @@ TEST(Scheduler, ALoneWorkerDecidesOnceItHasAnsweredEveryJobAndEarnsNoTrust) {
   EXPECT_EQ(s.on_result("a", j[1].job_id, 5, at(1)), ResultVerdict::Held);
   EXPECT_EQ(s.on_result("a", j[2].job_id, 5, at(1)), ResultVerdict::Accepted) << "all answered, nobody else: decided";
   EXPECT_EQ(s.take_completed_frames().size(), 1u);
-  EXPECT_FALSE(s.trusted("a")) << "nobody confirmed its hash";
   // A newcomer that computes other VPL sets is not judged by a hash nobody confirmed: a tie.
   s.add_worker("b");
   s.add_frame(1, tiles(2));
@@ -285,22 +283,74 @@ TEST(Scheduler, ALoneWorkerDecidesOnceItHasAnsweredEveryJobAndEarnsNoTrust) {
   EXPECT_TRUE(s.stalled_split());
 }
 
-TEST(Scheduler, TwoAgreeingWorkersAreTrustedAndThenDecideAlone) {
-  Scheduler s(1, 2);
+// Two peers that agree on a made-up hash and answer first (the sybil pair):
+// judged by the master's own hash, they lose however many they are.
+TEST(Scheduler, WithTheMastersHashNoNumberOfAgreeingWorkersOutvotesIt) {
+  SchedulerConfig config;
+  config.credits = 1;
+  config.master_reference = true;
+  Scheduler s(config);
+  for (const char* w : {"fake1", "fake2", "honest"}) s.add_worker(w);
+  s.add_frame(0, tiles(3));
+  const auto jobs = s.assign(at(0));
+  ASSERT_EQ(jobs.size(), 3u);
+  EXPECT_EQ(s.on_result("fake1", for_worker(jobs, "fake1")[0].job_id, 666, at(1)), ResultVerdict::Held);
+  EXPECT_EQ(s.on_result("fake2", for_worker(jobs, "fake2")[0].job_id, 666, at(1)), ResultVerdict::Held)
+      << "two agree, but only the master's hash decides";
+  EXPECT_EQ(s.on_result("honest", for_worker(jobs, "honest")[0].job_id, 42, at(2)), ResultVerdict::Held);
+  EXPECT_TRUE(s.take_quarantined().empty());
+  EXPECT_TRUE(s.assign(at(3)).empty()) << "no verification copies: votes decide nothing";
+  EXPECT_FALSE(s.stalled_split());
+  s.set_reference(0, 42);
+  std::vector<WorkerId> out = s.take_quarantined();
+  std::sort(out.begin(), out.end());
+  EXPECT_EQ(out, (std::vector<WorkerId>{"fake1", "fake2"}));
+  // The fakes' two jobs go to the honest worker, one at a time; a wrong hash now is rejected at once.
+  s.add_worker("late-fake");
+  const auto again = s.assign(at(4));
+  ASSERT_EQ(again.size(), 2u);
+  for (const JobAssignment& j : again)
+    EXPECT_EQ(s.on_result(j.worker, j.job_id, j.worker == "honest" ? 42 : 666, at(5)),
+              j.worker == "honest" ? ResultVerdict::Accepted : ResultVerdict::Rejected);
+  answer(s, s.assign(at(6)), 42, at(7));
+  EXPECT_EQ(s.take_completed_frames(), std::vector<uint64_t>{0});
+  EXPECT_EQ(s.stats().verified, 0u);
+}
+
+// A frame whose hash the master could not compute falls back to a vote.
+TEST(Scheduler, AFrameWithoutTheMastersHashIsDecidedByItsWorkers) {
+  SchedulerConfig config;
+  config.master_reference = true;
+  Scheduler s(config);
   s.add_worker("a");
   s.add_worker("b");
   s.add_frame(0, tiles(2));
   answer(s, s.assign(at(0)), 5, at(1));
-  EXPECT_TRUE(s.trusted("a") && s.trusted("b"));
-  EXPECT_EQ(s.take_completed_frames().size(), 1u);
-  s.add_worker("c");
-  s.add_frame(1, tiles(3));
-  const auto jobs = s.assign(at(2));
-  ASSERT_EQ(jobs.size(), 3u);
-  EXPECT_EQ(s.on_result("a", for_worker(jobs, "a")[0].job_id, 5, at(3)), ResultVerdict::Accepted)
-      << "a trusted worker decides a frame alone";
-  EXPECT_EQ(s.on_result("c", for_worker(jobs, "c")[0].job_id, 6, at(3)), ResultVerdict::Rejected);
-  EXPECT_EQ(s.take_quarantined(), std::vector<WorkerId>{"c"});
+  EXPECT_TRUE(s.take_completed_frames().empty()) << "waits for the master's hash";
+  s.set_reference(0, std::nullopt);
+  EXPECT_EQ(s.take_completed_frames(), std::vector<uint64_t>{0}) << "two of two agree";
+}
+
+// Without the master's hash: a pair is no majority of four, so neither two
+// fakes nor two honest workers decide, and no one is quarantined until a
+// fifth worker makes a majority; the losers are never more than the winners.
+TEST(Scheduler, ByVoteAHashNeedsAStrictMajorityOfThePossibleVoters) {
+  Scheduler s(1, 2);
+  for (const char* w : {"fake1", "fake2", "h1", "h2"}) s.add_worker(w);
+  s.add_frame(0, tiles(5));
+  const auto jobs = s.assign(at(0));
+  ASSERT_EQ(jobs.size(), 4u);
+  for (const char* w : {"fake1", "fake2"}) s.on_result(w, for_worker(jobs, w)[0].job_id, 666, at(1));
+  EXPECT_TRUE(s.take_quarantined().empty()) << "two of four is no majority";
+  for (const char* w : {"h1", "h2"}) s.on_result(w, for_worker(jobs, w)[0].job_id, 42, at(2));
+  EXPECT_TRUE(s.take_quarantined().empty()) << "two against two: nobody can tell who is right";
+  EXPECT_TRUE(s.stalled_split());
+  s.add_worker("h3");
+  answer(s, s.assign(at(3)), 42, at(4));
+  std::vector<WorkerId> out = s.take_quarantined();
+  std::sort(out.begin(), out.end());
+  EXPECT_EQ(out, (std::vector<WorkerId>{"fake1", "fake2"})) << "three of five decide";
+  EXPECT_FALSE(s.stalled_split());
 }
 
 TEST(Scheduler, AFrameAnsweredByOneWorkerGetsAVerificationCopy) {
@@ -334,6 +384,30 @@ TEST(Scheduler, ADeadVoterStillCountsSoTheSurvivorCannotDecideAlone) {
   EXPECT_TRUE(s.stalled_split()) << "a said 1, b said 2 before it died: still a tie";
 }
 
+// A peer that claims many threads and never answers (a hoarder) holds two
+// jobs, not its threads' worth; one that answers gains a credit per result;
+// a late job's copy goes to a worker that has answered, not to another newcomer.
+TEST(Scheduler, ANewWorkerHoldsTwoJobsUntilItAnswersAndCopiesGoToProvenWorkers) {
+  SchedulerConfig config;
+  config.first_credits = 2;
+  Scheduler s(config);
+  s.add_worker("hoarder", 64);
+  s.add_worker("w", 64);
+  s.add_frame(0, tiles(6));
+  const auto first = s.assign(at(0));
+  EXPECT_EQ(for_worker(first, "hoarder").size(), 2u);
+  EXPECT_EQ(for_worker(first, "w").size(), 2u);
+  answer(s, for_worker(first, "w"), 5, at(1));
+  const auto more = s.assign(at(1));
+  EXPECT_EQ(for_worker(more, "w").size(), 2u) << "four credits now; two jobs were left";
+  answer(s, more, 5, at(2));
+  s.add_worker("newcomer", 64);
+  const auto copies = s.assign(at(1500));  // the hoarder's jobs are late (1 s before round trips are known)
+  ASSERT_EQ(copies.size(), 1u) << "one copy: the frame's budget";
+  EXPECT_EQ(copies[0].worker, "w") << "a proven worker, not a silent newcomer";
+  EXPECT_TRUE(copies[0].duplicate);
+}
+
 TEST(Scheduler, AResultThatFailsValidationReleasesItsJob) {
   Scheduler s(1, 2);
   s.add_worker("a");
@@ -365,6 +439,39 @@ TEST(Scheduler, ThreeFailuresOnOneWorkerAreDeterministicToo) {
     ASSERT_EQ(j.size(), 1u);
     deterministic = s.on_bad_result("only", j[0].job_id);
     EXPECT_EQ(deterministic, i == 2) << "failure " << i + 1;
+  }
+}
+
+// Fresh identities that fail a job on purpose cannot make it "fail on every
+// worker" and end the run: only workers that have returned a result count.
+TEST(Scheduler, FailuresFromWorkersThatNeverAnsweredDoNotCondemnAJob) {
+  SchedulerConfig config;
+  config.credits = 1;
+  config.failures_need_standing = true;
+  Scheduler s(config);
+  s.add_worker("a");
+  s.add_worker("b");
+  s.add_frame(0, tiles(4));
+  answer(s, s.assign(at(0)), 5, at(1));  // a and b have each answered: in good standing
+  const auto busy = s.assign(at(1));     // and each holds frame 0's other jobs
+  ASSERT_EQ(busy.size(), 2u);
+  s.add_frame(1, tiles(1));
+  for (int i = 0; i < 4; ++i) {  // fresh identities, each failing frame 1's job at once
+    const WorkerId fake = worker_name(i);
+    s.add_worker(fake);
+    auto j = s.assign(at(2 + i));
+    ASSERT_EQ(j.size(), 1u);
+    ASSERT_EQ(j[0].worker, fake);
+    EXPECT_FALSE(s.on_bad_result(fake, j[0].job_id)) << "fake " << i;
+    s.remove_worker(fake);
+  }
+  for (const char* w : {"a", "b"}) {  // the proven workers fail it too: now it is the job
+    answer(s, for_worker(busy, w), 5, at(10));
+    auto j = s.assign(at(10));
+    ASSERT_EQ(j.size(), 1u);
+    ASSERT_EQ(j[0].worker, w);
+    EXPECT_EQ(s.on_bad_result(w, j[0].job_id), std::string(w) == "b") << w;
+    s.remove_worker(w);  // so the other takes the job
   }
 }
 

@@ -1,9 +1,13 @@
 #include "render_pool.h"
 
 #include <chrono>
+#include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
+#include "lightcuts/lightcuts_settings.h"
+#include "photons/caustic_settings.h"
 #include "protocol/pixels.h"
 #include "scene/accel.h"
 
@@ -12,8 +16,11 @@
 
 namespace igi {
 
-RenderPool::RenderPool(SceneState& scene, PixelFormat format, int threads)
-    : scene_(scene), format_(format), results_fd_(eventfd(0, EFD_NONBLOCK)) {
+RenderPool::RenderPool(SceneState& scene, PixelFormat format, int threads, uint64_t memory_bytes)
+    : scene_(scene),
+      format_(format),
+      memory_bytes_(memory_bytes > 0 ? memory_bytes : lightcuts::physical_memory_bytes()),
+      results_fd_(eventfd(0, EFD_NONBLOCK)) {
   for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { run(); });
 }
 
@@ -34,6 +41,10 @@ void RenderPool::add_frame(const FrameSetup& frame, const RenderSettings& settin
   // its constructor would refuse is refused here, on the caller's thread.
   if (settings.method != MethodKind::PathTracer)
     if (auto error = settings_error(settings)) throw std::invalid_argument(*error);
+  // The master checked its own memory; this machine may have less.
+  std::string error = photons::memory_error(settings, memory_bytes_);
+  if (error.empty() && settings.method == MethodKind::Lightcuts) error = lightcuts::memory_error(settings, memory_bytes_);
+  if (!error.empty()) throw std::invalid_argument(error);
   auto state = std::make_shared<FrameState>();
   state->setup = frame;
   state->settings = settings;
@@ -49,6 +60,11 @@ void RenderPool::add_job(const protocol::TileJobMsg& job) {
     queue_.push_back(job);
   }
   wake_.notify_one();
+}
+
+std::string RenderPool::failure() const {
+  std::lock_guard lock(mutex_);
+  return failure_;
 }
 
 std::vector<protocol::TileResult> RenderPool::take_results() {
@@ -105,11 +121,18 @@ void RenderPool::run() {
     if (!wait_for_pose(lock, setup.pose)) return;
     ++rendering_;
     lock.unlock();
-    protocol::TileResult result = render(job, *state);
+    std::optional<protocol::TileResult> result;
+    std::string error;
+    try {
+      result = render(job, *state);
+    } catch (const std::exception& e) {  // a throw would end the process without a word to the master
+      error = "frame " + std::to_string(job.frame_id) + ": " + e.what();
+    }
     lock.lock();
     --rendering_;
     if (rendering_ == 0) posed_.notify_all();  // a thread may wait for this, to pose the scene
-    results_.push_back(std::move(result));
+    if (result) results_.push_back(std::move(*result));
+    else if (failure_.empty()) failure_ = error;
     const uint64_t one = 1;
     (void)!write(results_fd_, &one, sizeof one);  // wakes the socket loop
   }

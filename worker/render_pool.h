@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -24,15 +25,21 @@ namespace igi {
 class RenderPool {
  public:
   // Results carry their pixels in `format`, made sendable (protocol::wire_pixels: finite, in range).
-  RenderPool(SceneState& scene, PixelFormat format, int threads);
+  // Frames whose VPLs or photons would not fit in `memory_bytes` (0: this machine's) are refused.
+  RenderPool(SceneState& scene, PixelFormat format, int threads, uint64_t memory_bytes = 0);
   ~RenderPool();  // finishes nothing further: pending jobs are dropped
 
   // A frame's setup must be added before its jobs; its method is made for the
-  // frame's own settings (they may change between frames). Old frames are
+  // frame's own settings (they may change between frames). Throws
+  // std::invalid_argument for settings this machine cannot render. Old frames are
   // forgotten once a newer one is added and they have no queued jobs.
   void add_frame(const FrameSetup& frame, const RenderSettings& settings);
   void add_job(const protocol::TileJobMsg& job);
   std::vector<protocol::TileResult> take_results();
+  // Why a frame could not be rendered here (its method threw: memory, a
+  // setting this machine cannot hold); empty while all is well. The worker
+  // then says so to the master and exits: its other results are not sent.
+  std::string failure() const;
   // Readable (poll) whenever results are waiting; take_results() clears it.
   int results_fd() const { return results_fd_; }
 
@@ -51,11 +58,13 @@ class RenderPool {
   SceneState& scene_;
   int rendering_ = 0;  // tiles being rendered now
   PixelFormat format_;
+  uint64_t memory_bytes_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;   // a job was queued
   std::condition_variable posed_;  // no tile renders any more: a waiting thread may pose
   std::deque<protocol::TileJobMsg> queue_;
   std::vector<protocol::TileResult> results_;
+  std::string failure_;  // the first
   std::map<uint64_t, std::shared_ptr<FrameState>> frames_;
   bool stopping_ = false;
   int results_fd_ = -1;  // eventfd

@@ -64,6 +64,7 @@ void declare(CLI::App& app, igi::WorkerOptions& o, KeyFiles& keys) {
   app.add_flag("--quiet", o.quiet, "no log lines");
   app.add_option("--build-id", o.build_id)->group("");  // tests: pretend to be another build
   app.add_flag("--test-fail-scene-load", o.fail_scene_load)->group("");  // tests: a scene that does not load here
+  app.add_option("--test-memory-bytes", o.memory_bytes)->group("");  // tests: a machine with this much memory
 }
 
 // Empty when --help was asked.

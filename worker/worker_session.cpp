@@ -60,6 +60,7 @@ WorkerExit WorkerSession::run() {
     if (outcome == Outcome::Refused) return WorkerExit::Refused;
     if (outcome == Outcome::Quarantined) return WorkerExit::Quarantined;
     if (outcome == Outcome::SceneFailed) return WorkerExit::SceneFailed;
+    if (outcome == Outcome::RenderFailed) return WorkerExit::RenderFailed;
     if (welcome_) last_contact = Clock::now(), backoff = kFirstBackoff;  // it was alive until just now
     welcome_.reset();
     const double silent = std::chrono::duration<double>(Clock::now() - last_contact).count();
@@ -105,6 +106,7 @@ WorkerSession::Outcome WorkerSession::serve(zmq::context_t& context) {
     }
     if (connection) return *connection;
     if (auto outcome = poll_loading(socket)) return *outcome;
+    if (auto outcome = check_failure(socket)) return *outcome;
     send_results(socket);
     const auto heartbeat = std::chrono::milliseconds(welcome_ ? welcome_->heartbeat_ms : 500);
     if (Clock::now() - last_sent_ > heartbeat) send(socket, protocol::Heartbeat{});
@@ -212,12 +214,8 @@ std::optional<WorkerSession::Outcome> WorkerSession::handle(protocol::Message& m
     });
   } else if (std::holds_alternative<protocol::FrameSetupMsg>(m) || std::holds_alternative<protocol::TileJobMsg>(m)) {
     if (!welcome_) return std::nullopt;  // not ours to render yet
-    if (loaded_ && loaded_->pool) {
-      if (auto* f = std::get_if<protocol::FrameSetupMsg>(&m)) loaded_->pool->add_frame(f->frame, f->settings);
-      else loaded_->pool->add_job(std::get<protocol::TileJobMsg>(m));
-    } else {
-      waiting_.push_back(std::move(m));
-    }
+    if (loaded_ && loaded_->pool) feed_pool(m);
+    else waiting_.push_back(std::move(m));
   }
   return std::nullopt;
 }
@@ -293,12 +291,33 @@ std::optional<WorkerSession::Outcome> WorkerSession::poll_loading(zmq::socket_t&
 // A fresh pool for this connection (frames carry their settings); jobs that came early go in now.
 void WorkerSession::start_pool() {
   loaded_->pool.reset();
-  loaded_->pool = std::make_unique<RenderPool>(*loaded_->scene, welcome_->pixel_format, options_.threads);
-  for (protocol::Message& m : waiting_) {
+  loaded_->pool = std::make_unique<RenderPool>(*loaded_->scene, welcome_->pixel_format, options_.threads,
+                                               options_.memory_bytes);
+  for (protocol::Message& m : waiting_) feed_pool(m);
+  waiting_.clear();
+}
+
+void WorkerSession::feed_pool(protocol::Message& m) {
+  try {
     if (auto* f = std::get_if<protocol::FrameSetupMsg>(&m)) loaded_->pool->add_frame(f->frame, f->settings);
     else loaded_->pool->add_job(std::get<protocol::TileJobMsg>(m));
+  } catch (const std::exception& e) {
+    if (failure_.empty()) failure_ = e.what();
   }
-  waiting_.clear();
+}
+
+// A frame this worker cannot render: the master is told why (it gives the
+// jobs to others and logs the reason), and the worker exits rather than
+// render some frames and fail others.
+std::optional<WorkerSession::Outcome> WorkerSession::check_failure(zmq::socket_t& socket) {
+  std::string why = failure_;
+  if (why.empty() && loaded_ && loaded_->pool) why = loaded_->pool->failure();
+  if (why.empty()) return std::nullopt;
+  why = "cannot render here: " + why;
+  announce(why + ": exiting with status 7");
+  send(socket, protocol::Bye{why, protocol::ByeKind::Failed});
+  socket.set(zmq::sockopt::linger, 500);  // the Bye leaves before the process does
+  return Outcome::RenderFailed;
 }
 
 }  // namespace igi

@@ -48,6 +48,7 @@ struct WorkerOptions {
   std::optional<protocol::CurveClientKeys> curve;  // empty: a plain connection
   bool quiet = false;
   bool fail_scene_load = false;  // test hook: every scene fails to load
+  uint64_t memory_bytes = 0;     // what frames' memory checks assume; 0: this machine's (tests: less)
 };
 
 // The process's exit status.
@@ -57,6 +58,7 @@ enum class WorkerExit {
   GaveUp = 4,       // no master for give_up_seconds
   Quarantined = 5,  // the master will not use this worker's results (its VPL sets differ from the others')
   SceneFailed = 6,  // the scene the master named does not load here
+  RenderFailed = 7, // a frame cannot be rendered here (its settings need more memory than this machine has)
 };
 
 class WorkerSession {
@@ -66,7 +68,7 @@ class WorkerSession {
   WorkerExit run();
 
  private:
-  enum class Outcome { Bye, Refused, MasterLost, Quarantined, SceneFailed };
+  enum class Outcome { Bye, Refused, MasterLost, Quarantined, SceneFailed, RenderFailed };
   using Clock = std::chrono::steady_clock;
   struct Loaded;  // scene, BVH, lights, pool
   // What the loading thread found: a loaded scene, or that the master must send the bytes, or why not.
@@ -89,6 +91,8 @@ class WorkerSession {
   void start_loading(std::function<LoadResult()> work);
   std::optional<Outcome> poll_loading(zmq::socket_t& socket);
   void start_pool();
+  void feed_pool(protocol::Message& message);  // a frame or a job; a frame the pool refuses is a failure
+  std::optional<Outcome> check_failure(zmq::socket_t& socket);
   void send(zmq::socket_t& socket, const protocol::Message& message);
   void send_results(zmq::socket_t& socket);
   void log(const std::string& text) const;
@@ -101,6 +105,7 @@ class WorkerSession {
   std::shared_ptr<Loaded> loaded_;           // survives reconnects
   std::string loaded_key_;
   std::vector<protocol::Message> waiting_;   // frames and jobs that came before the scene was ready
+  std::string failure_;                      // why a frame was refused here; the session ends with it
   Clock::time_point last_sent_;
   int failed_handshakes_ = 0;  // in a row; reset by a handshake that succeeds
   protocol::SocketEvent last_failure_;  // the last of them, named in the hint

@@ -154,6 +154,7 @@ Accel::Accel(const Scene& scene, size_t memory_limit) : Accel(scene, memory_limi
     rtcRetainScene(top_);
   } else {
     rtcCommitScene(top_);
+    check_embree(device_, true, "build the top-level BVH over " + std::to_string(groups_.size()) + " parts");
   }
   mean_chord_ = measure_mean_chord(scene, *this);
 }

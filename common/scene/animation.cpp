@@ -70,11 +70,48 @@ std::vector<glm::dmat4> SceneAnimation::world(double time) const {
   return out;
 }
 
+namespace {
+
+// Where a Hermite segment's components turn (its derivative's roots in (0, 1)),
+// as times: between its keys a CUBICSPLINE reaches its extremes there, not at
+// the keys (a tangent of 1e30 m/s overshoots keys that are all at the origin).
+void add_turning_times(const AnimationChannel& c, size_t k, std::vector<double>& out) {
+  const double dt = c.times[k + 1] - c.times[k];
+  const glm::dvec4 p0 = c.values[3 * k + 1], m0 = dt * c.values[3 * k + 2];
+  const glm::dvec4 p1 = c.values[3 * (k + 1) + 1], m1 = dt * c.values[3 * (k + 1)];
+  for (int i = 0; i < 4; ++i) {
+    // p'(u) = a u^2 + b u + c
+    const double a = 6 * (p0[i] - p1[i]) + 3 * (m0[i] + m1[i]), b = 6 * (p1[i] - p0[i]) - 4 * m0[i] - 2 * m1[i];
+    const double cc = m0[i];
+    double roots[2];
+    int n = 0;
+    if (std::abs(a) < 1e-300) {
+      if (std::abs(b) > 1e-300) roots[n++] = -cc / b;
+    } else if (const double d = b * b - 4 * a * cc; d >= 0) {
+      roots[n++] = (-b - std::sqrt(d)) / (2 * a);
+      roots[n++] = (-b + std::sqrt(d)) / (2 * a);
+    }
+    for (int r = 0; r < n; ++r)
+      if (roots[r] > 0 && roots[r] < 1) out.push_back(c.times[k] + roots[r] * dt);
+  }
+  out.push_back(c.times[k] + 0.5 * dt);  // and the middle, for composed channels that turn elsewhere
+}
+
+}  // namespace
+
 std::optional<SceneAnimation::OutOfRange> SceneAnimation::check_extent(double max_coordinate) const {
-  std::vector<double> times;
-  for (const AnimationChannel& channel : channels) times.insert(times.end(), channel.times.begin(), channel.times.end());
+  std::vector<double> keys, times;
+  for (const AnimationChannel& channel : channels) {
+    keys.insert(keys.end(), channel.times.begin(), channel.times.end());
+    if (channel.interpolation == Interpolation::CubicSpline && channel.path != AnimationPath::Rotation)
+      for (size_t k = 0; k + 1 < channel.times.size(); ++k) add_turning_times(channel, k, times);
+  }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  times.insert(times.end(), keys.begin(), keys.end());
   std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end()), times.end());
+  auto is_key = [&](double t) { return std::binary_search(keys.begin(), keys.end(), t); };
   auto beyond = [&](glm::dvec3 p) { return !(glm::all(glm::lessThanEqual(glm::abs(p), glm::dvec3(max_coordinate)))); };
   // A part's vertices lie in the image of its object-space box: when the
   // box's corners stay in range, so do they (checked at 8 points a key).
@@ -89,17 +126,18 @@ std::optional<SceneAnimation::OutOfRange> SceneAnimation::check_extent(double ma
         const glm::dvec3 p(corner & 1 ? boxes[i].upper.x : boxes[i].lower.x, corner & 2 ? boxes[i].upper.y : boxes[i].lower.y,
                            corner & 4 ? boxes[i].upper.z : boxes[i].lower.z);
         const glm::dvec3 q = glm::dvec3(worlds[size_t(parts[i].node)] * glm::dvec4(p, 1.0));
-        if (beyond(q)) return OutOfRange{time, "a moving part or light", q};
+        if (beyond(q)) return OutOfRange{time, is_key(time), "a moving part or light", q};
       }
     }
     for (const int node : light_node)
       if (node >= 0 && beyond(glm::dvec3(worlds[size_t(node)][3])))
-        return OutOfRange{time, "a moving part or light", glm::dvec3(worlds[size_t(node)][3])};
+        return OutOfRange{time, is_key(time), "a moving part or light", glm::dvec3(worlds[size_t(node)][3])};
     if (camera_node >= 0) {
       const glm::dmat4& w = worlds[size_t(camera_node)];
-      if (beyond(glm::dvec3(w[3]))) return OutOfRange{time, "the camera", glm::dvec3(w[3])};
-      if (!camera_at_node(w, 1.0))
-        return OutOfRange{time, "the camera's view collapses: its node, or one above it, is scaled to nothing", {}};
+      if (beyond(glm::dvec3(w[3]))) return OutOfRange{time, is_key(time), "the camera", glm::dvec3(w[3])};
+      if (is_key(time) && !camera_at_node(w, 1.0))  // between keys camera() keeps the rest camera
+        return OutOfRange{time, is_key(time), "the camera's view collapses: its node, or one above it, is scaled to nothing",
+                          {}};
     }
   }
   return std::nullopt;

@@ -84,11 +84,14 @@ struct SceneAnimation {
   // of view it keeps): where its node stands then, by the loader's
   // arithmetic; `rest` where the pose collapses the view between key times.
   Camera camera(double time, const Camera& rest) const;
-  // The first key time at which a moving part's bounds, a light or the
-  // camera reach beyond +-max_coordinate (or are not finite), or the
-  // camera's view collapses; none when every key time keeps them within.
+  // The first time at which a moving part's bounds, a light or the camera
+  // reach beyond +-max_coordinate (or are not finite), or the camera's view
+  // collapses; none when every time checked keeps them within. Checked at
+  // every key time and, where a CUBICSPLINE channel can overshoot its keys,
+  // at the times between keys where a component of its curve turns.
   struct OutOfRange {
     double time;
+    bool key;                             // a key time, or a time between keys
     const char* what;                     // "a moving part or light", "the camera", or why the view collapses
     std::optional<glm::dvec3> position;   // the point beyond range; none when the view collapses
   };

@@ -238,7 +238,7 @@ std::shared_ptr<const SceneAnimation> make_animation(std::vector<AnimationChanne
   animation->light_node = std::move(nodes.light_pose_node);
   animation->camera_node = nodes.camera_pose_node;
   if (const auto out = animation->check_extent(kMaxCoordinate)) {
-    std::string why = "at key time " + std::to_string(out->time) + " " + out->what;
+    std::string why = (out->key ? "at key time " : "between keys, at time ") + std::to_string(out->time) + " " + out->what;
     if (const auto p = out->position)
       why += " reaches (" + std::to_string(p->x) + ", " + std::to_string(p->y) + ", " + std::to_string(p->z) +
              "), expected coordinates within +-1e15 m";

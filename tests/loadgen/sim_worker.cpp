@@ -22,13 +22,6 @@ bool contains(const TileJob& t, std::pair<int, int> pixel) {
 
 }  // namespace
 
-uint64_t frame_hash(uint32_t seed) {
-  uint64_t z = uint64_t(seed) + 0x9e3779b97f4a7c15ull;  // splitmix64
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-
 SimWorker::SimWorker(zmq::context_t& context, std::string endpoint, SimBehaviour behaviour, TileCache& tiles,
                      Clock::time_point start)
     : context_(context), endpoint_(std::move(endpoint)), behaviour_(behaviour), tiles_(tiles), start_(start) {
@@ -85,7 +78,7 @@ void SimWorker::handle(const protocol::Message& m, Clock::time_point now) {
     welcome_ = *w;
     outcome_.welcomed = true;
   } else if (auto* f = std::get_if<protocol::FrameSetupMsg>(&m)) {
-    frames_[f->frame.frame_id] = f->frame;
+    frames_[f->frame.frame_id] = *f;
     while (frames_.size() > kFramesKept) frames_.erase(frames_.begin());
   } else if (auto* j = std::get_if<protocol::TileJobMsg>(&m)) {
     take_job(*j, now);
@@ -118,7 +111,7 @@ void SimWorker::send_answer(const Due& due) {
   TileJob claimed = due.tile;
   if (behaviour_.wrong_tile_every > 0 && answers_ % uint64_t(behaviour_.wrong_tile_every) == 0)
     claimed.x = claimed.x >= claimed.w ? claimed.x - claimed.w : claimed.x + claimed.w;  // a neighbour's place
-  const uint64_t hash = frame_hash(frame->second.seed) + behaviour_.hash_offset;
+  const uint64_t hash = tiles_.frame_hash(frame->second.frame, frame->second.settings) + behaviour_.hash_offset;
   zmq::message_t message = TileCache::answer(encoded, due.frame_id, due.job_id, hash, claimed);
   const bool nan = (behaviour_.nan_every > 0 && answers_ % uint64_t(behaviour_.nan_every) == 0) ||
                    (behaviour_.poison_pixel && contains(due.tile, *behaviour_.poison_pixel));

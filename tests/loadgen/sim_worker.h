@@ -45,9 +45,6 @@ struct SimOutcome {
   std::string last_bye;
 };
 
-// The VPL-set hash every correct simulated worker reports for a frame seed.
-uint64_t frame_hash(uint32_t seed);
-
 class SimWorker {
  public:
   SimWorker(zmq::context_t& context, std::string endpoint, SimBehaviour behaviour, TileCache& tiles,
@@ -82,7 +79,7 @@ class SimWorker {
   Clock::time_point start_;
   std::unique_ptr<zmq::socket_t> socket_;
   std::optional<protocol::Welcome> welcome_;
-  std::map<uint64_t, FrameSetup> frames_;  // the newest few
+  std::map<uint64_t, protocol::FrameSetupMsg> frames_;  // the newest few
   std::vector<Due> due_;
   std::vector<Clock::time_point> lanes_;   // when each "thread" is free
   Clock::time_point last_sent_, last_heard_;

@@ -3,7 +3,10 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "methods/method.h"
 #include "protocol/codec.h"
+#include "sampling/content_hash.h"
+#include "scene/load_scene.h"
 
 namespace igi::loadgen {
 namespace {
@@ -70,6 +73,19 @@ void TileCache::poison(zmq::message_t& answer, PixelFormat format) {
     const uint32_t nan = 0x7fc00000u;
     std::memcpy(first, &nan, 4);
   }
+}
+
+uint64_t TileCache::frame_hash(const FrameSetup& frame, const RenderSettings& settings) {
+  const std::vector<uint8_t> setup = protocol::encode(protocol::FrameSetupMsg{frame, settings});
+  const uint64_t key = content_hash(setup.data(), setup.size());
+  std::lock_guard lock(hash_mutex_);
+  if (auto it = hashes_.find(key); it != hashes_.end()) return it->second;
+  if (!scene_) scene_ = std::make_unique<SceneState>(load_scene("cornell"));
+  scene_->set_pose(frame.pose);
+  const uint64_t hash = expected_frame_state_hash(scene_->context(), frame, settings);
+  if (hashes_.size() >= 256) hashes_.erase(hashes_.begin());
+  hashes_[key] = hash;
+  return hash;
 }
 
 }  // namespace igi::loadgen

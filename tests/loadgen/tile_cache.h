@@ -15,7 +15,9 @@
 #include <zmq.hpp>
 
 #include "image/frame_buffer.h"
+#include "methods/settings.h"
 #include "render/frame.h"
+#include "render/scene_state.h"
 
 namespace igi::loadgen {
 
@@ -33,10 +35,18 @@ class TileCache {
   // Makes the answer's first pixel NaN (its format's encoding).
   static void poison(zmq::message_t& answer, PixelFormat format);
 
+  // The VPL-set hash a correct worker of the built-in Cornell box reports for
+  // this frame (the master computes the same one: master/reference_hashes.h);
+  // thread-safe, computed once per frame setup.
+  uint64_t frame_hash(const FrameSetup& frame, const RenderSettings& settings);
+
  private:
   using Key = std::tuple<int, int, int, int, int, int>;
   std::mutex mutex_;
   std::map<Key, std::unique_ptr<std::vector<uint8_t>>> tiles_;
+  std::mutex hash_mutex_;
+  std::unique_ptr<SceneState> scene_;    // the Cornell box, built on first use
+  std::map<uint64_t, uint64_t> hashes_;  // content hash of (setup, settings) -> frame hash
 };
 
 }  // namespace igi::loadgen

@@ -206,6 +206,10 @@ gltf("animation-out-of-range.gltf", animated([0, 1, 2], [(0, 0, 0), (3e38, 0, 0)
      "animations: at key time 1.000000 a moving part or light reaches")
 doc = animated([0, 1, 2], moves)
 doc["nodes"][0]["matrix"] = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
+# Every key at the origin, but tangents of +-1e30 m/s carry the curve far out between them.
+gltf("animation-cubic-overshoot.gltf",
+     animated([0, 1], [(0, 0, 0), (0, 0, 0), (1e30, 0, 0), (-1e30, 0, 0), (0, 0, 0), (0, 0, 0)], "CUBICSPLINE"),
+     "animations: between keys, at time 0.")
 gltf("animation-of-matrix-node.gltf", doc, "nodes[0]: animated, but has a matrix")
 
 def animated_camera(values, path):
