@@ -8,6 +8,7 @@
 #include "image/image.h"
 #include "lightcuts/lightcuts_settings.h"
 #include "methods/clamp.h"
+#include "methods/memory_check.h"
 #include "photons/caustic_settings.h"
 #include "protocol/messages.h"
 #include "scene/builtin_scenes.h"
@@ -37,9 +38,7 @@ constexpr int kMaxAntialiasText = 1 << 20;  // --aa: the square numbers up to 64
 // Before any work: options lightcuts cannot use, and VPL counts that would not fit in memory.
 void check_lightcuts(const RenderSettings& s) {
   if (s.method != MethodKind::Lightcuts) return;
-  std::string error = lightcuts::settings_error(s);
-  if (error.empty()) error = lightcuts::memory_error(s, lightcuts::physical_memory_bytes());
-  if (!error.empty()) throw OptionError(error);
+  if (const std::string error = lightcuts::settings_error(s); !error.empty()) throw OptionError(error);
 }
 
 // Before any work: a caustic map that could not fit in memory.
@@ -48,8 +47,11 @@ void check_caustics(const RenderSettings& s) {
   if (s.method != MethodKind::InstantRadiosity && s.method != MethodKind::Igi)
     throw OptionError("--caustics: only the ir and igi methods add caustic photons (pt finds caustics "
                       "by itself), got --method " + std::string(method_name(s.method)));
-  const std::string error = photons::memory_error(s, lightcuts::physical_memory_bytes());
-  if (!error.empty()) throw OptionError(error);
+}
+
+// Before any work: VPLs, a light tree or a caustic map that could not fit in this machine's memory.
+void check_memory(const RenderSettings& s) {
+  if (const std::string error = memory_error(s, machine_memory_bytes()); !error.empty()) throw OptionError(error);
 }
 
 void add_image_options(CLI::App& app, RenderOptions& o) {
@@ -180,6 +182,7 @@ void check_render_options(const CLI::App& app, const RenderOptions& o) {
     if (auto error = image_path_error(o.output)) throw OptionError("-o " + *error);
   check_lightcuts(o.settings);
   check_caustics(o.settings);
+  check_memory(o.settings);
 }
 
 static void declare(CLI::App& app, RenderOptions& o) {

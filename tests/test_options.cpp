@@ -13,6 +13,7 @@
 
 #include "master_options.h"
 #include "render_options.h"
+#include "methods/memory_check.h"
 #include "protocol/codec.h"
 #include "protocol/messages.h"
 #include "support/image_compare.h"
@@ -143,6 +144,28 @@ TEST(Options, LocalhostAndIpv6LoopbackListenEndpointsWork) {
     EXPECT_TRUE(std::filesystem::exists(out)) << endpoint;
   }
   if (!has_ipv6_loopback()) GTEST_SKIP() << "no IPv6 loopback here: only tcp://localhost was tried";
+}
+
+// One memory rule for igi-render, igi-master, the window's panel and each worker:
+// lightcut VPLs count only for lightcuts, a caustic map for any method that builds one.
+TEST(Options, OneMemoryRuleCountsLightcutVplsAndCausticMaps) {
+  constexpr uint64_t kGiB = 1ull << 30;
+  RenderSettings lightcuts;
+  lightcuts.method = MethodKind::Lightcuts;
+  lightcuts.interleave = 64;
+  lightcuts.paths_per_set = 4096;
+  const std::string vpls = memory_error(lightcuts, 1 * kGiB);
+  EXPECT_EQ(vpls.rfind("lightcuts: 64 x 64 sets x 4096 light paths", 0), 0u) << vpls;
+  EXPECT_EQ(memory_error(lightcuts, 0), "") << "unknown memory: anything fits";
+  RenderSettings igi = lightcuts;
+  igi.method = MethodKind::Igi;
+  EXPECT_EQ(memory_error(igi, 1 * kGiB), "") << "igi keeps one set a pixel, not a light tree";
+  igi.caustics = true;
+  igi.caustic_photons = 1 << 26;
+  const std::string map = memory_error(igi, 16 * kGiB);
+  EXPECT_EQ(map.rfind("--caustic-photons: 67108864", 0), 0u) << map;
+  igi.caustic_photons = 20000;
+  EXPECT_EQ(memory_error(igi, 16 * kGiB), "");
 }
 
 TEST(Options, HelpListsTheOptionsAndExitsZero) {

@@ -6,8 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "lightcuts/lightcuts_settings.h"
-#include "photons/caustic_settings.h"
+#include "methods/memory_check.h"
 #include "protocol/pixels.h"
 #include "scene/accel.h"
 
@@ -19,7 +18,7 @@ namespace igi {
 RenderPool::RenderPool(SceneState& scene, PixelFormat format, int threads, uint64_t memory_bytes)
     : scene_(scene),
       format_(format),
-      memory_bytes_(memory_bytes > 0 ? memory_bytes : lightcuts::physical_memory_bytes()),
+      memory_bytes_(memory_bytes > 0 ? memory_bytes : machine_memory_bytes()),
       results_fd_(eventfd(0, EFD_NONBLOCK)) {
   for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { run(); });
 }
@@ -42,9 +41,7 @@ void RenderPool::add_frame(const FrameSetup& frame, const RenderSettings& settin
   if (settings.method != MethodKind::PathTracer)
     if (auto error = settings_error(settings)) throw std::invalid_argument(*error);
   // The master checked its own memory; this machine may have less.
-  std::string error = photons::memory_error(settings, memory_bytes_);
-  if (error.empty() && settings.method == MethodKind::Lightcuts) error = lightcuts::memory_error(settings, memory_bytes_);
-  if (!error.empty()) throw std::invalid_argument(error);
+  if (std::string error = memory_error(settings, memory_bytes_); !error.empty()) throw std::invalid_argument(error);
   auto state = std::make_shared<FrameState>();
   state->setup = frame;
   state->settings = settings;
