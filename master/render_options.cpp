@@ -1,8 +1,10 @@
 #include "render_options.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <thread>
 
 #include "cli/option_checks.h"
 #include "image/image.h"
@@ -49,9 +51,14 @@ void check_caustics(const RenderSettings& s) {
                       "by itself), got --method " + std::string(method_name(s.method)));
 }
 
-// Before any work: VPLs, a light tree or a caustic map that could not fit in this machine's memory.
-void check_memory(const RenderSettings& s) {
-  if (const std::string error = memory_error(s, machine_memory_bytes()); !error.empty()) throw OptionError(error);
+// Before any work: VPLs, a light tree or a caustic map that could not fit in this machine's memory,
+// and tiles whose scratch could not: igi-render's threads, or the local workers' (every core) under igi-master.
+void check_memory(const RenderOptions& o) {
+  const uint64_t memory = machine_memory_bytes();
+  if (const std::string error = memory_error(o.settings, memory); !error.empty()) throw OptionError(error);
+  const int threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  if (const std::string error = tile_memory_error(o.settings, o.tile_size, o.tile_size, threads, memory); !error.empty())
+    throw OptionError(error);
 }
 
 void add_image_options(CLI::App& app, RenderOptions& o) {
@@ -182,7 +189,7 @@ void check_render_options(const CLI::App& app, const RenderOptions& o) {
     if (auto error = image_path_error(o.output)) throw OptionError("-o " + *error);
   check_lightcuts(o.settings);
   check_caustics(o.settings);
-  check_memory(o.settings);
+  check_memory(o);
 }
 
 static void declare(CLI::App& app, RenderOptions& o) {

@@ -124,6 +124,21 @@ TEST(ClusterFaults, AWorkerWithTooLittleMemoryForTheFramesSaysWhyAndLeavesWithSt
   EXPECT_EQ(test::wait_exit(good, 10 * test::kSlowdown), 0);
 }
 
+// Each render thread keeps a tile's G-buffer: 64 x 48 pixels (72 x 56 with the
+// border) x 16 sub-samples is about 20 MB, over half of a 20 MB machine.
+TEST(ClusterFaults, AWorkerWithTooLittleMemoryForTheTilesSaysWhyAndLeavesWithStatus7) {
+  const std::string endpoint = endpoint_here();
+  pid_t m = test::start(master(endpoint, "--frames 2 --tile 64 --aa 16 --vpl-paths 16 -o " + test::output_path("tile-memory-fail.exr")));
+  auto small = test::run(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint +
+                             " --threads 1 --test-memory-bytes 20000000",
+                         int(30 * test::kSlowdown));
+  EXPECT_EQ(small.exit_code, 7) << small.output;
+  EXPECT_NE(small.output.find("a tile of 64 x 48 pixels (--tile) with --aa 16"), std::string::npos) << small.output;
+  pid_t good = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --quiet");
+  EXPECT_EQ(test::wait_exit(m, 60 * test::kSlowdown), 0) << "another worker renders the frames";
+  EXPECT_EQ(test::wait_exit(good, 10 * test::kSlowdown), 0);
+}
+
 TEST(ClusterFaults, AStoppedLocalWorkerDoesNotHoldUpTheMastersExit) {
   const auto start = Clock::now();
   auto r = test::run(std::string(IGI_MASTER_BINARY) +

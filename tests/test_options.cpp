@@ -168,6 +168,30 @@ TEST(Options, OneMemoryRuleCountsLightcutVplsAndCausticMaps) {
   EXPECT_EQ(memory_error(igi, 16 * kGiB), "");
 }
 
+// A tile's scratch grows with its pixels, sub-samples, glass branches and glossy
+// rays: the issue's --tile 1024 --aa 64 --glass-branches 8 asked for 66 GB a thread.
+TEST(Options, TileScratchIsBoundedByMemoryBeforeAnyWork) {
+  RenderSettings s;
+  s.method = MethodKind::Igi;
+  s.paths_per_set = 64;
+  s.aa_samples = 1;
+  s.glass_branches = 1;
+  const uint64_t one = tile_bytes(s, 32, 32);
+  EXPECT_GT(one, uint64_t(40 * 40) * 100) << "the border counts: 8 x 8 sets, 4 pixels a side";
+  s.aa_samples = 16;
+  s.glass_branches = 4;
+  EXPECT_EQ(tile_bytes(s, 32, 32), 64 * one) << "linear in sub-samples and branches";
+  s.aa_samples = 64;
+  s.glass_branches = 8;
+  EXPECT_GT(tile_bytes(s, 1024, 1024), 60ull << 30);
+  EXPECT_EQ(tile_memory_error(s, 32, 32, 16, 16ull << 30), "") << "a default tile fits anywhere";
+  const std::string error = tile_memory_error(s, 1024, 1024, 1, 128ull << 30);
+  EXPECT_EQ(error.rfind("a tile of 1024 x 1024 pixels (--tile) with --aa 64, --glass-branches 8 and --glossy-rays 1", 0), 0u)
+      << error;
+  expect_refused({std::string(IGI_RENDER_BINARY) + " --tile 1024 --aa 64 --vpl-paths 64 --glass-branches 8 --threads 1",
+                  1, {"a tile of 1024 x 1024 pixels (--tile) with --aa 64", "a render thread"}});
+}
+
 TEST(Options, HelpListsTheOptionsAndExitsZero) {
   const std::pair<std::string, std::string> programs[] = {{IGI_RENDER_BINARY, "--vpl-sets"},
                                                            {IGI_MASTER_BINARY, "--heartbeat-ms"},

@@ -77,6 +77,10 @@ protocol::TileResult RenderPool::render(const protocol::TileJobMsg& job, FrameSt
     frame.method = make_method(scene_.context(), frame.settings);
     frame.method->begin_frame(frame.setup);
   });
+  // Each render thread keeps its tile's scratch: the master could not know how many this machine has.
+  if (std::string error = tile_memory_error(frame.settings, job.tile.w, job.tile.h, int(threads_.size()), memory_bytes_);
+      !error.empty())
+    throw std::invalid_argument(error);
   protocol::TileResult r;
   r.frame_id = job.frame_id;
   r.job_id = job.job_id;
