@@ -121,10 +121,10 @@ class HeadlessRun {
     ++done_;
   }
 
-  // The statistics so far, so a master that is killed leaves them: once a
-  // second, and a second more per 1000 frames (fewer totals lines in a long run).
+  // The run's totals so far, so a master that is killed leaves them: once a
+  // second (the writer appends the frames' records by count and time itself).
   void flush_stats_when_due() {
-    if (!stats_ || Clock::now() - last_flush_ <= std::chrono::seconds(1 + done_ / 1000)) return;
+    if (!stats_ || Clock::now() - last_flush_ < StatsWriter::kFlushInterval) return;
     stats_->write(totals_now());
     last_flush_ = Clock::now();
   }

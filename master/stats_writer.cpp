@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 
 namespace igi {
 
@@ -18,8 +19,10 @@ StatsWriter::~StatsWriter() {
 }
 
 void StatsWriter::add(const FrameRecord& record) {
-  std::lock_guard lock(mutex_);
+  std::unique_lock lock(mutex_);
+  drained_.wait(lock, [&] { return incoming_.size() < kMaxPending || stopping_; });
   incoming_.push_back(record);
+  if (incoming_.size() == kFlushRecords) wake_.notify_one();
 }
 
 void StatsWriter::write(const RunTotals& totals) {
@@ -41,7 +44,7 @@ void StatsWriter::write_final(const RunTotals& totals) {
   if (!append(incoming_, totals)) throw std::runtime_error(path_ + ": cannot write statistics");
 }
 
-bool StatsWriter::append(std::vector<FrameRecord>& records, const RunTotals& totals) {
+bool StatsWriter::append(std::vector<FrameRecord>& records, const std::optional<RunTotals>& totals) {
   // A line at a time, so a reader (or a kill) sees whole lines but perhaps the last.
   const auto line = [](const nlohmann::ordered_json& j) {
     return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
@@ -51,7 +54,7 @@ bool StatsWriter::append(std::vector<FrameRecord>& records, const RunTotals& tot
     tiles_ += r.tiles;
   }
   records.clear();
-  out_ << line(totals_json(totals, tiles_));
+  if (totals) out_ << line(totals_json(*totals, tiles_));
   out_.flush();
   return bool(out_);
 }
@@ -60,12 +63,14 @@ void StatsWriter::run() {
   bool reported = false;  // a file that cannot be written is said once
   std::unique_lock lock(mutex_);
   for (;;) {
-    wake_.wait(lock, [&] { return stopping_ || pending_; });
+    wake_.wait_for(lock, kFlushInterval,
+                   [&] { return stopping_ || pending_ || incoming_.size() >= kFlushRecords; });
     if (stopping_) return;
-    const RunTotals totals = *pending_;
-    pending_.reset();
+    if (incoming_.empty() && !pending_) continue;
+    const std::optional<RunTotals> totals = std::exchange(pending_, std::nullopt);
     std::vector<FrameRecord> records;
     records.swap(incoming_);
+    drained_.notify_all();
     lock.unlock();
     if (!append(records, totals) && !reported) {
       std::fprintf(stderr, "igi-master: %s: cannot write statistics\n", path_.c_str());
