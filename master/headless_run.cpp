@@ -25,23 +25,38 @@ std::string frame_path(const std::string& output, int frame, int frames, int fir
   return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
 }
 
-// Why the run cannot go on without workers: none for a minute, or a tie nobody breaks for a minute.
+// Why the run cannot go on without workers: none for a minute; the last
+// worker failed (saying why) and none came for 10 s after it; or a tie
+// nobody breaks for a minute. While none is there it says so every 5 s.
 class Watchdog {
  public:
   // Empty while progress is possible.
-  std::string check(const MasterSession& session) {
+  std::string check(const MasterSession& session, bool quiet) {
     const auto now = Clock::now();
-    if (session.worker_count() > 0) no_worker_since_ = now;
+    if (session.worker_count() > 0) no_worker_since_ = next_notice_ = now;
     const std::string stall = session.stall();
     if (stall.empty()) stall_since_ = now;
+    const std::string& failure = session.last_worker_failure();
+    // The last worker to leave failed (the failure came after the last check that saw a worker).
+    if (session.worker_count() == 0 && !failure.empty() && session.last_worker_failure_time() >= no_worker_since_ &&
+        now - session.last_worker_failure_time() > kFailedGrace)
+      return "the workers failed and none came for 10 s; the last: " + failure;
     if (now - no_worker_since_ > kNoWorkerLimit)
       return "no worker for 60 s; start some with igi-worker --connect " + session.endpoint();
     if (now - stall_since_ > kNoWorkerLimit) return stall + " (60 s without another worker)";
+    if (session.worker_count() == 0 && now - next_notice_ > kNotice) {
+      next_notice_ = now;
+      if (!quiet)
+        std::fprintf(stderr, "igi-master: waiting for workers (none for %.0f s): start one with igi-worker --connect %s\n",
+                     std::chrono::duration<double>(now - no_worker_since_).count(), session.endpoint().c_str());
+    }
     return {};
   }
 
  private:
-  Clock::time_point no_worker_since_ = Clock::now(), stall_since_ = Clock::now();
+  static constexpr auto kFailedGrace = std::chrono::seconds(10);
+  static constexpr auto kNotice = std::chrono::seconds(5);
+  Clock::time_point no_worker_since_ = Clock::now(), stall_since_ = Clock::now(), next_notice_ = Clock::now();
 };
 
 // --min-workers: a cluster's render starts when all of it is there, not with
@@ -78,7 +93,7 @@ class HeadlessRun {
         queue_frames();
         pump();
         flush_stats_when_due();
-        if (failure = watchdog_.check(session_); !failure.empty()) break;
+        if (failure = watchdog_.check(session_, o_.render.quiet); !failure.empty()) break;
       }
     } catch (const SessionError& e) {
       failure = e.what();

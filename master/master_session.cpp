@@ -21,6 +21,8 @@ constexpr int kBatch = 512;              // messages received per wake-up before
 constexpr int kMaxFailedResults = 3;     // a peer whose results fail validation this often is quarantined
 constexpr size_t kMaxQuarantinedNames = 1000;
 constexpr uint64_t kLogFirst = 5;        // repeated conditions are logged this often, then counted
+constexpr int kPeerLinesPerMinute = 100;  // joins and departures logged one by one
+constexpr size_t kRememberDropped = 4096;  // dropped peers whose later messages are ignored
 
 double thread_cpu_seconds() {
   timespec t{};
@@ -97,6 +99,28 @@ MasterSession::MasterSession(const MasterOptions& options, SceneSource scene, zm
 
 void MasterSession::log(const std::string& text) const {
   if (!options_.render.quiet) std::fprintf(stderr, "igi-master: %s\n", text.c_str());
+}
+
+void MasterSession::log_peer(const std::string& text) {
+  const Clock::time_point now = Clock::now();
+  if (now - peer_log_minute_ >= std::chrono::minutes(1)) {
+    if (peer_lines_held_ > 0)
+      log(std::to_string(peer_lines_held_) + " more joins and departures in the last minute, not logged one by one");
+    peer_log_minute_ = now;
+    peer_lines_ = 0;
+    peer_lines_held_ = 0;
+  }
+  if (peer_lines_++ < kPeerLinesPerMinute) log(text);
+  else ++peer_lines_held_;
+}
+
+void MasterSession::forget_peer(const std::string& identity) {
+  if (!dropped_ids_.insert(identity).second) return;
+  dropped_order_.push_back(identity);
+  if (dropped_order_.size() > kRememberDropped) {
+    dropped_ids_.erase(dropped_order_.front());
+    dropped_order_.pop_front();
+  }
 }
 
 // ---- Sending: never blocks.
@@ -219,8 +243,14 @@ void MasterSession::receive_batch() {
 
 void MasterSession::on_frame(const std::string& identity, std::span<const uint8_t> payload) {
   if (quarantined_ids_.count(identity)) return;  // told to leave; its last messages do not matter
-  if (protocol::is_tile_result(payload)) return on_result(identity, payload);
+  const bool dropped = !peers_.count(identity) && dropped_ids_.count(identity);
+  if (protocol::is_tile_result(payload)) {
+    if (dropped) return void(++stale_messages_);  // its jobs went to others when it was dropped
+    return on_result(identity, payload);
+  }
   protocol::DecodeResult decoded = protocol::decode(payload);
+  if (dropped && !(decoded.message && std::holds_alternative<protocol::Hello>(*decoded.message)))
+    return void(++stale_messages_);  // until it says hello again
   if (!decoded.message) return on_bad_message(identity, decoded.error);
   handle(identity, *decoded.message);
 }
@@ -262,6 +292,10 @@ void MasterSession::handle(const std::string& identity, const protocol::Message&
     log(peer->second.name + " has no copy of " + scene_.name + ": sending " + std::to_string(scene_.size) + " bytes");
     send_frame(identity, shared_frame(scene_.message));
   } else if (auto* bye = std::get_if<protocol::Bye>(&message)) {
+    if (bye->kind == protocol::ByeKind::Failed) {
+      last_failure_ = peer->second.name + " failed: " + bye->reason;
+      last_failure_at_ = Clock::now();
+    }
     drop_peer(identity, bye->kind == protocol::ByeKind::Failed ? "failed: " + bye->reason : "left: " + bye->reason);
   } else if (!std::holds_alternative<protocol::Heartbeat>(message)) {
     on_bad_message(identity, std::string("unexpected ") + protocol::message_name(protocol::type_of(message)));
@@ -292,7 +326,7 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
   const int wanted = std::max<int>(options_.credits, 2 * int(std::min<uint32_t>(hello.threads, 32)));
   const int credits = std::min<int>(wanted, protocol::kMaxCredits);  // --credits is within it already
   scheduler_.add_worker(identity, credits);
-  log(peer.name + " joined (" + std::to_string(hello.threads) + " threads)");
+  log_peer(peer.name + " joined (" + std::to_string(hello.threads) + " threads)");
   protocol::Welcome w;
   w.session = session_id_;
   w.scene_name = scene_.name;
@@ -416,9 +450,10 @@ void MasterSession::on_bad_message(const std::string& identity, const std::strin
 void MasterSession::drop_peer(const std::string& identity, const std::string& why) {
   auto it = peers_.find(identity);
   if (it == peers_.end()) return;
-  log(it->second.name + " " + why);
+  log_peer(it->second.name + " " + why);
   scheduler_.remove_worker(identity);
   peers_.erase(it);
+  forget_peer(identity);
 }
 
 // Told why, so it exits with its own status; its later messages are ignored.
@@ -531,6 +566,9 @@ std::vector<CompletedFrame> MasterSession::take_completed() {
 }
 
 void MasterSession::close(const std::string& reason) {
+  if (peer_lines_held_ > 0)
+    log(std::to_string(peer_lines_held_) + " more joins and departures in the last minute, not logged one by one");
+  peer_lines_held_ = 0;
   for (const auto& [identity, peer] : peers_) send(identity, protocol::Bye{reason});
   peers_.clear();
   // The goodbyes must leave before the process does (linger 0 would drop them

@@ -24,6 +24,7 @@
 // keys complete a handshake; others are logged and counted.
 #include <chrono>
 #include <functional>
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -132,6 +133,12 @@ class MasterSession {
 
   size_t worker_count() const { return scheduler_.worker_count(); }
   uint64_t bad_messages() const { return bad_messages_; }
+  // The last worker that could not go on (a Bye saying why: its scene does not
+  // load, a frame does not fit), "" when none did; and when.
+  const std::string& last_worker_failure() const { return last_failure_; }
+  std::chrono::steady_clock::time_point last_worker_failure_time() const { return last_failure_at_; }
+  // Messages from peers dropped lately that had not said hello again (ignored, not bad).
+  uint64_t stale_messages() const { return stale_messages_; }
   uint64_t refused_keys() const { return refused_keys_; }              // CURVE keys the ZAP handler refused
   uint64_t failed_handshakes() const { return failed_handshakes_; }    // peers without CURVE or the right master key
   uint64_t nonfinite_pixels() const { return nonfinite_pixels_; }
@@ -188,6 +195,11 @@ class MasterSession {
   size_t send(const std::string& identity, const protocol::Message& message);
   size_t send_frame(const std::string& identity, zmq::message_t&& payload);
   void log(const std::string& text) const;
+  // A join or a departure: a line each, up to kPeerLinesPerMinute a minute (a
+  // churn of ghosts must not flood the log); the rest are counted, and
+  // summed up in a line when the minute ends. Quarantines are always logged.
+  void log_peer(const std::string& text);
+  void forget_peer(const std::string& identity);  // remembered as dropped: its backlog is not "bad"
 
   MasterOptions options_;
   SceneSource scene_;
@@ -203,6 +215,17 @@ class MasterSession {
   FrameBufferPool pool_;
   std::map<std::string, Peer> peers_;
   std::set<std::string> quarantined_ids_;        // their later messages are ignored
+  // Peers dropped lately (dead, gone, congested): what they still send (a
+  // stopped worker's backlog when it resumes) is ignored, not counted as bad,
+  // until they say hello again. At most kRememberDropped, oldest forgotten first.
+  std::set<std::string> dropped_ids_;
+  std::deque<std::string> dropped_order_;
+  uint64_t stale_messages_ = 0;
+  std::string last_failure_;
+  Clock::time_point last_failure_at_{};
+  Clock::time_point peer_log_minute_{};
+  int peer_lines_ = 0;
+  uint64_t peer_lines_held_ = 0;
   std::vector<std::string> quarantined_names_;   // for the statistics (at most 1000)
   std::map<uint64_t, OpenFrame> frames_;
   std::vector<TileJob> tiles_;             // the tiles of a frame as tiles_cut_ says

@@ -304,8 +304,28 @@ void Scheduler::assign_verifications(TimePoint now, std::vector<JobAssignment>& 
   }
 }
 
+// A copy ten times late whose worker is the only one: no other worker can
+// take a straggler copy, so its result is taken as lost and the job goes back
+// to the pool with its worker's credit: the same worker renders it again (if
+// the first result comes after all, the second is dropped as late).
+void Scheduler::reclaim_lost(TimePoint now) {
+  if (workers_.size() != 1) return;
+  trim_issued();
+  const double lost = 10.0 * straggler_seconds();
+  std::vector<Issue> reclaimed;
+  for (const Issue& issue : issued_) {
+    if (seconds_between(issue.at, now) < lost) break;
+    if (is_outstanding(issue) && jobs_.at(issue.job_id).holders.size() == 1) reclaimed.push_back(issue);
+  }
+  for (const Issue& issue : reclaimed) {
+    drop_result(issue.worker, issue.job_id);
+    requeue(issue.job_id);
+  }
+}
+
 std::vector<JobAssignment> Scheduler::assign(TimePoint now) {
   std::vector<JobAssignment> out;
+  reclaim_lost(now);
   if (hungry_.empty()) return out;
   assign_unassigned(now, out);
   if (hungry_.empty() || front_unassigned()) return out;
@@ -315,7 +335,7 @@ std::vector<JobAssignment> Scheduler::assign(TimePoint now) {
 }
 
 std::optional<TimePoint> Scheduler::next_straggler_time() {
-  if (hungry_.empty()) return std::nullopt;
+  if (hungry_.empty() && workers_.size() != 1) return std::nullopt;  // a lone worker's lost jobs come back
   trim_issued();
   const auto late = std::chrono::duration_cast<SchedulerClock::duration>(std::chrono::duration<double>(straggler_seconds()));
   for (const Issue& issue : issued_) {
@@ -323,7 +343,8 @@ std::optional<TimePoint> Scheduler::next_straggler_time() {
     const Job& job = jobs_.at(issue.job_id);
     const Frame& frame = frames_.at(job.frame_id);
     if (job.holders.size() != 1) continue;
-    return issue.at + (frame.copies < duplicate_budget(frame) ? late : 10 * late);
+    const bool copy = workers_.size() > 1 && frame.copies < duplicate_budget(frame);  // else: when it is lost
+    return issue.at + (copy ? late : 10 * late);
   }
   return std::nullopt;
 }

@@ -18,6 +18,9 @@
 //    per frame (a job ten times late is copied whatever the budget: its
 //    result was lost). Workers that are all equally fast never render a tile
 //    twice. Water-filling: idle workers get jobs before busy ones.
+//  - A lone worker's job ten times late was lost (no other worker can take
+//    a copy): it goes back to the pool with the worker's credit, and the
+//    worker renders it again.
 //  - A copy still out when its frame completes gives its worker's credit back.
 //  - The first usable result for a job wins; later copies are dropped.
 //  - A result that fails validation (it does not decode, non-finite pixels,
@@ -222,6 +225,7 @@ class Scheduler {
     WorkerId worker;
   };
 
+  void reclaim_lost(TimePoint now);
   void assign_unassigned(TimePoint now, std::vector<JobAssignment>& out);
   void assign_stragglers(TimePoint now, std::vector<JobAssignment>& out);
   void assign_verifications(TimePoint now, std::vector<JobAssignment>& out);

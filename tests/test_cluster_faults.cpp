@@ -108,6 +108,29 @@ TEST(ClusterFaults, AWorkerThatCannotLoadTheSceneLeavesWithStatus6AndTheFramesCo
   EXPECT_EQ(test::wait_exit(good, 10 * test::kSlowdown), 0);
 }
 
+// A master without workers says how to start one; when the only worker fails,
+// the run ends with its reason 10 s later instead of waiting a minute.
+TEST(ClusterFaults, AMasterWhoseWorkersAllFailedEndsWithTheirReason) {
+  const std::string endpoint = endpoint_here(), log = fresh_log("all-failed-master.log");
+  const auto start = Clock::now();
+  pid_t m = test::start(std::string(IGI_MASTER_BINARY) + " --workers 0 --listen " + endpoint +
+                        " --scene cornell --method igi --vpl-paths 4 --size 64x48 --frames 2 -o " +
+                        test::output_path("all-failed.exr") + " > " + log + " 2>&1");
+  ASSERT_TRUE(wait_for_text(log, "waiting for workers (none for 5 s): start one with igi-worker --connect " + endpoint,
+                            30 * test::kSlowdown))
+      << read_text(log);
+  auto failing = test::run(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --test-fail-scene-load",
+                           int(30 * test::kSlowdown));
+  EXPECT_EQ(failing.exit_code, 6) << failing.output;
+  EXPECT_EQ(test::wait_exit(m, 40 * test::kSlowdown), 1) << read_text(log);
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  EXPECT_LT(seconds, 40.0) << "not the minute without workers";
+  EXPECT_NE(read_text(log).find("the workers failed and none came for 10 s; the last: worker-0 failed: cannot load the "
+                                "scene cornell"),
+            std::string::npos)
+      << read_text(log);
+}
+
 // The master checks settings against its own memory; a smaller worker checks
 // them again against its own and says why it cannot render, not abort.
 TEST(ClusterFaults, AWorkerWithTooLittleMemoryForTheFramesSaysWhyAndLeavesWithStatus7) {
@@ -177,6 +200,68 @@ TEST(ClusterFaults, ASendToAPeerThatStoppedReadingNeverBlocks) {
   alarm(0);
   EXPECT_TRUE(joined);
   EXPECT_EQ(session.worker_count(), 0u) << "a peer whose queue is full is dropped like a dead one";
+}
+
+// 300 ghosts (connect, hello, close) make 600 joins and departures: the log
+// names the first 100 and sums up the rest, and the run still ends.
+TEST(ClusterFaults, AChurnOfGhostsDoesNotFloodTheLog) {
+  const std::string endpoint = endpoint_here(), log = fresh_log("ghosts-master.log");
+  pid_t m = test::start(std::string(IGI_MASTER_BINARY) + " --workers 0 --listen " + endpoint +
+                        " --scene cornell --method igi --vpl-paths 4 --size 64x48 --tile 16 --frames 2 "
+                        "--heartbeat-ms 50 --timeout-ms 300 -o " + test::output_path("ghosts.exr") + " > " + log + " 2>&1");
+  ASSERT_TRUE(wait_for_text(log, "listening on", 30 * test::kSlowdown)) << read_text(log);
+  zmq::context_t context;
+  for (int i = 0; i < 300; ++i) {
+    zmq::socket_t ghost(context, zmq::socket_type::dealer);
+    ghost.set(zmq::sockopt::linger, 1000);  // the hello leaves before the socket closes
+    ghost.connect(endpoint);
+    protocol::send(ghost, protocol::Hello{igi::build_id(), "ghost", 32});
+  }  // closed: its jobs wait for the timeout or a copy
+  pid_t good = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --quiet");
+  EXPECT_EQ(test::wait_exit(m, 120 * test::kSlowdown), 0) << read_text(log);
+  test::wait_exit(good, 10 * test::kSlowdown);
+  const std::string text = read_text(log);
+  size_t peer_lines = 0;
+  for (size_t at = 0; (at = text.find("\nigi-master: worker-", at)) != std::string::npos; ++at) ++peer_lines;
+  EXPECT_LE(peer_lines, 100u) << text.substr(0, 4000);
+  EXPECT_GE(peer_lines, 50u) << "the first ones are named";
+  EXPECT_NE(text.find("more joins and departures in the last minute, not logged one by one"), std::string::npos)
+      << text.substr(text.size() > 4000 ? text.size() - 4000 : 0);
+}
+
+// A worker that was stopped (SIGSTOP) past the timeout is declared dead; when
+// it resumes, the heartbeats and results it had queued reach a master that has
+// forgotten it. They are ignored as stale, not counted as bad messages, until
+// it says hello again.
+TEST(ClusterFaults, AResumedWorkersBacklogIsStaleNotBad) {
+  zmq::context_t context;
+  const MasterOptions o = parse_master_options({"--workers", "0", "--listen", "inproc://igi-resumed-peer", "--frames", "1",
+                                                "--heartbeat-ms", "10", "--timeout-ms", "100", "--quiet", "--no-write",
+                                                "--size", "64x48"});
+  MasterSession session(o, make_scene_source("cornell"), context);
+  zmq::socket_t peer(context, zmq::socket_type::dealer);
+  peer.set(zmq::sockopt::linger, 0);
+  peer.connect("inproc://igi-resumed-peer");
+  protocol::send(peer, protocol::Hello{igi::build_id(), "resumed", 1});
+  session.pump(20);
+  ASSERT_EQ(session.worker_count(), 1u);
+  const auto end = Clock::now() + std::chrono::seconds(int(5 * test::kSlowdown));
+  while (session.worker_count() == 1 && Clock::now() < end) session.pump(20);  // silent: declared dead
+  ASSERT_EQ(session.worker_count(), 0u);
+  protocol::TileResult late;
+  late.tile = {0, 0, 1, 1, 0};
+  late.pixels.resize(1);
+  for (int i = 0; i < 3; ++i) {
+    protocol::send(peer, protocol::Heartbeat{});
+    protocol::send(peer, late);
+  }
+  session.pump(50);
+  EXPECT_EQ(session.bad_messages(), 0u);
+  EXPECT_EQ(session.stale_messages(), 6u);
+  protocol::send(peer, protocol::Hello{igi::build_id(), "resumed", 1});
+  session.pump(50);
+  EXPECT_EQ(session.worker_count(), 1u) << "a hello brings it back";
+  EXPECT_EQ(session.bad_messages(), 0u);
 }
 
 }  // namespace
