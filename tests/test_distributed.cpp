@@ -207,7 +207,7 @@ TEST(Distributed, PeerOfAnotherProtocolVersionIsToldWhy) {
   zmq::context_t context;
   zmq::socket_t dealer(context, zmq::socket_type::dealer);
   dealer.set(zmq::sockopt::linger, 0);
-  dealer.set(zmq::sockopt::rcvtimeo, 10000);
+  dealer.set(zmq::sockopt::rcvtimeo, int(10000 * test::kSlowdown));  // the master may take seconds to start
   dealer.connect(endpoint);
   std::vector<uint8_t> hello = protocol::encode(protocol::Hello{"x", "sse", 1});
   hello[4] = uint8_t(protocol::kVersion + 1);  // the u16 version after the magic
