@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "hostile_peer.h"
+
 namespace igi::soak {
 
 const char* fault_name(FaultKind kind) {
@@ -14,6 +16,7 @@ const char* fault_name(FaultKind kind) {
     case FaultKind::Garbage: return "garbage burst";
     case FaultKind::RestartMaster: return "master restarted";
     case FaultKind::CutLink: return "link cut";
+    case FaultKind::Hostile: return "hostile peer";
   }
   return "?";
 }
@@ -26,7 +29,7 @@ uint64_t Rng::next() {
 }
 
 std::vector<bool> parse_fault_kinds(const std::string& list) {
-  static const char* names[kFaultKinds] = {"kill", "stop", "slow", "garbage", "restart", "cut"};
+  static const char* names[kFaultKinds] = {"kill", "stop", "slow", "garbage", "restart", "cut", "hostile"};
   std::vector<bool> allowed(kFaultKinds, false);
   if (list == "none") return allowed;
   size_t start = 0;
@@ -35,7 +38,7 @@ std::vector<bool> parse_fault_kinds(const std::string& list) {
     const std::string name = list.substr(start, end - start);
     int k = 0;
     while (k < kFaultKinds && name != names[k]) ++k;
-    if (k == kFaultKinds) throw std::invalid_argument("--kinds: unknown fault '" + name + "' (kill, stop, slow, garbage, restart, cut)");
+    if (k == kFaultKinds) throw std::invalid_argument("--kinds: unknown fault '" + name + "' (kill, stop, slow, garbage, restart, cut, hostile)");
     allowed[size_t(k)] = true;
     start = end + 1;
   }
@@ -46,7 +49,8 @@ static FaultKind draw_kind(Rng& rng, const std::vector<bool>& allowed) {
   // Weights: garbage and kills are cheap and common; a master restart costs seconds.
   struct Weighted { FaultKind kind; int weight; };
   const Weighted table[] = {{FaultKind::KillWorker, 3}, {FaultKind::StopWorker, 2}, {FaultKind::SlowWorker, 2},
-                            {FaultKind::Garbage, 4},    {FaultKind::RestartMaster, 1}, {FaultKind::CutLink, 1}};
+                            {FaultKind::Garbage, 4},    {FaultKind::RestartMaster, 1}, {FaultKind::CutLink, 1},
+                            {FaultKind::Hostile, 2}};
   int total = 0;
   for (const Weighted& w : table) total += allowed[size_t(w.kind)] ? w.weight : 0;
   int pick = rng.below(total);
@@ -68,6 +72,7 @@ static Fault make_fault(Rng& rng, FaultKind kind, int workers, double timeout) {
     case FaultKind::Garbage: f.seed = rng.next(); break;
     case FaultKind::RestartMaster: f.seconds = rng.uniform(0.1, 1.0); break;     // down meanwhile
     case FaultKind::CutLink: f.seconds = rng.uniform(0.5, 3.0) * timeout + rng.uniform(0.0, 1.0); break;
+    case FaultKind::Hostile: f.seed = rng.next(), f.seconds = rng.uniform(1.0, 3.0); break;
   }
   return f;
 }
@@ -111,6 +116,10 @@ std::string describe(const Fault& f) {
       std::snprintf(text, sizeof text, "SIGKILL the master, restart after %.2f s", f.seconds); break;
     case FaultKind::CutLink:
       std::snprintf(text, sizeof text, "cut the namespace worker's link for %.2f s", f.seconds); break;
+    case FaultKind::Hostile:
+      std::snprintf(text, sizeof text, "hostile peer: %s for %.2f s", hostile_name(HostileKind(f.seed % kHostileKinds)),
+                    f.seconds);
+      break;
   }
   return "frame " + std::to_string(f.at_frame) + ": " + text;
 }

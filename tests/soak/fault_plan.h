@@ -8,16 +8,16 @@
 
 namespace igi::soak {
 
-enum class FaultKind { KillWorker, StopWorker, SlowWorker, Garbage, RestartMaster, CutLink };
-inline constexpr int kFaultKinds = 6;
+enum class FaultKind { KillWorker, StopWorker, SlowWorker, Garbage, RestartMaster, CutLink, Hostile };
+inline constexpr int kFaultKinds = 7;
 const char* fault_name(FaultKind kind);
 
 struct Fault {
   int at_frame = 0;     // fires once this many frames are on disk
   FaultKind kind = FaultKind::Garbage;
   int worker = 0;       // the worker slot (kill, stop, slow)
-  double seconds = 0;   // stop/slow/cut: how long; kill/restart: delay before the replacement starts
-  uint64_t seed = 0;    // garbage: the burst's own seed
+  double seconds = 0;   // stop/slow/cut/hostile: how long; kill/restart: delay before the replacement starts
+  uint64_t seed = 0;    // garbage: the burst's own seed; hostile: which peer (seed % kHostileKinds)
 };
 
 // splitmix64: small, fast, the same everywhere (unlike std:: distributions).
@@ -32,7 +32,7 @@ class Rng {
   uint64_t state_;
 };
 
-// Which kinds a plan may draw, from "kill,stop,slow,garbage,restart,cut"; throws on an unknown name.
+// Which kinds a plan may draw, from "kill,stop,slow,garbage,restart,cut,hostile"; throws on an unknown name.
 std::vector<bool> parse_fault_kinds(const std::string& list);
 
 // `count` faults spread over frames [5, frames - 3): every allowed kind at least

@@ -41,7 +41,7 @@ void add_fault_options(CLI::App& app, SoakOptions& o) {
       ->check(integer<uint64_t>(0, UINT64_MAX))->type_name("S");
   app.add_option("--faults", o.faults, "faults to inject; 0 = one per 10 frames [0]")
       ->check(integer(0, kMaxFrames))->type_name("F");
-  app.add_option("--kinds", o.kinds, "of kill,stop,slow,garbage,restart,cut [all]")->type_name("LIST");
+  app.add_option("--kinds", o.kinds, "of kill,stop,slow,garbage,restart,cut,hostile [all]")->type_name("LIST");
   app.add_option("--netns", o.netns, "also run a worker in a network namespace behind a veth link that is cut and "
                  "restored; auto skips (and says why) where the machine does not allow it [auto]")
       ->check(cli::one_of({"auto", "on", "off"}))->type_name("auto|on|off");

@@ -15,7 +15,7 @@ struct SoakOptions {
   int workers = 3;                            // on loopback
   uint64_t seed = 0;                          // 0: from the clock (printed, so a run can be repeated)
   int faults = 0;                             // 0: one per 10 frames
-  std::string kinds = "kill,stop,slow,garbage,restart,cut";  // which faults the plan may draw
+  std::string kinds = "kill,stop,slow,garbage,restart,cut,hostile";  // which faults the plan may draw
   int heartbeat_ms = 100, timeout_ms = 500;   // the master's; workers take the heartbeat from it
   double deadline_seconds = 0;                // 0: 30 s + 0.6 s a frame
   std::string netns = "auto";                 // auto | on | off: a worker behind a veth link that is cut

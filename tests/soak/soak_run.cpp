@@ -166,6 +166,13 @@ bool SoakRun::inject(Fault& f) {
     garbage_bursts_.push_back(std::async(std::launch::async, [this, seed = f.seed] { return garbage_->burst(seed); }));
     return true;
   }
+  if (f.kind == FaultKind::Hostile) {
+    const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(port_);
+    const HostileKind kind = HostileKind(f.seed % kHostileKinds);
+    hostile_runs_.push_back(
+        std::async(std::launch::async, [endpoint, kind, seconds = f.seconds] { return run_hostile(endpoint, kind, seconds); }));
+    return true;
+  }
   if (f.kind == FaultKind::RestartMaster) {
     if (master_down_) return false;
     kill_master(f.seconds);
@@ -211,6 +218,22 @@ bool SoakRun::loop_once() {
   return true;
 }
 
+// Fakes that answered must have been caught: each connection of a sybil pair
+// or a failer that sent a few results is told it is quarantined. (One that
+// joined as its frames ended may have had nothing to be judged on.) What the
+// hostile peers could not do at all, change a pixel or stall the run, the
+// frame check and the deadline judge.
+void SoakRun::judge_hostile(const HostileReport& r) {
+  std::printf("soak: hostile peer, %s: %d connections, %llu jobs taken, %llu results sent, %d told they are "
+              "quarantined\n", hostile_name(r.kind), r.connections, (unsigned long long)r.jobs_taken,
+              (unsigned long long)r.results_sent, r.quarantined);
+  const bool judged = r.kind == HostileKind::Sybil || r.kind == HostileKind::Failer;
+  if (judged && r.results_sent >= uint64_t(4 * r.connections) && r.quarantined < r.connections)
+    totals_.failures.push_back(std::string("a ") + hostile_name(r.kind) + " sent " + std::to_string(r.results_sent) +
+                               " results and only " + std::to_string(r.quarantined) + " of its " +
+                               std::to_string(r.connections) + " connections were quarantined");
+}
+
 void SoakRun::corrupt_frame_file(int frame) const {
   const std::string path = frame_file(o_.dir, frame);
   if (!fs::exists(path)) return;
@@ -246,6 +269,7 @@ int SoakRun::run() {
   }
   GarbageCounts garbage;
   for (auto& burst : garbage_bursts_) garbage.add(burst.get());
+  for (auto& run : hostile_runs_) judge_hostile(run.get());
   for (const std::string& line : finished_ ? workers_->finish(5.0) : std::vector<std::string>{})
     totals_.failures.push_back(line);
   workers_->kill_all();

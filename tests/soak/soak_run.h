@@ -13,6 +13,7 @@
 #include "child_process.h"
 #include "fault_plan.h"
 #include "garbage_client.h"
+#include "hostile_peer.h"
 #include "memory_monitor.h"
 #include "net_namespace.h"
 #include "render_options.h"
@@ -40,6 +41,7 @@ class SoakRun {
   bool master_finished();
   void fire_due_faults();
   bool inject(Fault& fault);
+  void judge_hostile(const HostileReport& report);
   void corrupt_frame_file(int frame) const;
   double seconds_since_start() const;
 
@@ -58,6 +60,7 @@ class SoakRun {
   std::unique_ptr<WorkerPool> workers_;
   std::unique_ptr<GarbageClient> garbage_;
   std::vector<std::future<GarbageCounts>> garbage_bursts_;  // may overlap: frames can outpace a burst
+  std::vector<std::future<HostileReport>> hostile_runs_;
 
   Child master_;
   int master_runs_ = 0;
