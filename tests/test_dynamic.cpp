@@ -2,6 +2,7 @@
 // scene equal bit for bit to the same pose loaded static, posing that touches
 // only what moves, and master + workers equal to one process over an
 // animated sequence with a worker killed.
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -114,6 +115,27 @@ TEST(Animation, SceneAnimatedToATimeEqualsTheSamePoseLoadedStaticBitForBit) {
   const Image early = render(state, 0.2);
   state.set_pose(ScenePose{1.2, glm::vec3(0.0f)});
   EXPECT_FALSE(test::images_identical("animated-moves", early, render(state, 1.2)));
+}
+
+// The mean chord (the clamp's length scale) after pose after pose on one BVH,
+// whose update re-sums areas from the first moving triangle only and traces
+// its rays on TBB's threads, equals that of each pose loaded static.
+TEST(Animation, MeanChordOfAPoseSequenceEqualsEachPoseLoadedStatic) {
+  const nlohmann::json doc = test::animated_document();
+  LoadedScene animated = load_json(doc, "animated.gltf");
+  ASSERT_TRUE(animated.scene.animation);
+  SceneState moving(animated.scene);
+  std::vector<float> chords;
+  for (const double t : {0.7, 1.6, 0.0, 2.5, 0.7}) {
+    SCOPED_TRACE("t = " + std::to_string(t));
+    moving.set_pose(ScenePose{t, glm::vec3(0.0f)});
+    SceneState still(load_json(test::posed_copy(doc, *animated.scene.animation, t), "posed.gltf").scene);
+    still.set_pose(ScenePose{});
+    EXPECT_EQ(std::bit_cast<uint32_t>(moving.accel().mean_chord()), std::bit_cast<uint32_t>(still.accel().mean_chord()));
+    chords.push_back(moving.accel().mean_chord());
+  }
+  EXPECT_NE(chords[0], chords[1]) << "the chord follows the pose";
+  EXPECT_EQ(chords[0], chords[4]);
 }
 
 bool same_camera(const Camera& a, const Camera& b) {

@@ -1,5 +1,7 @@
 #include "scene/accel.h"
 
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <map>
 #include <stdexcept>
@@ -9,7 +11,9 @@
 #include <pmmintrin.h>
 #include <xmmintrin.h>
 
-#include "sampling/distribution.h"
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "sampling/sobol.h"
 #include "sampling/warp.h"
 #include "scene/animation.h"
@@ -22,37 +26,73 @@ void enable_flush_to_zero() {
   _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
 }
 
-// Accel::mean_chord(): see the header.
-static float measure_mean_chord(const Scene& scene, const Accel& accel) {
-  std::vector<float> areas(scene.triangles.size());
-  for (size_t t = 0; t < areas.size(); ++t) areas[t] = glm::length(triangle_cross(scene, uint32_t(t)));
-  const Distribution1D by_area(areas);
-  const float diagonal = scene.bounds().empty() ? 1.0f : std::max(1e-6f, scene.bounds().diagonal());
-  if (!(by_area.total() > 0.0f)) return diagonal;
-  constexpr uint32_t kRays = 4096, kSeed = 0x63686f72u;  // "chor"
-  // Traced as the render threads trace (FTZ/DAZ on), whatever this thread's mode.
-  const unsigned ftz = _MM_GET_FLUSH_ZERO_MODE(), daz = _MM_GET_DENORMALS_ZERO_MODE();
-  enable_flush_to_zero();
-  double sum = 0.0;
-  uint32_t hits = 0;
-  for (uint32_t i = 0; i < kRays; ++i) {
-    SampleStream u(i, kSeed);
-    const uint32_t t = by_area.sample(u.next_1d());
-    const glm::vec2 b = uniform_triangle(u.next_2d());
-    const glm::vec3 local = cosine_hemisphere(u.next_2d());
-    const glm::uvec3& tri = scene.triangles[t];
-    const glm::vec3 p0 = scene.positions[tri[0]], p1 = scene.positions[tri[1]], p2 = scene.positions[tri[2]];
-    const glm::vec3 n = triangle_normal(p0, p1, p2) * (i % 2 ? -1.0f : 1.0f);
-    const glm::vec3 p = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
-    const float scale = std::max(std::max(std::abs(p.x), std::abs(p.y)), std::abs(p.z));
-    Hit hit;
-    if (accel.intersect(Ray{p + (2e-5f * scale + 1e-7f) * n, Onb(n).to_world(local)}, hit)) {
-      sum += hit.t;
-      ++hits;
+// The triangles' areas (as Distribution1D weighs them) and their running sum,
+// kept between updates: update() recomputes the moving triangles' and the sum
+// from the first of them on, so a posed scene samples exactly what the same
+// pose loaded static samples (the sums are the same additions in the same
+// order) without touching the static millions.
+void Accel::measure_areas(const std::vector<uint32_t>& changed) {
+  size_t first = areas_.size();
+  if (areas_.size() != scene_.triangles.size()) {
+    areas_.resize(scene_.triangles.size());
+    area_sums_.resize(scene_.triangles.size());
+    for (size_t t = 0; t < areas_.size(); ++t) areas_[t] = glm::length(triangle_cross(scene_, uint32_t(t)));
+    first = 0;
+  } else {
+    for (uint32_t t : changed) {
+      areas_[t] = glm::length(triangle_cross(scene_, t));
+      first = std::min(first, size_t(t));
     }
   }
-  _MM_SET_FLUSH_ZERO_MODE(ftz);
-  _MM_SET_DENORMALS_ZERO_MODE(daz);
+  double sum = first > 0 ? area_sums_[first - 1] : 0.0;
+  for (size_t t = first; t < areas_.size(); ++t) area_sums_[t] = sum += std::max(0.0f, areas_[t]);
+}
+
+// Distribution1D::sample over areas_, bit for bit: upper_bound over the
+// normalised sums (divided as compared, not stored), zero-area triangles skipped.
+uint32_t Accel::sample_by_area(float u) const {
+  const double total = area_sums_.back();
+  auto it = std::upper_bound(area_sums_.begin(), area_sums_.end(), double(u),
+                             [total](double x, double sum) { return x < sum / total; });
+  uint32_t i = uint32_t(std::min<size_t>(it - area_sums_.begin(), area_sums_.size() - 1));
+  while (i > 0 && areas_[i] <= 0.0f) --i;
+  while (i + 1 < areas_.size() && areas_[i] <= 0.0f) ++i;
+  return i;
+}
+
+// Accel::mean_chord(): see the header.
+float Accel::measure_mean_chord() const {
+  const Scene& scene = scene_;
+  const float diagonal = scene.bounds().empty() ? 1.0f : std::max(1e-6f, scene.bounds().diagonal());
+  if (area_sums_.empty() || !(float(area_sums_.back()) > 0.0f)) return diagonal;
+  constexpr uint32_t kRays = 4096, kSeed = 0x63686f72u;  // "chor"
+  // Each ray's length (or none) in its own slot, on as many threads as TBB
+  // has, then summed in ray order: the same sum however the rays were shared.
+  std::array<float, kRays> lengths;
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, kRays, 256), [&](const tbb::blocked_range<uint32_t>& rays) {
+    // Traced as the render threads trace (FTZ/DAZ on), whatever this thread's mode.
+    const unsigned ftz = _MM_GET_FLUSH_ZERO_MODE(), daz = _MM_GET_DENORMALS_ZERO_MODE();
+    enable_flush_to_zero();
+    for (uint32_t i = rays.begin(); i < rays.end(); ++i) {
+      SampleStream u(i, kSeed);
+      const uint32_t t = sample_by_area(u.next_1d());
+      const glm::vec2 b = uniform_triangle(u.next_2d());
+      const glm::vec3 local = cosine_hemisphere(u.next_2d());
+      const glm::uvec3& tri = scene.triangles[t];
+      const glm::vec3 p0 = scene.positions[tri[0]], p1 = scene.positions[tri[1]], p2 = scene.positions[tri[2]];
+      const glm::vec3 n = triangle_normal(p0, p1, p2) * (i % 2 ? -1.0f : 1.0f);
+      const glm::vec3 p = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
+      const float scale = std::max(std::max(std::abs(p.x), std::abs(p.y)), std::abs(p.z));
+      Hit hit;
+      lengths[i] = intersect(Ray{p + (2e-5f * scale + 1e-7f) * n, Onb(n).to_world(local)}, hit) ? hit.t : -1.0f;
+    }
+    _MM_SET_FLUSH_ZERO_MODE(ftz);
+    _MM_SET_DENORMALS_ZERO_MODE(daz);
+  });
+  double sum = 0.0;
+  uint32_t hits = 0;
+  for (float length : lengths)
+    if (length >= 0.0f) sum += length, ++hits;
   return hits > 0 ? std::max(1e-6f, float(sum / hits)) : diagonal;
 }
 
@@ -156,7 +196,8 @@ Accel::Accel(const Scene& scene, size_t memory_limit) : Accel(scene, memory_limi
     rtcCommitScene(top_);
     check_embree(device_, true, "build the top-level BVH over " + std::to_string(groups_.size()) + " parts");
   }
-  mean_chord_ = measure_mean_chord(scene, *this);
+  measure_areas({});
+  mean_chord_ = measure_mean_chord();
 }
 
 // One triangle geometry of a group, committed: its vertices written, and the
@@ -248,7 +289,11 @@ void Accel::update() {
   rtcCommitScene(top_);
   check_embree(device_, true, "rebuild the moving parts' BVHs");
   // A posed scene measures as the same pose loaded static (the clamp follows it).
-  mean_chord_ = measure_mean_chord(scene_, *this);
+  std::vector<uint32_t> moved;
+  for (size_t i = 1; i < groups_.size(); ++i)
+    for (const Geometry& g : groups_[i].geometries) moved.insert(moved.end(), g.triangles.begin(), g.triangles.end());
+  measure_areas(moved);
+  mean_chord_ = measure_mean_chord();
 }
 
 // Null handles are those a failed construction never made.

@@ -131,6 +131,9 @@ class Accel {
   void add_group(const std::vector<uint32_t>& triangles, RTCBuildQuality quality);
   void build_triangles(Geometry& g, const std::vector<uint32_t>& triangles, bool moving, bool filtered);
   void write_vertices(const Geometry& geometry) const;
+  void measure_areas(const std::vector<uint32_t>& changed);  // all of them on the first call
+  uint32_t sample_by_area(float u) const;
+  float measure_mean_chord() const;
 
   const Scene& scene_;
   EmbreeMemoryBudget budget_;  // before the device, which reports to it
@@ -138,6 +141,8 @@ class Accel {
   RTCScene top_ = nullptr;
   std::vector<Group> groups_;  // index = instance id; 0 is the static group
   float mean_chord_ = 1.0f;
+  std::vector<float> areas_;        // per Scene::triangles, as posed
+  std::vector<double> area_sums_;   // running sums of areas_ (negative counted as 0)
 };
 
 }  // namespace igi
