@@ -10,6 +10,7 @@ namespace {
 constexpr size_t kRoundTrips = 64;     // the median is taken over this many recent jobs
 constexpr size_t kMinRoundTrips = 8;   // fewer: no median yet
 constexpr double kUnknownStragglerSeconds = 1.0;
+constexpr double kLostSeconds = 60.0;  // a lone worker's job this old is lost, answered or not
 
 bool same_tile(const TileJob& a, const TileJob& b) {
   return a.x == b.x && a.y == b.y && a.w == b.w && a.h == b.h && a.border == b.border;
@@ -136,11 +137,12 @@ JobAssignment Scheduler::give(const WorkerId& id, uint64_t job_id, TimePoint now
   Job& job = jobs_.at(job_id);
   const bool duplicate = !job.holders.empty() || job.held_by.has_value();
   job.queued = false;
-  job.holders.push_back({id, now});
+  const uint64_t serial = next_serial_++;
+  job.holders.push_back({id, now, serial});
   Worker& w = workers_.at(id);
   w.jobs.push_back(job_id);
   if (int(w.jobs.size()) >= w.credits) hungry_.erase(id);
-  issued_.push_back({now, job_id, id});
+  issued_.push_back({now, job_id, id, serial});
   trim_issued();
   return JobAssignment{id, job_id, job.frame_id, job.tile, duplicate};
 }
@@ -305,17 +307,23 @@ void Scheduler::assign_verifications(TimePoint now, std::vector<JobAssignment>& 
 }
 
 // A copy ten times late whose worker is the only one: no other worker can
-// take a straggler copy, so its result is taken as lost and the job goes back
-// to the pool with its worker's credit: the same worker renders it again (if
-// the first result comes after all, the second is dropped as late).
+// take a straggler copy. If the worker has answered a job given after it (it
+// renders its jobs in order), or a minute has passed, its result is taken as
+// lost and the job goes back to the pool with its worker's credit: the same
+// worker renders it again (should the first result come after all, the
+// second is dropped). A slow tile on a lone worker is not rendered twice.
 void Scheduler::reclaim_lost(TimePoint now) {
   if (workers_.size() != 1) return;
   trim_issued();
-  const double lost = 10.0 * straggler_seconds();
+  const double late = 10.0 * straggler_seconds();
+  const Worker& worker = workers_.begin()->second;
   std::vector<Issue> reclaimed;
   for (const Issue& issue : issued_) {
-    if (seconds_between(issue.at, now) < lost) break;
-    if (is_outstanding(issue) && jobs_.at(issue.job_id).holders.size() == 1) reclaimed.push_back(issue);
+    const double age = seconds_between(issue.at, now);
+    if (age < late) break;
+    const bool overtaken = worker.newest_answered > issue.serial + 1;  // a job given after it came back
+    if ((overtaken || age >= kLostSeconds) && is_outstanding(issue) && jobs_.at(issue.job_id).holders.size() == 1)
+      reclaimed.push_back(issue);
   }
   for (const Issue& issue : reclaimed) {
     drop_result(issue.worker, issue.job_id);
@@ -394,9 +402,12 @@ ResultVerdict Scheduler::on_result(const WorkerId& id, uint64_t job_id, uint64_t
   Job& job = it->second;
   Frame& frame = frames_.at(job.frame_id);
   const bool first = !job.done && !job.held_by;
+  auto holder = std::find_if(job.holders.begin(), job.holders.end(), [&](const Holder& h) { return h.worker == id; });
+  const std::optional<uint64_t> serial = holder != job.holders.end() ? std::optional(holder->serial) : std::nullopt;
   release_holder(job, id, now, first);
   auto w = workers_.find(id);
   if (w != workers_.end()) {
+    if (serial) w->second.newest_answered = std::max(w->second.newest_answered, *serial + 1);
     if (first) {
       ++w->second.answered;
       w->second.credits = std::min(w->second.credits + 1, w->second.max_credits);

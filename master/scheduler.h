@@ -18,7 +18,8 @@
 //    per frame (a job ten times late is copied whatever the budget: its
 //    result was lost). Workers that are all equally fast never render a tile
 //    twice. Water-filling: idle workers get jobs before busy ones.
-//  - A lone worker's job ten times late was lost (no other worker can take
+//  - A lone worker's job ten times late, when the worker has answered a job
+//    given after it (or after a minute), was lost (no other worker can take
 //    a copy): it goes back to the pool with the worker's credit, and the
 //    worker renders it again.
 //  - A copy still out when its frame completes gives its worker's credit back.
@@ -192,6 +193,7 @@ class Scheduler {
   struct Holder {
     WorkerId worker;
     TimePoint issued;
+    uint64_t serial = 0;  // copies in the order given
   };
   struct Job {
     uint64_t frame_id = 0;
@@ -218,11 +220,13 @@ class Scheduler {
     int credits = 1;             // now: grows with results up to max_credits
     int max_credits = 1;
     uint64_t answered = 0;       // results it returned first (it renders: a proven worker)
+    uint64_t newest_answered = 0;  // 1 + the serial of the newest copy it has answered (0: none)
   };
   struct Issue {
     TimePoint at;
     uint64_t job_id;
     WorkerId worker;
+    uint64_t serial = 0;
   };
 
   void reclaim_lost(TimePoint now);
@@ -250,6 +254,7 @@ class Scheduler {
   SchedulerConfig config_;
   int forced_duplicates_ = 0;
   uint64_t next_job_id_ = 1;
+  uint64_t next_serial_ = 0;  // of copies given
   std::map<WorkerId, Worker> workers_;
   std::set<WorkerId> hungry_;  // workers with free credit
   std::set<WorkerId> quarantined_;        // ever, this session

@@ -517,28 +517,45 @@ TEST(Scheduler, AResultLostOnTheWayNeitherHangsTheFrameNorKeepsItsCredit) {
 }
 
 // With one worker no copy can go elsewhere: a job ten times late (here 10 x
-// 1 s, before any round trip is known) comes back to the pool, credit and all.
+// 1 s, before any round trip is known) that a later job overtook comes back
+// to the pool, credit and all; one that is only slow is left alone.
 TEST(Scheduler, ALoneWorkersLostResultsAreIssuedToItAgain) {
   Scheduler s(2, 2);
   s.add_worker("only");
   s.add_frame(0, tiles(3));
   const auto first = s.assign(at(0));
   ASSERT_EQ(first.size(), 2u);
+  answer(s, {first[1]}, 1, at(100));  // the second answers; the first never will
+  const auto third = s.assign(at(100));
+  ASSERT_EQ(third.size(), 1u);
   EXPECT_TRUE(s.assign(at(9000)).empty()) << "late, but not yet lost";
-  ASSERT_TRUE(s.next_straggler_time()) << "the session must wake to reclaim, though the worker has no free credit";
+  ASSERT_TRUE(s.next_straggler_time());
   EXPECT_EQ(*s.next_straggler_time(), at(10000));
   const auto again = s.assign(at(10001));
-  ASSERT_EQ(again.size(), 2u) << "both lost jobs, again to the only worker";
+  ASSERT_EQ(again.size(), 1u) << "the overtaken job, again to the only worker";
   EXPECT_EQ(again[0].worker, "only");
-  EXPECT_EQ(std::min(again[0].job_id, again[1].job_id), std::min(first[0].job_id, first[1].job_id));
-  EXPECT_EQ(s.stats().reissued, 2u);
-  EXPECT_EQ(s.outstanding("only"), 2) << "credit came back with them";
+  EXPECT_EQ(again[0].job_id, first[0].job_id);
+  EXPECT_EQ(s.stats().reissued, 1u);
+  EXPECT_EQ(s.outstanding("only"), 2) << "credit came back with it";
   answer(s, again, 1, at(10010));
-  answer(s, s.assign(at(10011)), 1, at(10020));
+  answer(s, third, 1, at(10020));
   EXPECT_EQ(s.take_completed_frames().size(), 1u);
   // A first copy that was only slow answers after all: dropped, harmless.
   EXPECT_EQ(s.check_result("only", first[0].job_id, 0, first[0].tile), ResultCheck::Unknown);
   EXPECT_EQ(s.outstanding("only"), 0);
+}
+
+// Jobs that nothing overtook are slow, not lost, until a minute has passed.
+TEST(Scheduler, ALoneWorkersSlowJobsAreNotRenderedTwice) {
+  Scheduler s(2, 2);
+  s.add_worker("only");
+  s.add_frame(0, tiles(2));
+  const auto first = s.assign(at(0));
+  ASSERT_EQ(first.size(), 2u);
+  EXPECT_TRUE(s.assign(at(30000)).empty()) << "30 s tiles on a lone worker are rendered once";
+  EXPECT_EQ(s.stats().reissued, 0u);
+  const auto again = s.assign(at(60001));
+  EXPECT_EQ(again.size(), 2u) << "after a minute both are taken as lost";
 }
 
 TEST(Scheduler, UnknownResultsAreHarmless) {
