@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "build_id.h"
 #include "protocol/curve.h"
 
 namespace {
@@ -37,6 +38,7 @@ int show(const std::string& path) {
 int main(int argc, char** argv) {
   const std::string command = argc > 1 ? argv[1] : "";
   if (command == "--help" || command == "-h") return std::fputs(kUsage, stdout), 0;
+  if (command == "--version") return std::printf("%s\n", igi::build_id()), 0;
   if (argc != 3 || (command != "new" && command != "show")) return std::fputs(kUsage, stderr), 2;
   try {
     return command == "new" ? make_new(argv[2]) : show(argv[2]);

@@ -98,6 +98,7 @@ void add_test_options(CLI::App& app, MasterOptions& o, std::string& panel_edit) 
 
 void declare(CLI::App& app, MasterOptions& o, std::string& panel_edit) {
   cli::take_last_by_default(app);
+  cli::add_version_flag(app);
   app.footer(kWindowHelp);
   add_network_options(app, o);
   add_run_options(app, o);

@@ -194,6 +194,7 @@ void check_render_options(const CLI::App& app, const RenderOptions& o) {
 
 static void declare(CLI::App& app, RenderOptions& o) {
   cli::take_last_by_default(app);
+  cli::add_version_flag(app);
   add_render_options(app, o);
 }
 

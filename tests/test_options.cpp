@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "build_id.h"
 #include "master_options.h"
 #include "render_options.h"
 #include "methods/memory_check.h"
@@ -190,6 +191,15 @@ TEST(Options, TileScratchIsBoundedByMemoryBeforeAnyWork) {
       << error;
   expect_refused({std::string(IGI_RENDER_BINARY) + " --tile 1024 --aa 64 --vpl-paths 64 --glass-branches 8 --threads 1",
                   1, {"a tile of 1024 x 1024 pixels (--tile) with --aa 64", "a render thread"}});
+}
+
+// --version prints the build id the handshake compares, and exits 0 before any other check.
+TEST(Options, VersionPrintsTheBuildIdAndExitsZero) {
+  for (const std::string program : {IGI_RENDER_BINARY, IGI_MASTER_BINARY, IGI_WORKER_BINARY}) {
+    const test::RunResult r = test::run(program + " --version", 30);
+    EXPECT_EQ(r.exit_code, 0) << program << "\n" << r.output;
+    EXPECT_EQ(r.output, std::string(build_id()) + "\n") << program;
+  }
 }
 
 TEST(Options, HelpListsTheOptionsAndExitsZero) {

@@ -42,6 +42,7 @@ struct KeyFiles {
 void declare(CLI::App& app, igi::WorkerOptions& o, KeyFiles& keys) {
   using igi::cli::integer;
   igi::cli::take_last_by_default(app);
+  igi::cli::add_version_flag(app);
   app.footer(kExitStatus);
   app.add_option("--connect", o.endpoint, "the master's endpoint")->required()->type_name("tcp://HOST:PORT");
   app.add_option("--threads", o.threads, "render threads, 0 = all [0]")

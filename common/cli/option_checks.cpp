@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+
+#include "build_id.h"
 
 namespace igi::cli {
 namespace {
@@ -127,12 +130,19 @@ void take_last_by_default(CLI::App& app) {
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
 }
 
+void add_version_flag(CLI::App& app) {
+  app.set_version_flag("--version", std::string(build_id()), "print the build id (what master and workers compare) and exit");
+}
+
 bool parse(CLI::App& app, std::vector<std::string> args) {
   std::reverse(args.begin(), args.end());  // CLI11 takes the arguments from the back
   try {
     app.parse(args);
   } catch (const CLI::CallForHelp&) {
     return false;
+  } catch (const CLI::CallForVersion& e) {
+    std::printf("%s\n", e.what());  // "igi-cluster <git describe> <compiler> <embree> isa=..."
+    std::exit(0);
   } catch (const CLI::ExtrasError&) {
     const std::string first = app.remaining().front();
     const bool option = first.rfind("-", 0) == 0;

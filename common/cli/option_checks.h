@@ -55,6 +55,8 @@ CLI::Option* add_vec3_option(CLI::App& app, const std::string& name, glm::vec3& 
 
 // Options given twice: the last one counts (call before adding options).
 void take_last_by_default(CLI::App& app);
+// --version: prints the build id (build_id.h, what the handshake compares) and exits 0.
+void add_version_flag(CLI::App& app);
 // Parses `args` (argv[1] on) into the variables `app` was declared with.
 // Returns false when --help was asked; throws OptionError for a bad command line.
 bool parse(CLI::App& app, std::vector<std::string> args);
