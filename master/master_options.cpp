@@ -151,6 +151,21 @@ PixelFormat session_pixel_format(const MasterOptions& o) {
   return float_file ? PixelFormat::Float32 : PixelFormat::Float16;
 }
 
+// igi-render's options that igi-master would otherwise take and ignore.
+static void check_render_only_options(const CLI::App& app, const MasterOptions& o) {
+  if (app.count("--spp") && o.render.settings.method != MethodKind::PathTracer)
+    throw OptionError("--spp: igi-master renders one pass of " + std::string(method_name(o.render.settings.method)) +
+                      " a frame (--spp is pt's samples per pixel here); --progressive accumulates the frames, or use "
+                      "igi-render --spp N");
+  if (app.count("--threads"))
+    throw OptionError("--threads: igi-master renders nothing itself; --worker-threads T sets its local workers' "
+                      "threads (igi-worker --threads for the others)");
+  if (app.count("--export-gltf"))
+    throw OptionError("--export-gltf: igi-render writes the scene (igi-render --scene S --export-gltf FILE)");
+  if (app.count("--show"))
+    throw OptionError("--show: igi-master opens a window whenever --frames is not given");
+}
+
 MasterOptions parse_master_options(const std::vector<std::string>& args) {
   MasterOptions o;
   std::string panel_edit;
@@ -159,6 +174,7 @@ MasterOptions parse_master_options(const std::vector<std::string>& args) {
   o.render.help = !cli::parse(app, args);
   if (o.render.help) return o;
   check_render_options(app, o.render);
+  check_render_only_options(app, o);
   if (!panel_edit.empty()) o.test_panel_settings = edited_settings(args, panel_edit);
   check_security(o);
   protocol::check_liveness(o.heartbeat_ms, o.timeout_ms);

@@ -193,6 +193,20 @@ TEST(Options, TileScratchIsBoundedByMemoryBeforeAnyWork) {
                   1, {"a tile of 1024 x 1024 pixels (--tile) with --aa 64", "a render thread"}});
 }
 
+// igi-render's options that igi-master has no use for are refused, not ignored
+// (one frame with --spp 4 was bit-identical to --spp 1).
+TEST(Options, IgiMasterRefusesTheOptionsItWouldIgnore) {
+  const std::string master = std::string(IGI_MASTER_BINARY) + " --workers 0 --frames 1 ";
+  for (const Refusal& r : std::vector<Refusal>{
+           {master + "--spp 4", 1, {"--spp: igi-master renders one pass of igi a frame", "--progressive"}},
+           {master + "--threads 2", 1, {"--threads: igi-master renders nothing itself", "--worker-threads"}},
+           {master + "--export-gltf x.gltf", 1, {"--export-gltf: igi-render writes the scene"}},
+           {master + "--show", 1, {"--show: igi-master opens a window whenever --frames is not given"}}})
+    expect_refused(r);
+  const MasterOptions pt = parse_master_options({"--workers", "0", "--frames", "1", "--method", "pt", "--spp", "4"});
+  EXPECT_EQ(pt.render.samples, 4) << "pt's samples per pixel stay";
+}
+
 // --version prints the build id the handshake compares, and exits 0 before any other check.
 TEST(Options, VersionPrintsTheBuildIdAndExitsZero) {
   for (const std::string program : {IGI_RENDER_BINARY, IGI_MASTER_BINARY, IGI_WORKER_BINARY}) {
