@@ -185,7 +185,7 @@ std::vector<CompletedFrame> MasterSession::pump(int timeout_ms) {
     }
     if (!done.empty() || Clock::now() >= end) break;
     Clock::time_point until = std::min(end, next_sweep_);
-    if (auto late = scheduler_.next_straggler_time()) until = std::min(until, *late);
+    if (auto late = scheduler_.next_straggler_time(Clock::now())) until = std::min(until, *late);
     wait_for_traffic(until);
     serve_security();
     receive_batch();

@@ -342,17 +342,23 @@ std::vector<JobAssignment> Scheduler::assign(TimePoint now) {
   return out;
 }
 
-std::optional<TimePoint> Scheduler::next_straggler_time() {
+std::optional<TimePoint> Scheduler::next_straggler_time(TimePoint now) {
   if (hungry_.empty() && workers_.size() != 1) return std::nullopt;  // a lone worker's lost jobs come back
   trim_issued();
-  const auto late = std::chrono::duration_cast<SchedulerClock::duration>(std::chrono::duration<double>(straggler_seconds()));
+  const double late = straggler_seconds();
   for (const Issue& issue : issued_) {
     if (!is_outstanding(issue)) continue;
     const Job& job = jobs_.at(issue.job_id);
     const Frame& frame = frames_.at(job.frame_id);
     if (job.holders.size() != 1) continue;
-    const bool copy = workers_.size() > 1 && frame.copies < duplicate_budget(frame);  // else: when it is lost
-    return issue.at + (copy ? late : 10 * late);
+    double seconds = 10 * late;  // overdue: a copy whatever the budget
+    if (workers_.size() > 1 && frame.copies < duplicate_budget(frame)) seconds = late;
+    if (workers_.size() == 1 && workers_.begin()->second.newest_answered <= issue.serial + 1)
+      seconds = std::max(seconds, kLostSeconds);  // nothing overtook it (reclaim_lost)
+    const TimePoint when = issue.at + std::chrono::duration_cast<SchedulerClock::duration>(std::chrono::duration<double>(seconds));
+    // Past already: assign() just ran and could not act (no other worker free);
+    // what could change that (a result, a join) arrives as traffic and wakes the caller.
+    return when > now ? std::optional(when) : std::nullopt;
   }
   return std::nullopt;
 }

@@ -150,9 +150,11 @@ class Scheduler {
 
   // Jobs for workers with free credit, as many as there are (in frame order).
   std::vector<JobAssignment> assign(TimePoint now);
-  // When the oldest outstanding job becomes a straggler (nullopt: none out);
-  // a caller sleeping in poll() wakes then to call assign() again.
-  std::optional<TimePoint> next_straggler_time();
+  // When the oldest outstanding job becomes a straggler, or a lone worker's
+  // job counts as lost (nullopt: none out, or that time is past `now`, when
+  // assign() could not act on it); a caller sleeping in poll() wakes then to
+  // call assign() again.
+  std::optional<TimePoint> next_straggler_time(TimePoint now);
 
   ResultCheck check_result(const WorkerId& id, uint64_t job_id, uint64_t frame_id, const TileJob& tile) const;
   // The frame's hash as the caller computed it (master_reference); none: the

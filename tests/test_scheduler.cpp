@@ -124,8 +124,8 @@ TEST(Scheduler, AStragglerIsCopiedOnlyOnceOlderThanThreeMedianRoundTrips) {
   const auto original = s.assign(at(clock));
   ASSERT_EQ(original.size(), 1u);
   EXPECT_TRUE(s.assign(at(clock + 29)).empty()) << "not late yet: younger than 3 x 10 ms";
-  ASSERT_TRUE(s.next_straggler_time());
-  EXPECT_EQ(*s.next_straggler_time(), at(clock + 30));
+  ASSERT_TRUE(s.next_straggler_time(at(clock + 29)));
+  EXPECT_EQ(*s.next_straggler_time(at(clock + 29)), at(clock + 30));
   const auto copy = s.assign(at(clock + 31));
   ASSERT_EQ(copy.size(), 1u);
   EXPECT_EQ(copy[0].worker, original[0].worker == "slow" ? "fast" : "slow");
@@ -529,8 +529,8 @@ TEST(Scheduler, ALoneWorkersLostResultsAreIssuedToItAgain) {
   const auto third = s.assign(at(100));
   ASSERT_EQ(third.size(), 1u);
   EXPECT_TRUE(s.assign(at(9000)).empty()) << "late, but not yet lost";
-  ASSERT_TRUE(s.next_straggler_time());
-  EXPECT_EQ(*s.next_straggler_time(), at(10000));
+  ASSERT_TRUE(s.next_straggler_time(at(9000)));
+  EXPECT_EQ(*s.next_straggler_time(at(9000)), at(10000));
   const auto again = s.assign(at(10001));
   ASSERT_EQ(again.size(), 1u) << "the overtaken job, again to the only worker";
   EXPECT_EQ(again[0].worker, "only");
@@ -553,6 +553,8 @@ TEST(Scheduler, ALoneWorkersSlowJobsAreNotRenderedTwice) {
   const auto first = s.assign(at(0));
   ASSERT_EQ(first.size(), 2u);
   EXPECT_TRUE(s.assign(at(30000)).empty()) << "30 s tiles on a lone worker are rendered once";
+  ASSERT_TRUE(s.next_straggler_time(at(30000))) << "the caller wakes when they count as lost";
+  EXPECT_EQ(*s.next_straggler_time(at(30000)), at(60000)) << "not a time already past: the caller would spin";
   EXPECT_EQ(s.stats().reissued, 0u);
   const auto again = s.assign(at(60001));
   EXPECT_EQ(again.size(), 2u) << "after a minute both are taken as lost";
