@@ -289,10 +289,11 @@ void Accel::update() {
   rtcCommitScene(top_);
   check_embree(device_, true, "rebuild the moving parts' BVHs");
   // A posed scene measures as the same pose loaded static (the clamp follows it).
-  std::vector<uint32_t> moved;
-  for (size_t i = 1; i < groups_.size(); ++i)
-    for (const Geometry& g : groups_[i].geometries) moved.insert(moved.end(), g.triangles.begin(), g.triangles.end());
-  measure_areas(moved);
+  if (moving_triangles_.empty())  // the moving groups never change: gathered on the first update
+    for (size_t i = 1; i < groups_.size(); ++i)
+      for (const Geometry& g : groups_[i].geometries)
+        moving_triangles_.insert(moving_triangles_.end(), g.triangles.begin(), g.triangles.end());
+  measure_areas(moving_triangles_);
   mean_chord_ = measure_mean_chord();
 }
 

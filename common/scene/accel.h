@@ -143,6 +143,7 @@ class Accel {
   float mean_chord_ = 1.0f;
   std::vector<float> areas_;        // per Scene::triangles, as posed
   std::vector<double> area_sums_;   // running sums of areas_ (negative counted as 0)
+  std::vector<uint32_t> moving_triangles_;  // of groups_[1...], whose areas update() measures again
 };
 
 }  // namespace igi
