@@ -1,6 +1,6 @@
 #pragma once
 // A camera as a small JSON file: the window saves and loads it (bookmarks),
-// and igi-master --camera FILE starts from it, headless or not.
+// and igi-render and igi-master --camera FILE start from it.
 //   {"position": [x, y, z], "forward": [x, y, z], "up": [x, y, z], "vfov_degrees": 39.3}
 #include <string>
 

@@ -1,5 +1,6 @@
 #include "frame_plan.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "sampling/sobol.h"
@@ -7,7 +8,19 @@
 
 namespace igi {
 
-FrameSetup plan_frame(const RenderOptions& render, const std::string& camera_path, const Scene& scene, int i,
+double camera_path_angle(const CameraPath& path, int i) {
+  constexpr double kTurn = 2.0 * 3.14159265358979323846;
+  const double frames = std::max(path.frames, 1);
+  switch (path.kind) {
+    case CameraPath::Kind::None: return 0.0;
+    case CameraPath::Kind::Orbit:
+      return path.orbit_step_degrees != 0.0 ? path.orbit_step_degrees * (kTurn / 360.0) * i : kTurn * i / frames;
+    case CameraPath::Kind::Swing: return path.swing_degrees * (kTurn / 360.0) * std::sin(kTurn * i / frames);
+  }
+  return 0.0;
+}
+
+FrameSetup plan_frame(const RenderOptions& render, const CameraPath& camera_path, const Scene& scene, int i,
                       bool progressive) {
   FrameSetup f;
   f.frame_id = uint64_t(i);
@@ -33,13 +46,17 @@ FrameSetup plan_frame(const RenderOptions& render, const std::string& camera_pat
   if (animated)
     f.pose.time = scene_time(render.time, render.time_step, uint64_t(i), render.loop, scene.animation->duration);
   f.camera = scene_camera(scene, f.pose.time);  // where an animated camera stands then
-  if (camera_path == "orbit") {  // turn about the vertical axis through the scene's centre
-    const glm::vec3 c = scene.bounds().center();
-    const float angle = 0.02f * float(i);
-    const glm::mat3 r(glm::vec3(std::cos(angle), 0, -std::sin(angle)), glm::vec3(0, 1, 0),
-                      glm::vec3(std::sin(angle), 0, std::cos(angle)));
-    f.camera.position = c + r * (f.camera.position - c);
-    f.camera.forward = r * f.camera.forward;
+  const double angle = camera_path_angle(camera_path, i);
+  if (angle != 0.0) {
+    const Camera& c = f.camera;
+    const glm::vec3 forward = glm::normalize(c.forward);
+    const float along = glm::dot(scene.bounds().center() - c.position, forward);
+    const glm::vec3 pivot = c.position + std::max(along, 0.0f) * forward;
+    const float a = float(angle);
+    const glm::mat3 r(glm::vec3(std::cos(a), 0, -std::sin(a)), glm::vec3(0, 1, 0), glm::vec3(std::sin(a), 0, std::cos(a)));
+    f.camera.position = pivot + r * (c.position - pivot);
+    f.camera.forward = r * c.forward;
+    f.camera.up = r * c.up;
   }
   return f;
 }

@@ -176,7 +176,7 @@ PanelOptions panel_options(const MasterOptions& o) {
   PanelOptions p;
   p.shown = o.panel;
   p.overlay = *parse_overlay(o.overlay);  // checked with the options
-  if (!o.camera_file.empty()) p.bookmark = o.camera_file;
+  if (!o.render.camera_file.empty()) p.bookmark = o.render.camera_file;
   return p;
 }
 

@@ -72,7 +72,7 @@ int run(const igi::MasterOptions& o) {
   const std::optional<CurveSetup> curve = curve_setup(o);  // bad key files stop us before anything is bound
   igi::Scene scene = igi::load_scene(o.render.scene);  // validates it, and gives the camera
   igi::Scene as_workers_load_it = scene;                 // the master's own VPL sets judge each worker's
-  if (!o.camera_file.empty()) igi::place_camera(scene, igi::read_camera_file(o.camera_file));  // before anything starts
+  if (!o.render.camera_file.empty()) igi::place_camera(scene, igi::read_camera_file(o.render.camera_file));  // before anything starts
   zmq::context_t context(o.io_threads);
   igi::MasterSession session(o, igi::make_scene_source(o.render.scene), context, curve ? &curve->server : nullptr);
   session.judge_by(std::move(as_workers_load_it));

@@ -69,16 +69,25 @@ void add_run_options(CLI::App& app, MasterOptions& o) {
   app.add_option("--time-step", o.render.time_step, "animated scenes: seconds of animation time a frame [0.0333]")
       ->check(cli::bounded_number(protocol::kMaxSceneTime))->group(group)->type_name("S");
   app.add_flag("--loop", o.render.loop, "animated scenes: wrap the time into the animation's length")->group(group);
-  app.add_option("--camera-path", o.camera_path, "headless: turn the camera about the scene, one step a frame")
-      ->check(cli::one_of({"orbit"}))->group(group)->type_name("orbit");
+  app.add_option_function<std::string>(
+         "--camera-path", [&o](const std::string& v) {
+           o.camera_path.kind = v == "orbit" ? CameraPath::Kind::Orbit : CameraPath::Kind::Swing;
+         },
+         "headless: orbit turns the camera about a pivot on its line of sight near the scene's centre, one full "
+         "turn over the frames (a scene seen from outside); swing turns it --swing degrees to either side and back "
+         "(a scene seen through an opening, as the Cornell box)")
+      ->check(cli::one_of({"orbit", "swing"}))->group(group)->type_name("orbit|swing");
+  app.add_option("--orbit-step", o.camera_path.orbit_step_degrees,
+                 "orbit: degrees a frame (negative: the other way), 0 = one full turn over --first-frame + --frames [0]")
+      ->check(cli::bounded_number(360.0))->group(group)->type_name("DEG");
+  app.add_option("--swing", o.camera_path.swing_degrees, "swing: the widest turn to either side, in degrees [" +
+                 std::to_string(int(CameraPath{}.swing_degrees)) + "]")
+      ->check(cli::bounded_number(180.0))->group(group)->type_name("DEG");
   app.add_option("--stats", o.stats, "per-frame statistics, JSON Lines: a line per frame, and the run's totals")
       ->type_name("FILE.jsonl")->group(group);
   app.add_flag("--no-write", o.no_write, "headless: write no images (benchmarks)")->group(group);
   app.add_option("--screenshot-after", o.screenshot_after, "window: save --screenshot after N accumulated frames [4], "
                  "then exit")->check(integer(1, INT_MAX))->group(group)->type_name("N");
-  app.add_option("--camera", o.camera_file, "start from this camera (JSON: position, forward, up, vfov_degrees); in "
-                 "the window also the bookmark file F5 saves and F9 loads [camera.json]")
-      ->type_name("FILE")->group(group);
   app.add_option_function<std::string>(
          "--panel", [&o](const std::string& v) { o.panel = v == "on"; },
          "window: the settings and cluster panel at start [on]")
@@ -166,6 +175,17 @@ static void check_render_only_options(const CLI::App& app, const MasterOptions& 
     throw OptionError("--show: igi-master opens a window whenever --frames is not given");
 }
 
+// The camera path's options without a path, or a path without frames to follow it.
+static void check_camera_path(const CLI::App& app, MasterOptions& o) {
+  const CameraPath::Kind kind = o.camera_path.kind;
+  if (app.count("--orbit-step") && kind != CameraPath::Kind::Orbit)
+    throw OptionError("--orbit-step: needs --camera-path orbit");
+  if (app.count("--swing") && kind != CameraPath::Kind::Swing) throw OptionError("--swing: needs --camera-path swing");
+  if (kind != CameraPath::Kind::None && o.frames == 0)
+    throw OptionError("--camera-path: headless only (--frames F); in the window the camera is yours to move");
+  o.camera_path.frames = o.first_frame + o.frames;
+}
+
 MasterOptions parse_master_options(const std::vector<std::string>& args) {
   MasterOptions o;
   std::string panel_edit;
@@ -175,6 +195,7 @@ MasterOptions parse_master_options(const std::vector<std::string>& args) {
   if (o.render.help) return o;
   check_render_options(app, o.render);
   check_render_only_options(app, o);
+  check_camera_path(app, o);
   if (!panel_edit.empty()) o.test_panel_settings = edited_settings(args, panel_edit);
   check_security(o);
   protocol::check_liveness(o.heartbeat_ms, o.timeout_ms);

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "frame_plan.h"
 #include "image/frame_buffer.h"
 #include "render_options.h"
 
@@ -24,7 +25,7 @@ struct MasterOptions {
   int min_workers_wait = 30;      // ... or this many seconds passed
   int first_frame = 0;            // headless: the index of the first (camera path, seed, file name)
   bool progressive = false;       // headless: accumulate frames (seed advances)
-  std::string camera_path;        // headless: "orbit" turns the camera about the scene
+  CameraPath camera_path;         // headless: --camera-path, --orbit-step, --swing
   std::string stats;              // per-frame statistics as JSON Lines (frame_stats.h)
   bool no_write = false;          // headless benchmarks: render, count, write no images
   int credits = 2;                // jobs a worker holds at once
@@ -33,7 +34,6 @@ struct MasterOptions {
   std::string pixels = "auto";    // pixel format on the wire: auto (float for float files, else half), float, half
   int io_threads = 1;             // ZeroMQ I/O threads (receive and send off the session thread)
   int screenshot_after = 4;       // window: save --screenshot after this many accumulated frames
-  std::string camera_file;        // start from this camera (JSON, camera_bookmark.h); the window's bookmark file
   bool panel = true;              // window: the settings and cluster panel shown at start (F1 toggles)
   std::string overlay = "off";    // window: tile overlay at start: off, tint or solid (F2 cycles)
   // Test hooks.

@@ -2,7 +2,10 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <optional>
+#include <optional>
 
+#include "camera_bookmark.h"
 #include "cli/option_checks.h"
 #include "display/image_window.h"
 #include "render_options.h"
@@ -15,9 +18,12 @@
 namespace {
 
 int run(const igi::RenderOptions& o) {
+  std::optional<igi::Camera> camera;  // a bad camera file stops us before the scene loads
+  if (!o.camera_file.empty()) camera = igi::read_camera_file(o.camera_file);
   std::vector<std::string> warnings;
   igi::Scene scene = igi::load_scene(o.scene, &warnings);
   for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  if (camera) igi::place_camera(scene, *camera);
   if (!o.export_gltf.empty()) {
     igi::write_gltf(scene, o.export_gltf);
     std::printf("wrote %s\n", o.export_gltf.c_str());

@@ -80,6 +80,9 @@ void add_image_options(CLI::App& app, RenderOptions& o) {
   app.add_option("--tile", o.tile_size, "tile size in pixels" + shown_default(kDefaults.tile_size))
       ->check(integer(1, protocol::kMaxTileSide))->type_name("T");
   app.add_option("--seed", o.seed, "frame seed" + shown_default(kDefaults.seed))->check(integer<uint32_t>(0, UINT32_MAX))->type_name("S");
+  app.add_option("--camera", o.camera_file, "start from this camera (JSON: position, forward, up, vfov_degrees; "
+                 "the window's F5 saves one); igi-master's window: also the file F5 and F9 use [camera.json there]")
+      ->type_name("FILE");
   app.add_option("--export-gltf", o.export_gltf, "write the scene as glTF and exit")->type_name("FILE");
   app.add_flag("--quiet", o.quiet, "no progress output");
   app.add_flag("--show", o.show, "show the result in a window (Esc closes it)");

@@ -26,6 +26,7 @@ struct RenderOptions {
   float exposure = 1.0f;
   std::string output = "render.png";
   std::string export_gltf;  // when set: write the scene as glTF and exit
+  std::string camera_file;  // start from this camera (JSON, camera_bookmark.h); igi-master's window: its bookmark file
   bool quiet = false;
   bool show = false;             // open a window with the result
   std::string screenshot;        // with show: save the window's pixels and close

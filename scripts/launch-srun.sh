@@ -24,7 +24,7 @@ the master, CURVE-authenticated with keys made for the run.
   --workers N          worker tasks (srun --ntasks) [SLURM_NTASKS, inside an allocation]
   --srun-args "ARGS"   more srun options, split at spaces: where and how the workers run, e.g.
                        "--het-group=1", "--nodes=4 --cpus-per-task=32 --time=30 --partition=gpu"
-  --threads T          render threads per worker [the task's SLURM_CPUS_PER_TASK, else all cores]
+  --worker-threads T   render threads per worker [the task's SLURM_CPUS_PER_TASK, else all cores]
 $(launch_common_usage)
 Worker logs: DIR/workers/worker-TASK.log; srun's own messages: DIR/srun.log.
 Example, inside salloc --nodes=4 --ntasks-per-node=1 --cpus-per-task=32:
@@ -38,12 +38,13 @@ while [ $# -gt 0 ]; do
   case "$1" in
     -h | --help) usage; exit 0 ;;
     --) shift; master_args=("$@"); break ;;
-    --workers | --srun-args | --threads)
+    --threads) launch_fail "--threads is now --worker-threads, as igi-master calls it" ;;
+    --workers | --srun-args | --worker-threads)
       [ $# -ge 2 ] || launch_fail "$1: missing value"
       case "$1" in
         --workers) workers=$2 ;;
         --srun-args) read -ra srun_args <<<"$2" ;;
-        --threads) threads=$2 ;;
+        --worker-threads) threads=$2 ;;
       esac
       shift 2 ;;
     *)
@@ -55,7 +56,7 @@ done
 command -v srun >/dev/null || launch_fail "srun not found: run this where Slurm's client commands are installed"
 [ -n "$workers" ] || launch_fail "--workers N: how many worker tasks (outside an allocation there is no default)"
 [[ "$workers" =~ ^[0-9]+$ ]] && [ "$workers" -ge 1 ] || launch_fail "--workers: expected a positive number, got '$workers'"
-[ -z "$threads" ] || [[ "$threads" =~ ^[0-9]+$ ]] || launch_fail "--threads: expected a number, got '$threads'"
+[ -z "$threads" ] || [[ "$threads" =~ ^[0-9]+$ ]] || launch_fail "--worker-threads: expected a number, got '$threads'"
 launch_check_common
 [ -z "$threads" ] || launch_worker_args+=(--threads "$threads")  # after the task's default: the later one counts
 

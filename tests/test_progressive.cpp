@@ -26,13 +26,13 @@ RenderOptions render(MethodKind method) {
 TEST(Progressive, EveryVplPassIsJitteredFromOneSampleSetPassZeroIncluded) {
   const Scene scene = make_cornell_box();
   for (int i = 0; i < 4; ++i) {
-    const FrameSetup f = plan_frame(render(MethodKind::Igi), "", scene, i, true);
+    const FrameSetup f = plan_frame(render(MethodKind::Igi), CameraPath{}, scene, i, true);
     const glm::vec2 j = sample_2d(uint32_t(i), 0, 7);
     EXPECT_EQ(f.jitter_x, j.x) << "pass " << i;
     EXPECT_EQ(f.jitter_y, j.y) << "pass " << i;
     EXPECT_EQ(f.seed, 7u + uint32_t(i)) << "fresh VPLs each pass";
   }
-  const FrameSetup still = plan_frame(render(MethodKind::Igi), "", scene, 3, false);
+  const FrameSetup still = plan_frame(render(MethodKind::Igi), CameraPath{}, scene, 3, false);
   EXPECT_EQ(still.jitter_x, 0.5f) << "without --progressive: the pixel centre, one seed";
   EXPECT_EQ(still.seed, 7u);
 }
@@ -40,7 +40,7 @@ TEST(Progressive, EveryVplPassIsJitteredFromOneSampleSetPassZeroIncluded) {
 TEST(Progressive, PathTracingContinuesItsSampleSequenceUnderOneScrambling) {
   const Scene scene = make_cornell_box();
   for (int i = 0; i < 4; ++i) {
-    const FrameSetup f = plan_frame(render(MethodKind::PathTracer), "", scene, i, true);
+    const FrameSetup f = plan_frame(render(MethodKind::PathTracer), CameraPath{}, scene, i, true);
     EXPECT_EQ(f.seed, 7u) << "the same scrambling, pass " << i;
     EXPECT_EQ(f.sample_begin, uint32_t(2 * i)) << "samples [2i, 2i + 2)";
     EXPECT_EQ(f.sample_count, 2u);

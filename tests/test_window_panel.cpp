@@ -170,5 +170,26 @@ TEST(CameraBookmark, HeadlessMasterStartsFromTheFile) {
   EXPECT_NE(r.output.find(bad + ": \"forward\""), std::string::npos) << r.output;
 }
 
+// igi-render --camera FILE: the same file igi-master takes; a bad one stops it before the scene loads.
+TEST(CameraBookmark, IgiRenderStartsFromTheFile) {
+  const std::string moved = test::output_path("render-camera-moved.json");
+  Camera other = load_scene("cornell").camera_or_auto();
+  other.position += 0.3f * glm::normalize(other.forward);
+  write_camera_file(moved, other);
+  auto render = [](const std::string& extra, const std::string& out) {
+    return test::run(std::string(IGI_RENDER_BINARY) + " --scene cornell --vpl-paths 4 --aa 1 --size 48x36 --quiet -o " +
+                     test::output_path(out) + " " + extra, 60);
+  };
+  ASSERT_EQ(render("", "render-camera-none.exr").exit_code, 0);
+  ASSERT_EQ(render("--camera " + moved, "render-camera-moved.exr").exit_code, 0);
+  EXPECT_GT(max_abs_error(read_image(test::output_path("render-camera-moved.exr")),
+                          read_image(test::output_path("render-camera-none.exr"))), 0.1f);
+  const std::string bad = test::output_path("render-camera-bad.json");
+  std::ofstream(bad) << "{\"position\": [0, 0, 0]}";
+  const test::RunResult r = render("--scene no-such-scene.glb --camera " + bad, "render-camera-bad.exr");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find(bad + ": \"forward\""), std::string::npos) << "the camera file, before the scene\n" << r.output;
+}
+
 }  // namespace
 }  // namespace igi

@@ -42,8 +42,9 @@ launch_say() { echo "$LAUNCH_NAME: $*" >&2; }
 launch_parse_common() {
   shift_by=2
   case "$1" in
-    --build | --dir | --master-host | --port | --listen | --worker-args | --grace | --wait-workers)
+    --build | --dir | --master-host | --port | --listen | --worker-args | --grace | --min-workers-wait)
       [ $# -ge 2 ] || launch_fail "$1: missing value" ;;
+    --wait-workers) launch_fail "--wait-workers is now --min-workers-wait, as igi-master calls it" ;;
     *) shift_by=0; return ;;
   esac
   case "$1" in
@@ -54,7 +55,7 @@ launch_parse_common() {
     --listen) launch_listen=$2 ;;
     --worker-args) read -ra launch_worker_args <<<"$2" ;;
     --grace) launch_grace=$2 ;;
-    --wait-workers) launch_gather=$2 ;;
+    --min-workers-wait) launch_gather=$2 ;;
   esac
 }
 
@@ -67,8 +68,8 @@ launch_common_usage() {
   --build DIR          where igi-master, igi-keys and igi-worker were built [$LAUNCH_REPO/build]
   --worker-args "ARGS" more igi-worker options for every worker, e.g.
                        "--scene-dir /shared/scenes --cache /scratch/igi --give-up 30"
-  --wait-workers S     the first frame waits until every worker has joined, at most S seconds,
-                       then starts with those present (igi-master --min-workers) [30]
+  --min-workers-wait S the first frame waits until every worker has joined, at most S seconds,
+                       then starts with those present (igi-master's option of that name) [30]
   --grace S            seconds workers get to leave after the master ends [10]
   -- OPTIONS           igi-master's options (scene, method, --frames, -o, ...); the launcher adds
                        --workers 0 --listen --key --authorized-keys
@@ -85,7 +86,7 @@ launch_check_common() {
   [[ "$launch_port" =~ ^[0-9]+$ ]] && [ "$launch_port" -ge 1 ] && [ "$launch_port" -le 65535 ] ||
     launch_fail "--port: expected a number from 1 to 65535, got '$launch_port'"
   [[ "$launch_grace" =~ ^[0-9]+$ ]] || launch_fail "--grace: expected whole seconds, got '$launch_grace'"
-  [[ "$launch_gather" =~ ^[0-9]+$ ]] || launch_fail "--wait-workers: expected whole seconds, got '$launch_gather'"
+  [[ "$launch_gather" =~ ^[0-9]+$ ]] || launch_fail "--min-workers-wait: expected whole seconds, got '$launch_gather'"
   [ -n "$launch_master_host" ] || launch_master_host=$(launch_default_host)
   [ -n "$launch_listen" ] || launch_listen="tcp://0.0.0.0:$launch_port"
   [ -n "$launch_dir" ] || launch_dir="igi-run-$(date +%Y%m%d-%H%M%S)"

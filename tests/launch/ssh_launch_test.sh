@@ -144,7 +144,7 @@ echo "launcher killed: master and workers ended"
 # --- what the exit status says: one host unreachable (4), none reachable (3)
 printf 'worker-a 1\nnohost 1\n' >"$tmp/hosts-one-bad"
 port=$(free_port)
-launch "$port" "$tmp/hosts-one-bad" --dir "$tmp/run-one-bad" --wait-workers 2 -- "${RENDER[@]}" --frames 1 -o "$tmp/one-bad.exr"
+launch "$port" "$tmp/hosts-one-bad" --dir "$tmp/run-one-bad" --min-workers-wait 2 -- "${RENDER[@]}" --frames 1 -o "$tmp/one-bad.exr"
 timeout -s KILL 60 "${scripts_launch[@]}" >"$tmp/one-bad.log" 2>&1
 status=$?
 cat "$tmp/one-bad.log"
@@ -167,4 +167,11 @@ cat "$tmp/typo.log"
 [ $status = 2 ] || fail "a bad hosts file: expected exit status 2, got $status"
 grep -q "hosts-typo:2: expected 'HOST \[THREADS\]'" "$tmp/typo.log" || fail "the bad line is not named"
 [ ! -e "$tmp/run-typo" ] || fail "a run folder was made for a launch that did not start"
+
+# --- an option under igi-master's other name: exit 2, the name to use given
+launch "$(free_port)" "$tmp/hosts-typo" --dir "$tmp/run-old" --wait-workers 2 -- "${RENDER[@]}" --frames 1 -o "$tmp/old.exr"
+"${scripts_launch[@]}" >"$tmp/old.log" 2>&1
+status=$?
+[ $status = 2 ] || fail "--wait-workers: expected exit status 2, got $status"
+grep -q -- "--min-workers-wait" "$tmp/old.log" || fail "--wait-workers: the error does not name --min-workers-wait"
 echo "PASS"

@@ -29,7 +29,8 @@ struct ReferenceRenderer::Prepared {
   std::unique_ptr<SceneState> state;
 };
 
-ReferenceRenderer::ReferenceRenderer(const RenderOptions& options) : options_(options), prepared_(new Prepared) {
+ReferenceRenderer::ReferenceRenderer(const RenderOptions& options, const CameraPath& path)
+    : options_(options), path_(path), prepared_(new Prepared) {
   prepared_->state = std::make_unique<SceneState>(load_scene(options.scene));
 }
 
@@ -37,7 +38,7 @@ ReferenceRenderer::~ReferenceRenderer() = default;
 
 Image ReferenceRenderer::render(int i) const {
   SceneState& state = *prepared_->state;
-  const FrameSetup f = plan_frame(options_, "orbit", state.scene(), i, false);  // as igi-master --camera-path orbit
+  const FrameSetup f = plan_frame(options_, path_, state.scene(), i, false);  // as igi-master renders it
   state.set_pose(f.pose);
   FrameOptions frame_options;
   frame_options.tile_size = options_.tile_size;

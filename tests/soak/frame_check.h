@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "image/image.h"
+#include "frame_plan.h"
 #include "render_options.h"
 
 namespace igi::soak {
@@ -24,14 +25,15 @@ struct FrameVerdict {
 
 class ReferenceRenderer {
  public:
-  explicit ReferenceRenderer(const RenderOptions& options);
+  ReferenceRenderer(const RenderOptions& options, const CameraPath& path);
   ~ReferenceRenderer();
-  // Frame i as igi-master --camera-path orbit renders it (plan_frame in master/frame_plan.h).
+  // Frame i as igi-master renders it along `path` (plan_frame in master/frame_plan.h).
   Image render(int frame) const;
 
  private:
   struct Prepared;
   RenderOptions options_;
+  CameraPath path_;
   std::unique_ptr<Prepared> prepared_;
 };
 

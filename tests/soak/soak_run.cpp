@@ -90,7 +90,7 @@ bool SoakRun::start_master(int first, bool wait_until_listening) {
   const std::string run = std::to_string(master_runs_);
   std::vector<std::string> argv{o_.master_binary, "--workers", "0", "--listen", "tcp://127.0.0.1:" + std::to_string(port_),
                                 "--frames", std::to_string(o_.frames - first), "--first-frame", std::to_string(first),
-                                "--camera-path", "orbit", "--size", std::to_string(o_.width) + "x" + std::to_string(o_.height),
+                                "--camera-path", "swing", "--size", std::to_string(o_.width) + "x" + std::to_string(o_.height),
                                 "-o", (fs::path(o_.dir) / "frame.exr").string(),
                                 "--stats", (fs::path(o_.dir) / ("stats-" + run + ".json")).string(),
                                 "--heartbeat-ms", std::to_string(o_.heartbeat_ms), "--timeout-ms", std::to_string(o_.timeout_ms)};
@@ -285,7 +285,10 @@ int SoakRun::run() {
     std::printf("soak: self-test: frame %d deleted\n", o_.delete_frame);
   std::printf("soak: checking %d frames against the single-process render ...\n", o_.frames);
   std::fflush(stdout);
-  const FrameVerdict verdict = check_frames(o_.dir, o_.frames, ReferenceRenderer(render_));
+  CameraPath swing;  // as the master's --camera-path swing over --first-frame + --frames = o_.frames
+  swing.kind = CameraPath::Kind::Swing;
+  swing.frames = o_.frames;
+  const FrameVerdict verdict = check_frames(o_.dir, o_.frames, ReferenceRenderer(render_, swing));
   memory_.write_csv((fs::path(o_.dir) / "master-memory.csv").string());
   totals_.wall_seconds = seconds_since_start();
   std::vector<MemoryMonitor::Verdict> memory = memory_.judge(o_.rss_margin_mib);
