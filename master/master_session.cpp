@@ -12,6 +12,7 @@
 #include "protocol/socket.h"
 #include "render/frame_renderer.h"
 #include "scene/builtin_scenes.h"
+#include "scene/gltf_pack.h"
 #include "scene/scene_file.h"
 
 namespace igi {
@@ -58,13 +59,15 @@ SchedulerConfig session_scheduler_config(const MasterOptions& options) {
 
 SceneSource make_scene_source(const std::string& scene) {
   if (is_builtin_scene(scene)) return {scene, 0, 0, nullptr};
-  std::optional<std::vector<uint8_t>> bytes = read_file_bytes(scene);
-  if (!bytes) throw std::runtime_error(scene + ": cannot read the scene file");
+  SceneFile file = scene_file_for_workers(scene);  // a .gltf with files beside it: packed into one .glb
+  if (file.packed)
+    std::fprintf(stderr, "igi-master: %s goes to workers as %s, its buffers and images packed in\n", scene.c_str(),
+                 file.name.c_str());
   SceneSource source;
-  source.name = std::filesystem::path(scene).filename().string();
-  source.hash = content_hash(*bytes);
-  source.size = bytes->size();
-  protocol::SceneData data{source.hash, source.name, std::move(*bytes)};
+  source.name = file.name;
+  source.hash = content_hash(file.bytes);
+  source.size = file.bytes.size();
+  protocol::SceneData data{source.hash, source.name, std::move(file.bytes)};
   source.message = std::make_shared<const std::vector<uint8_t>>(protocol::encode(data));
   return source;
 }

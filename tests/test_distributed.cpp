@@ -242,6 +242,30 @@ TEST(Distributed, WorkerWithoutTheSceneFileReceivesItFromTheMaster) {
   EXPECT_TRUE(test::images_identical("dist-scene", read_image(out), single_process(scene)));
 }
 
+// What --export-gltf writes (box.gltf and box.bin beside it) reaches a worker in another folder whole:
+// the master packs it into one .glb (it used to send the .gltf alone; the worker exited 6, "box.bin not found").
+TEST(Distributed, AGltfWithItsBufferBesideItTravelsWhole) {
+  const fs::path dir = fs::path(test::output_path("dist-gltf"));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "master");
+  fs::create_directories(dir / "worker");
+  const std::string scene = (dir / "master" / "box.gltf").string();
+  write_gltf(make_cornell_box(), scene);
+  ASSERT_TRUE(fs::exists(dir / "master" / "box.bin"));
+  const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(test::free_port());
+  const std::string out = (dir / "out.exr").string(), log = (dir / "master.log").string();
+  pid_t m = test::start(master("--workers 0 --frames 1 --quiet --listen " + endpoint + " -o " + out, scene) + " 2>" + log);
+  auto r = test::run(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --scene-dir " +
+                     (dir / "worker").string() + " --cache " + (dir / "worker" / "cache").string(), 60);
+  EXPECT_EQ(test::wait_exit(m, 60), 0);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream text(log);
+  const std::string said((std::istreambuf_iterator<char>(text)), std::istreambuf_iterator<char>());
+  EXPECT_NE(said.find("goes to workers as box.glb"), std::string::npos) << said;
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir / "worker" / "cache"), fs::directory_iterator{}), 1);
+  EXPECT_TRUE(test::images_identical("dist-gltf", read_image(out), single_process(scene)));
+}
+
 }  // namespace
 }  // namespace igi
 

@@ -18,6 +18,7 @@
 #include "io/file_bytes.h"
 #include "scene/gltf_json.h"
 #include "scene/gltf_loader.h"
+#include "scene/gltf_pack.h"
 #include "support/image_compare.h"
 
 namespace igi {
@@ -387,6 +388,36 @@ TEST(GltfLoader, BaseColorTextureInGlbBufferView) {
   b.add("images", {{"bufferView", b.add_view(png.data(), png.size())}, {"mimeType", "image/png"}});
   b.add("textures", {{"source", 0}});
   expect_decoded_png(load_gltf(b.write_glb(dir, "textured").string()));
+}
+
+// What workers get of a .gltf with files beside it: one .glb that loads as the same scene from any folder.
+TEST(GltfLoader, AGltfWithExternalBufferAndImagePacksIntoOneGlbThatLoadsTheSame) {
+  const fs::path dir = test_dir();
+  GltfBuilder b = lit_quad();
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", textured_material()))}});
+  b.add("images", {{"uri", write_png(dir / "texture.png").filename().string()}});
+  b.add("textures", {{"source", 0}});
+  const fs::path gltf = b.write_gltf(dir, "textured");
+  const SceneFile file = scene_file_for_workers(gltf.string());
+  EXPECT_TRUE(file.packed);
+  EXPECT_EQ(file.name, "textured.glb");
+  fs::create_directories(dir / "elsewhere");
+  const fs::path glb = dir / "elsewhere" / file.name;
+  write_bytes(glb, file.bytes);
+  const LoadedScene original = load_gltf(gltf.string()), packed = load_gltf(glb.string());
+  expect_decoded_png(packed);
+  ASSERT_EQ(packed.scene.triangles.size(), original.scene.triangles.size());
+  EXPECT_EQ(std::memcmp(packed.scene.triangles.data(), original.scene.triangles.data(),
+                        original.scene.triangles.size() * sizeof(original.scene.triangles[0])), 0);
+  EXPECT_EQ(packed.scene.textures[0].texels.size(), original.scene.textures[0].texels.size());
+  EXPECT_FALSE(scene_file_for_workers(glb.string()).packed) << "a .glb goes as it is";
+  fs::remove(dir / "texture.png");
+  try {
+    scene_file_for_workers(gltf.string());
+    ADD_FAILURE() << "a missing image packed";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("'texture.png'"), std::string::npos) << e.what();
+  }
 }
 
 TEST(GltfLoader, UnknownExtensionWarnsOnceByName) {
