@@ -135,6 +135,11 @@ void add_filter_and_caustic_options(CLI::App& app, RenderSettings& s) {
   app.add_option("--filter-depth", s.filter_depth_ratio,
                  "igi: neighbours need relative depth difference below R" + shown_default(kDefaults.settings.filter_depth_ratio))
       ->check(non_negative_number())->type_name("R");
+  app.add_option("--wavelet", s.wavelet_levels,
+                 "ir/igi: levels of the edge-avoiding wavelet filter after the discontinuity buffer (smooths one "
+                 "pass; a tile's border grows by 2^(L+1), so larger --tile costs less); 0 = off" +
+                     shown_default(kDefaults.settings.wavelet_levels))
+      ->check(integer(0, kMaxWaveletLevels))->type_name("L");
   app.add_flag("--caustics", s.caustics, "ir/igi: add caustics from a photon map (light through mirrors and glass)");
   app.add_option_function<int>(
          "--caustic-photons", [&s](int n) { s.caustic_photons = n, s.caustics = true; },

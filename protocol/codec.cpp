@@ -103,6 +103,7 @@ void write(Writer& w, const RenderSettings& s) {
   w.boolean(s.filter);
   w.f32(s.filter_normal_cos);
   w.f32(s.filter_depth_ratio);
+  w.i32(s.wavelet_levels);
   w.f32(s.lightcuts_error);
   w.i32(s.lightcuts_max_cut);
   w.i32(s.lightcuts_spacing);
@@ -117,7 +118,9 @@ void write(Writer& w, const RenderSettings& s) {
   w.i32(s.bidir_camera_paths);
 }
 
-void read(Reader& r, RenderSettings& s) {
+// RenderSettings in write()'s order, in three parts: paths and VPLs, the
+// filters and lightcuts, then light transport.
+void read_paths_and_vpls(Reader& r, RenderSettings& s) {
   uint8_t method = r.u8("settings.method");
   check_range(r, "settings.method", method, 0, static_cast<uint8_t>(MethodKind::Lightcuts));
   if (r.ok()) s.method = static_cast<MethodKind>(method);
@@ -142,11 +145,16 @@ void read(Reader& r, RenderSettings& s) {
   check_closed(r, "settings.clamp", s.clamp, 0.0f, kMaxClamp);
   s.compensation_samples = r.i32("settings.compensation_samples");
   check_range(r, "settings.compensation_samples", s.compensation_samples, 0, kMaxCompensationSamples);
+}
+
+void read_filters_and_lightcuts(Reader& r, RenderSettings& s) {
   s.filter = r.boolean("settings.filter");
   s.filter_normal_cos = r.f32("settings.filter_normal_cos");
   check_closed(r, "settings.filter_normal_cos", s.filter_normal_cos, -1.0f, 1.0f);
   s.filter_depth_ratio = r.f32("settings.filter_depth_ratio");
   check_finite_non_negative(r, "settings.filter_depth_ratio", s.filter_depth_ratio);
+  s.wavelet_levels = r.i32("settings.wavelet_levels");
+  check_range(r, "settings.wavelet_levels", s.wavelet_levels, 0, kMaxWaveletLevels);
   s.lightcuts_error = r.f32("settings.lightcuts_error");
   if (!(s.lightcuts_error > 0.0f && s.lightcuts_error < 1.0f))
     r.fail("settings.lightcuts_error", show(s.lightcuts_error) + ", expected (0, 1)");
@@ -156,6 +164,9 @@ void read(Reader& r, RenderSettings& s) {
   check_range(r, "settings.lightcuts_spacing", s.lightcuts_spacing, 0, lightcuts::kMaxSpacing);
   s.lightcuts_samples = r.i32("settings.lightcuts_samples");
   check_range(r, "settings.lightcuts_samples", s.lightcuts_samples, 1, lightcuts::kMaxSamples);
+}
+
+void read_light_transport(Reader& r, RenderSettings& s) {
   s.glass_branches = r.i32("settings.glass_branches");
   check_range(r, "settings.glass_branches", s.glass_branches, 1, kMaxGlassBranches);
   s.caustics = r.boolean("settings.caustics");
@@ -178,6 +189,12 @@ void read(Reader& r, RenderSettings& s) {
   if (r.ok()) {
     if (auto e = importance_settings_error(s)) r.fail("settings.importance", *e);
   }
+}
+
+void read(Reader& r, RenderSettings& s) {
+  read_paths_and_vpls(r, s);
+  read_filters_and_lightcuts(r, s);
+  read_light_transport(r, s);
 }
 
 void write(Writer& w, const TileJob& t) {

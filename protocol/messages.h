@@ -38,7 +38,7 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // scene's pose (animation time, moved lights). 9: settings.clamp is a fraction of the
 // scene's mean chord, at most kMaxClamp; FrameSetup.sample_begin is the ir/igi/lightcuts
 // pass the clamp relaxes with (methods/clamp.h).
-inline constexpr uint16_t kVersion = 9;
+inline constexpr uint16_t kVersion = 10;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;

@@ -89,6 +89,20 @@ TEST(Distributed, CausticsAndGlassBranchesMatchOneProcess) {
   EXPECT_TRUE(test::images_identical("dist-caustics", read_image(out), p.render(s, kWidth, kHeight, 1, 1)));
 }
 
+// The wavelet filter's wider border through master and workers (tiles of 16,
+// border 1 + 8): workers give the one-process image.
+TEST(Distributed, WaveletFilterMatchesOneProcess) {
+  const std::string out = test::output_path("dist-wavelet.exr");
+  auto r = test::run(master("--workers 2 --frames 1 --wavelet 2 -o " + out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  test::Prepared p(load_scene("cornell"));
+  RenderSettings s;
+  s.method = MethodKind::Igi;
+  s.paths_per_set = 8;
+  s.wavelet_levels = 2;
+  EXPECT_TRUE(test::images_identical("dist-wavelet", read_image(out), p.render(s, kWidth, kHeight, 1, 1)));
+}
+
 // Lightcuts' light tree and reconstruction grid through master and workers:
 // settings over the wire, tiles of 16 with the sample grid's cells across them.
 TEST(Distributed, LightcutsWithReconstructionCutsMatchTheSingleProcessRenderBitForBit) {

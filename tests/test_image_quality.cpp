@@ -355,6 +355,8 @@ TEST(QualityOptions, OutOfRangeValuesNameTheOption) {
       {"--glossy-threshold -0.1", "--glossy-threshold"},
       {"--glossy-threshold nan", "--glossy-threshold"},
       {"--glossy-rays 0", "--glossy-rays"},
+      {"--wavelet 6", "--wavelet"},
+      {"--wavelet -1", "--wavelet"},
       {"--light-depth -1", "--light-depth"},
       {"--max-depth 8", "--max-depth was split"},
   };

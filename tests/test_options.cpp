@@ -248,6 +248,7 @@ TEST(Options, HelpShowsTheDefaultsOfTheSettingsStructs) {
       {"--glossy-rays", std::to_string(s.glossy_rays)}, {"--clamp", g(s.clamp)},
       {"--compensate", std::to_string(s.compensation_samples)}, {"--glass-branches", std::to_string(s.glass_branches)},
       {"--filter-normal", g(s.filter_normal_cos)}, {"--filter-depth", g(s.filter_depth_ratio)},
+      {"--wavelet", std::to_string(s.wavelet_levels)},
       {"--caustic-photons", std::to_string(s.caustic_photons)}, {"--caustic-radius", g(s.caustic_radius)},
       {"--lightcuts-error", g(s.lightcuts_error)}, {"--lightcuts-max-cut", std::to_string(s.lightcuts_max_cut)},
       {"--importance", std::to_string(s.importance_paths)}, {"--importance-floor", g(s.importance_floor)},

@@ -37,6 +37,7 @@ bool same(const RenderSettings& a, const RenderSettings& b) {
          same(a.glossy_threshold, b.glossy_threshold) && a.glossy_rays == b.glossy_rays && same(a.clamp, b.clamp) &&
          a.compensation_samples == b.compensation_samples && a.filter == b.filter &&
          same(a.filter_normal_cos, b.filter_normal_cos) && same(a.filter_depth_ratio, b.filter_depth_ratio) &&
+         a.wavelet_levels == b.wavelet_levels &&
          same(a.lightcuts_error, b.lightcuts_error) && a.lightcuts_max_cut == b.lightcuts_max_cut &&
          a.lightcuts_spacing == b.lightcuts_spacing && a.lightcuts_samples == b.lightcuts_samples &&
          a.glass_branches == b.glass_branches && a.caustics == b.caustics && a.caustic_photons == b.caustic_photons &&
@@ -101,12 +102,12 @@ TileResult sample_half_tile_result() {
 
 // Another set than Welcome's, every field away from its default: a frame's own settings.
 RenderSettings frame_settings() {
-  return RenderSettings{MethodKind::Igi, 9, 6, 2, 5, 25, 25, 0.25f, 3, 0.2f, 4, true, 0.7f, 0.2f, 0.04f, 400, 5, 9,
+  return RenderSettings{MethodKind::Igi, 9, 6, 2, 5, 25, 25, 0.25f, 3, 0.2f, 4, true, 0.7f, 0.2f, 1, 0.04f, 400, 5, 9,
                         2, true, 2345, 0.03f};
 }
 
 std::vector<Message> samples() {
-  RenderSettings settings{MethodKind::InstantRadiosity, 7, 5, 3, 4, 64, 9, 0.3f, 2, 0.05f, 3, false, 0.8f, 0.1f, 0.03f, 500, 6, 4,
+  RenderSettings settings{MethodKind::InstantRadiosity, 7, 5, 3, 4, 64, 9, 0.3f, 2, 0.05f, 3, false, 0.8f, 0.1f, 3, 0.03f, 500, 6, 4,
                           5, true, 12345, 0.02f, 512, 0.3f, 64, 8};
   Camera camera{{1, 2, 3}, {0, -0.2f, -1}, {0.1f, 1, 0}, 0.9f};
   std::vector<uint8_t> scene(300);
@@ -400,6 +401,7 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {settings_edited([](auto& s) { s.filter_normal_cos = 1.01f; }), "Welcome.settings.filter_normal_cos"},
       {settings_edited([](auto& s) { s.filter_normal_cos = NAN; }), "Welcome.settings.filter_normal_cos"},
       {settings_edited([](auto& s) { s.filter_depth_ratio = -1e-6f; }), "Welcome.settings.filter_depth_ratio"},
+      {settings_edited([](auto& s) { s.wavelet_levels = kMaxWaveletLevels + 1; }), "Welcome.settings.wavelet_levels"},
       {settings_edited([](auto& s) { s.method = MethodKind(4); }), "Welcome.settings.method: 4, expected [0, 3]"},
       {settings_edited([](auto& s) { s.lightcuts_error = 0; }), "Welcome.settings.lightcuts_error: 0, expected (0, 1)"},
       {settings_edited([](auto& s) { s.lightcuts_error = 1; }), "Welcome.settings.lightcuts_error"},

@@ -80,6 +80,7 @@ std::optional<std::string> settings_error(const RenderSettings& s) {
     return "--filter-normal: expected a cosine in [-1, 1], got " + std::to_string(s.filter_normal_cos);
   if (!(s.filter_depth_ratio >= 0.0f) || !std::isfinite(s.filter_depth_ratio))
     return "--filter-depth: expected a finite number >= 0, got " + std::to_string(s.filter_depth_ratio);
+  if (auto e = out_of_range("--wavelet", s.wavelet_levels, 0, kMaxWaveletLevels)) return e;
   if (auto e = out_of_range("--glass-branches", s.glass_branches, 1, kMaxGlassBranches)) return e;
   if (std::string e = lightcuts::settings_error(s); !e.empty()) return e;
   if (std::string e = photons::settings_error(s); !e.empty()) return e;

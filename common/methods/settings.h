@@ -4,6 +4,8 @@
 #include <optional>
 #include <string>
 
+#include "wavelet/wavelet_filter.h"
+
 namespace igi {
 
 enum class MethodKind : uint8_t { PathTracer, InstantRadiosity, Igi, Lightcuts };
@@ -65,6 +67,10 @@ struct RenderSettings {
   bool filter = true;
   float filter_normal_cos = 0.9f;   // neighbours need dot(n, n') above this
   float filter_depth_ratio = 0.05f; // and |d - d'| below this fraction of d
+  // ir/igi: levels of the edge-avoiding wavelet filter (wavelet/wavelet_filter.h)
+  // after the discontinuity buffer, which smooths the blotches it leaves;
+  // passes use fewer levels as they accumulate. 0 = off.
+  int wavelet_levels = 0;
   // Lightcuts over the VPLs of all sets (common/lightcuts/lightcuts_settings.h).
   float lightcuts_error = 0.02f;  // refine until every cluster's bound < error x the cut's total
   int lightcuts_max_cut = 1000;   // and stop at this many nodes in a cut
@@ -100,8 +106,11 @@ std::optional<std::string> importance_settings_error(const RenderSettings& setti
 }  // namespace igi
 
 namespace igi {
-// Extra pixels around a tile that the method needs to read (the filter window).
+// Extra pixels around a tile that the method needs to read: the
+// discontinuity buffer's window, and around it the wavelet filter's footprint.
 inline int tile_border(const RenderSettings& s) {
-  return s.method == MethodKind::Igi && s.filter ? s.interleave / 2 : 0;
+  const bool vpl = s.method == MethodKind::Igi || s.method == MethodKind::InstantRadiosity;
+  return (s.method == MethodKind::Igi && s.filter ? s.interleave / 2 : 0) +
+         (vpl ? wavelet_footprint(s.wavelet_levels) : 0);
 }
 }  // namespace igi

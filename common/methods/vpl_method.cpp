@@ -13,6 +13,7 @@
 #include "methods/vpl_contribution.h"
 #include "sampling/content_hash.h"
 #include "vpl/vpl_generator.h"
+#include "wavelet/wavelet_filter.h"
 
 namespace igi {
 
@@ -28,8 +29,11 @@ struct VplMethod::Scratch {
   std::vector<glm::vec3> sums;      // VPL sums per shading point
   std::vector<glm::vec3> direct;    // exact lights per shading point (inner pixels' layers, hits)
   std::vector<glm::vec3> value;     // demodulated irradiance per layer sample: the filter's input
-  std::vector<glm::vec3> filtered;  // per layer, the tile's own pixels
+  std::vector<glm::vec3> filtered;  // per layer, the core's pixels (the tile and the wavelet's footprint)
   FilterInput filter_input;
+  WaveletInput wavelet_input;
+  std::vector<glm::vec3> wavelet_out;  // per tile pixel: the filtered mean of its sub-samples
+  std::vector<glm::vec3> ratio;        // per tile pixel: wavelet_out / the unfiltered mean, per channel
 };
 
 VplMethod::VplMethod(const SceneContext& context, const RenderSettings& settings)
@@ -41,6 +45,7 @@ VplMethod::VplMethod(const SceneContext& context, const RenderSettings& settings
 void VplMethod::begin_frame(const FrameSetup& frame) {
   frame_ = frame;
   clamp_bound_ = clamp_bound(settings_.clamp, context_.accel.mean_chord(), frame.sample_begin);
+  wavelet_levels_ = wavelet_levels_at_pass(settings_.wavelet_levels, frame.sample_begin);
   setup_rays_ = RayCounts{};
   vpls_ = importance::generate_view_vpls(context_, settings_, frame, setup_rays_);
   if (caustics_) caustics_->build(frame.seed);
@@ -180,14 +185,14 @@ void VplMethod::combine(const GBuffer& gbuffer, const GlossyHits& hits, Scratch&
 // which is as smooth as any surface's light and filters alike. A layer with
 // no valid sample in the tile (no glass there) is skipped: resolve reads
 // only valid samples.
-void VplMethod::filter_layer(const GBuffer& gbuffer, int l, const TileJob& job, Scratch& scratch) const {
+void VplMethod::filter_layer(const GBuffer& gbuffer, int l, const Rect& core, Scratch& scratch) const {
   const Region& region = gbuffer.region;
-  const size_t inner = size_t(job.w) * job.h;
+  const size_t inner = size_t(core.w) * core.h;
   const auto layer_value = scratch.value.begin() + ptrdiff_t(size_t(l) * region.pixels());
   glm::vec3* out = scratch.filtered.data() + size_t(l) * inner;
   bool any_valid = false;
-  for (int y = job.y; y < job.y + job.h && !any_valid; ++y)
-    for (int x = job.x; x < job.x + job.w && !any_valid; ++x) any_valid = gbuffer.at(l, region.index(x, y)).valid();
+  for (int y = core.y; y < core.y + core.h && !any_valid; ++y)
+    for (int x = core.x; x < core.x + core.w && !any_valid; ++x) any_valid = gbuffer.at(l, region.index(x, y)).valid();
   if (!any_valid) return;
   if (interleaved() && settings_.filter) {
     FilterInput& in = scratch.filter_input;
@@ -205,11 +210,60 @@ void VplMethod::filter_layer(const GBuffer& gbuffer, int l, const TileJob& job, 
     fs.normal_cos = settings_.filter_normal_cos;
     fs.depth_ratio = settings_.filter_depth_ratio;
     fs.fixed_scale = fixed_scale_;
-    filter_discontinuity(in, fs, Rect{job.x, job.y, job.w, job.h}, std::span<glm::vec3>(out, inner));
+    filter_discontinuity(in, fs, core, std::span<glm::vec3>(out, inner));
     return;
   }
+  for (int y = 0; y < core.h; ++y)
+    for (int x = 0; x < core.w; ++x)
+      out[size_t(y) * core.w + x] = layer_value[ptrdiff_t(region.index(core.x + x, core.y + y))];
+}
+
+// The wavelet filter (wavelet/wavelet_filter.h) runs once per pixel, not per
+// layer: on the mean of the filtered demodulated irradiance of the pixel's
+// sub-samples (glass branch 0), guided by its first valid sub-sample's
+// depth, normal and material. Each sub-sample's irradiance is then scaled
+// per channel by filtered / unfiltered mean (resolve), so a pixel whose
+// sub-samples share a surface takes the filtered value and one across an
+// edge keeps the contrast between its sub-samples. Glass branches past the
+// first (reflections in glass) are left as the discontinuity buffer made them.
+void VplMethod::wavelet_pass(const GBuffer& gbuffer, const Rect& core, const TileJob& job, Scratch& scratch) const {
+  const Region& region = gbuffer.region;
+  const size_t core_pixels = size_t(core.w) * core.h;
+  WaveletInput& in = scratch.wavelet_input;
+  in.x0 = core.x; in.y0 = core.y; in.width = core.w; in.height = core.h;
+  in.depth.assign(core_pixels, INFINITY);
+  in.normal.assign(core_pixels, glm::vec3(0.0f));
+  in.material.assign(core_pixels, 0);
+  in.value.assign(core_pixels, glm::vec3(0.0f));
+  for (int y = 0; y < core.h; ++y)
+    for (int x = 0; x < core.w; ++x) {
+      const size_t c = size_t(y) * core.w + x, pixel = region.index(core.x + x, core.y + y);
+      int count = 0;
+      for (int k = 0; k < gbuffer.samples; ++k) {
+        const GSample& g = gbuffer.at(k, pixel);
+        if (!g.valid()) continue;
+        if (count++ == 0) {
+          in.depth[c] = g.depth;
+          in.normal[c] = g.surface.shading_normal;
+          in.material[c] = uint32_t(g.surface.material - context_.scene.materials.data());
+        }
+        in.value[c] += scratch.filtered[size_t(k) * core_pixels + c];
+      }
+      if (count > 1) in.value[c] /= float(count);
+    }
+  WaveletSettings ws;
+  ws.levels = wavelet_levels_;
+  const size_t inner = size_t(job.w) * job.h;
+  scratch.wavelet_out.resize(inner);
+  filter_wavelet(in, ws, Rect{job.x, job.y, job.w, job.h}, scratch.wavelet_out);
+  scratch.ratio.resize(inner);
   for (int y = 0; y < job.h; ++y)
-    for (int x = 0; x < job.w; ++x) out[size_t(y) * job.w + x] = layer_value[ptrdiff_t(region.index(job.x + x, job.y + y))];
+    for (int x = 0; x < job.w; ++x) {
+      const size_t i = size_t(y) * job.w + x;
+      const glm::vec3 before = in.value[size_t(job.y - core.y + y) * core.w + size_t(job.x - core.x + x)];
+      const glm::vec3 after = scratch.wavelet_out[i];
+      for (int c = 0; c < 3; ++c) scratch.ratio[i][c] = before[c] > 0.0f ? after[c] / before[c] : 1.0f;
+    }
 }
 
 // A pixel is the mean over its sub-samples of the sum over their glass
@@ -219,21 +273,24 @@ void VplMethod::filter_layer(const GBuffer& gbuffer, int l, const TileJob& job, 
 // exact lights: its density estimate is already smooth at the photon
 // radius, and through the filter the sharp edge of a focused caustic would
 // spill onto the neighbours the filter accepts.
-void VplMethod::resolve(const GBuffer& gbuffer, const TileJob& job, const Scratch& scratch,
+void VplMethod::resolve(const GBuffer& gbuffer, const Rect& core, const TileJob& job, const Scratch& scratch,
                         std::span<glm::vec3> out) const {
-  const size_t inner = size_t(job.w) * job.h;
+  const size_t core_pixels = size_t(core.w) * core.h;
   const float inv_samples = 1.0f / float(gbuffer.samples);
   for (int y = 0; y < job.h; ++y)
     for (int x = 0; x < job.w; ++x) {
       const size_t pixel = gbuffer.region.index(job.x + x, job.y + y);
+      const size_t c_index = size_t(job.y - core.y + y) * core.w + size_t(job.x - core.x + x);
+      const glm::vec3 ratio = wavelet_levels_ > 0 ? scratch.ratio[size_t(y) * job.w + x] : glm::vec3(1.0f);
       glm::vec3 c(0.0f);
       for (int l = 0; l < gbuffer.layer_count(); ++l) {
         const GSample& g = gbuffer.at(l, pixel);
         c += g.emitted;
-        if (g.valid())
-          c += g.throughput * g.surface.albedo *
-               (scratch.filtered[size_t(l) * inner + size_t(y) * job.w + x] +
-                scratch.direct[size_t(l) * gbuffer.region.pixels() + pixel] + caustic(g));
+        if (!g.valid()) continue;
+        glm::vec3 filtered = scratch.filtered[size_t(l) * core_pixels + c_index];
+        if (l < gbuffer.samples) filtered *= ratio;
+        c += g.throughput * g.surface.albedo *
+             (filtered + scratch.direct[size_t(l) * gbuffer.region.pixels() + pixel] + caustic(g));
       }
       out[size_t(y) * job.w + x] = c * inv_samples;
     }
@@ -260,9 +317,17 @@ void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCou
   const BiasCompensation compensation(context_.accel, shading, vpls_, exact_, interleaved(),
                                       settings_.compensation_samples);
   compensation.add(gbuffer, frame_.seed, scratch.value, rays);
-  scratch.filtered.resize(size_t(job.w) * job.h * gbuffer.layer_count());
-  for (int l = 0; l < gbuffer.layer_count(); ++l) filter_layer(gbuffer, l, job, scratch);
-  resolve(gbuffer, job, scratch, out);
+  // The core: the tile and, with the wavelet filter, its footprint (in the region).
+  const Region& region = gbuffer.region;
+  const int grow = wavelet_footprint(wavelet_levels_);
+  const int cx0 = std::max(job.x - grow, region.x0), cy0 = std::max(job.y - grow, region.y0);
+  const int cx1 = std::min(job.x + job.w + grow, region.x0 + region.width);
+  const int cy1 = std::min(job.y + job.h + grow, region.y0 + region.height);
+  const Rect core{cx0, cy0, cx1 - cx0, cy1 - cy0};
+  scratch.filtered.resize(size_t(core.w) * core.h * gbuffer.layer_count());
+  for (int l = 0; l < gbuffer.layer_count(); ++l) filter_layer(gbuffer, l, core, scratch);
+  if (wavelet_levels_ > 0) wavelet_pass(gbuffer, core, job, scratch);
+  resolve(gbuffer, core, job, scratch, out);
 }
 
 }  // namespace igi

@@ -15,6 +15,8 @@
 //    adds back the clamped light before the filter;
 //  - glass seen from the camera splits into reflection and refraction
 //    layers (methods/gbuffer.h), each filtered on its own;
+//  - with --wavelet, the edge-avoiding wavelet filter after the
+//    discontinuity buffer, once per pixel (wavelet/wavelet_filter.h);
 //  - with --caustics, the caustic photon map (photons/caustic_map.h): light
 //    that reached a diffuse surface through mirrors or glass, which no
 //    shadow ray can carry, added after the filter like the exact lights.
@@ -26,6 +28,7 @@
 #include "methods/shadow_batch.h"
 #include "methods/gbuffer.h"
 #include "methods/glossy_gather.h"
+#include "filter/discontinuity_buffer.h"
 #include "photons/caustic_map.h"
 #include "vpl/vpl.h"
 
@@ -54,8 +57,10 @@ class VplMethod final : public Method {
   void shade_exact(const GBuffer& gbuffer, const TileJob& job, const GlossyHits& hits, Scratch& scratch,
                    RayCounts& rays) const;
   void combine(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch) const;
-  void filter_layer(const GBuffer& gbuffer, int layer, const TileJob& job, Scratch& scratch) const;
-  void resolve(const GBuffer& gbuffer, const TileJob& job, const Scratch& scratch, std::span<glm::vec3> out) const;
+  void filter_layer(const GBuffer& gbuffer, int layer, const Rect& core, Scratch& scratch) const;
+  void wavelet_pass(const GBuffer& gbuffer, const Rect& core, const TileJob& job, Scratch& scratch) const;
+  void resolve(const GBuffer& gbuffer, const Rect& core, const TileJob& job, const Scratch& scratch,
+               std::span<glm::vec3> out) const;
   glm::vec3 caustic(const GSample& g) const { return caustics_ ? caustics_->radiance(g) : glm::vec3(0.0f); }
 
   SceneContext context_;
@@ -66,6 +71,7 @@ class VplMethod final : public Method {
   std::vector<Vpl> exact_;  // point, spot and directional lights (methods/direct_lights.h)
   std::optional<CausticMap> caustics_;
   float clamp_bound_ = INFINITY;
+  int wavelet_levels_ = 0;  // this pass's (wavelet_levels_at_pass)
   double fixed_scale_ = 0x1p32;
   RayLog* log_ = nullptr;
 };

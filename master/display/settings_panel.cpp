@@ -48,6 +48,7 @@ RenderSettings bounded(RenderSettings s) {
   s.compensation_samples = std::clamp(s.compensation_samples, 0, kMaxCompensationSamples);
   s.filter_normal_cos = std::clamp(s.filter_normal_cos, -1.0f, 1.0f);
   s.filter_depth_ratio = std::clamp(s.filter_depth_ratio, 0.0f, 1.0f);
+  s.wavelet_levels = std::clamp(s.wavelet_levels, 0, kMaxWaveletLevels);
   s.lightcuts_error = std::clamp(s.lightcuts_error, 0.001f, 0.5f);
   s.lightcuts_max_cut = std::clamp(s.lightcuts_max_cut, 1, lightcuts::kMaxCut);
   s.lightcuts_spacing = std::clamp(s.lightcuts_spacing, 0, lightcuts::kMaxSpacing);
@@ -134,11 +135,15 @@ void SettingsPanel::draw_vpls(RenderSettings& s) {
 }
 
 void SettingsPanel::draw_filter(RenderSettings& s) {
-  if (s.method != MethodKind::Igi) return;
-  ImGui::Checkbox("discontinuity filter", &s.filter);
-  if (!s.filter) return;
-  ImGui::SliderFloat("filter normal cos", &s.filter_normal_cos, -1.0f, 1.0f, "%.2f", kBound);
-  ImGui::SliderFloat("filter depth ratio", &s.filter_depth_ratio, 0.0f, 1.0f, "%.3f", kBound);
+  if (s.method != MethodKind::Igi && s.method != MethodKind::InstantRadiosity) return;
+  if (s.method == MethodKind::Igi) {
+    ImGui::Checkbox("discontinuity filter", &s.filter);
+    if (s.filter) {
+      ImGui::SliderFloat("filter normal cos", &s.filter_normal_cos, -1.0f, 1.0f, "%.2f", kBound);
+      ImGui::SliderFloat("filter depth ratio", &s.filter_depth_ratio, 0.0f, 1.0f, "%.3f", kBound);
+    }
+  }
+  ImGui::SliderInt("wavelet levels (0 = off)", &s.wavelet_levels, 0, kMaxWaveletLevels, "%d", kBound);
 }
 
 void SettingsPanel::draw_extras(RenderSettings& s) {
