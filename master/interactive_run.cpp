@@ -180,10 +180,39 @@ PanelOptions panel_options(const MasterOptions& o) {
   return p;
 }
 
-}  // namespace
+// A frame the session rendered for the current view: into the accumulator,
+// the status line, the stats file and the panel.
+struct Shower {
+  InteractiveWindow& window;
+  WindowPanel& panel;
+  CameraController& controller;
+  Accumulator& accumulator;
+  std::optional<StatsWriter>& stats;
+  bool animated, camera_animated;
+  int shown_frames = 0;
+  std::chrono::steady_clock::time_point last_frame = std::chrono::steady_clock::now();
 
-int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& session, LocalWorkers& workers,
-                    std::atomic<bool>& interrupted) {
+  void show(Shown& shown) {
+    if (animated) accumulator.reset();  // each frame stands at its own time
+    if (camera_animated) controller.follow(shown.frame.setup.camera);  // a first move starts from the view shown
+    ++shown_frames;
+    accumulator.add(shown.frame.pixels->to_image(), 1.0);
+    shown.frame.pixels.reset();  // back to the pool
+    const auto now = std::chrono::steady_clock::now();
+    const double fps = 1.0 / std::max(1e-6, std::chrono::duration<double>(now - last_frame).count());
+    last_frame = now;
+    window.set_status(status_line(shown.frame, shown.workers, int(accumulator.weight()), fps, animated));
+    FrameRecord& record = shown.frame.record;
+    std::vector<TileSource> sources = std::move(record.tile_sources);  // the overlay's, not the file's
+    if (stats) stats->add(record);
+    record.tile_sources = std::move(sources);
+    panel.frame_shown(record, std::move(shown.peers));
+  }
+};
+
+// The window's loop until it closes, is interrupted or the session stops.
+void window_loop(const MasterOptions& o, const Scene& scene, MasterSession& session, std::atomic<bool>& interrupted,
+                 Handover& handover, std::optional<StatsWriter>& stats) {
   InteractiveWindow window(o.render.width, o.render.height, "igi-master: " + o.render.scene);
   WindowPanel panel(window.handle(), o.render.settings, o.render.exposure, panel_options(o));
   const float speed = 0.25f * scene.bounds().diagonal();
@@ -191,11 +220,6 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
   const bool camera_animated = animated && scene.camera && scene.animation->camera_node >= 0;
   CameraController controller(scene_camera(scene, o.render.time), speed);
   Accumulator accumulator(o.render.width, o.render.height);
-  std::optional<StatsWriter> stats;  // the frames the window showed
-  if (!o.stats.empty()) stats.emplace(o.stats);
-  session.set_detailed_stats(true);  // the cluster panel
-  session.record_tile_sources(true);  // the tile overlay
-  Handover handover;
   uint64_t generation = 0, camera_generation = controller.generation();
   auto view = [&] {
     return Handover::View{controller.camera(), panel.settings().settings(), generation, controller.light_offset(),
@@ -203,10 +227,10 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
   };
   handover.publish(view());
   std::thread session_thread([&] { session_loop(o, scene, session, handover); });
-  auto last_frame = std::chrono::steady_clock::now(), last_draw = last_frame, wall_start = last_frame;
-  const double cpu_start = process_cpu_seconds();
+  auto last_draw = std::chrono::steady_clock::now();
   bool edited = !o.test_panel_settings;  // the test hook edits once, after the first frame shown
-  int shots = 0, shown_frames = 0;
+  int shots = 0;
+  Shower shower{window, panel, controller, accumulator, stats, animated, camera_animated};
   while (window.poll(controller) && !interrupted && !handover.stopped()) {
     if (controller.generation() != camera_generation || panel.settings().take_change()) {
       camera_generation = controller.generation();
@@ -217,20 +241,7 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
     bool fresh = false;
     for (Shown& shown : handover.take(std::chrono::milliseconds(5))) {
       if (shown.generation != generation) continue;  // rendered for an old camera or old settings
-      if (animated) accumulator.reset();  // each frame stands at its own time
-      if (camera_animated) controller.follow(shown.frame.setup.camera);  // a first move starts from the view shown
-      ++shown_frames;
-      accumulator.add(shown.frame.pixels->to_image(), 1.0);
-      shown.frame.pixels.reset();  // back to the pool
-      const auto now = std::chrono::steady_clock::now();
-      const double fps = 1.0 / std::max(1e-6, std::chrono::duration<double>(now - last_frame).count());
-      last_frame = now;
-      window.set_status(status_line(shown.frame, shown.workers, int(accumulator.weight()), fps, animated));
-      FrameRecord& record = shown.frame.record;
-      std::vector<TileSource> sources = std::move(record.tile_sources);  // the overlay's, not the file's
-      if (stats) stats->add(record);
-      record.tile_sources = std::move(sources);
-      panel.frame_shown(record, std::move(shown.peers));
+      shower.show(shown);
       fresh = true;
     }
     const auto now = std::chrono::steady_clock::now();
@@ -244,7 +255,7 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
         !m.empty())
       panel.set_message(m);
     if (actions.load_camera) camera_generation = ~controller.generation();  // a new controller: a new view
-    const int settled = animated ? shown_frames : int(accumulator.weight());  // an animation never accumulates
+    const int settled = animated ? shower.shown_frames : int(accumulator.weight());  // an animation never accumulates
     if (fresh && edited && !o.render.screenshot.empty() && settled >= o.screenshot_after) {
       window.screenshot(o.render.screenshot);
       interrupted = true;
@@ -257,6 +268,20 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
   }
   handover.stop();
   session_thread.join();
+}
+
+}  // namespace
+
+int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& session, LocalWorkers& workers,
+                    std::atomic<bool>& interrupted) {
+  std::optional<StatsWriter> stats;  // the frames the window showed
+  if (!o.stats.empty()) stats.emplace(o.stats);
+  session.set_detailed_stats(true);  // the cluster panel
+  session.record_tile_sources(true);  // the tile overlay
+  Handover handover;
+  const auto wall_start = std::chrono::steady_clock::now();
+  const double cpu_start = process_cpu_seconds();
+  window_loop(o, scene, session, interrupted, handover, stats);
   session.close("window closed");
   workers.stop_all();
   if (stats) {  // the session thread has ended: its counts can be read here

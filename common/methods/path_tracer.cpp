@@ -42,6 +42,20 @@ void PathTracer::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCo
     }
 }
 
+// Next-event estimation: a light sample, weighted against the BSDF's, times `throughput`.
+glm::vec3 PathTracer::next_event(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 throughput, float u_light,
+                                 glm::vec2 u_light_point, RayCounts& rays) const {
+  LightSample ls = context_.lights.sample(sp.position, u_light, u_light_point);
+  glm::vec3 f = ls.pdf > 0.0f ? bsdf_eval(sp, wo, ls.direction) : glm::vec3(0.0f);
+  if (f == glm::vec3(0.0f)) return glm::vec3(0.0f);
+  const Ray shadow = shadow_ray(sp, ls.direction, ls.position, ls.distance);
+  ++rays.shadow;
+  if (context_.accel.occluded(shadow)) return glm::vec3(0.0f);
+  float cos_i = std::abs(glm::dot(ls.direction, sp.shading_normal));
+  float w = ls.delta ? 1.0f : power_heuristic(ls.pdf, bsdf_pdf(sp, wo, ls.direction));
+  return throughput * f * ls.radiance * (cos_i * w / ls.pdf);
+}
+
 glm::vec3 PathTracer::radiance(Ray ray, uint32_t sample_index, uint32_t pixel_seed, RayCounts& rays) const {
   const Scene& scene = context_.scene;
   glm::vec3 result(0.0f), throughput(1.0f);
@@ -74,20 +88,7 @@ glm::vec3 PathTracer::radiance(Ray ray, uint32_t sample_index, uint32_t pixel_se
     const glm::vec2 u_bsdf = u.next_2d();
     const float u_roulette = u.next_1d();
 
-    // Next-event estimation.
-    if (!sp.material->is_specular()) {
-      LightSample ls = context_.lights.sample(sp.position, u_light, u_light_point);
-      glm::vec3 f = ls.pdf > 0.0f ? bsdf_eval(sp, wo, ls.direction) : glm::vec3(0.0f);
-      if (f != glm::vec3(0.0f)) {
-        const Ray shadow = shadow_ray(sp, ls.direction, ls.position, ls.distance);
-        ++rays.shadow;
-        if (!context_.accel.occluded(shadow)) {
-          float cos_i = std::abs(glm::dot(ls.direction, sp.shading_normal));
-          float w = ls.delta ? 1.0f : power_heuristic(ls.pdf, bsdf_pdf(sp, wo, ls.direction));
-          result += throughput * f * ls.radiance * (cos_i * w / ls.pdf);
-        }
-      }
-    }
+    if (!sp.material->is_specular()) result += next_event(sp, wo, throughput, u_light, u_light_point, rays);
 
     auto bs = bsdf_sample(sp, wo, u_bsdf, u_lobe);
     if (!bs) break;

@@ -3,6 +3,7 @@
 // multiple importance sampling (power heuristic) against BSDF sampling, and
 // Russian roulette. The accuracy reference for every other method.
 #include "methods/method.h"
+#include "scene/surface.h"
 
 namespace igi {
 
@@ -16,6 +17,9 @@ class PathTracer final : public Method {
   glm::vec3 radiance(Ray ray, uint32_t sample_index, uint32_t pixel_seed, RayCounts& rays) const;
 
  private:
+  glm::vec3 next_event(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 throughput, float u_light,
+                       glm::vec2 u_light_point, RayCounts& rays) const;
+
   SceneContext context_;
   RenderSettings settings_;
   FrameSetup frame_;
