@@ -4,6 +4,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -47,6 +48,21 @@ Image single_process(const std::string& scene = "cornell") {
   return cache[scene];
 }
 
+// Master and two workers with `options` on `scene` give, bit for bit, the
+// one-process render with igi's settings (8 light paths) as `edit` changes them.
+void expect_workers_match_one_process(const std::string& name, const std::string& options, const std::string& scene,
+                                      const std::function<void(RenderSettings&)>& edit) {
+  const std::string out = test::output_path(name + ".exr");
+  auto r = test::run(master("--workers 2 --frames 1 " + options + " -o " + out, scene));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  test::Prepared p(load_scene(scene));
+  RenderSettings s;
+  s.method = MethodKind::Igi;
+  s.paths_per_set = 8;
+  edit(s);
+  EXPECT_TRUE(test::images_identical(name, read_image(out), p.render(s, kWidth, kHeight, 1, 1)));
+}
+
 TEST(Distributed, TwoWorkersMatchTheSingleProcessRenderBitForBit) {
   const std::string out = test::output_path("dist-two.exr");
   auto r = test::run(master("--workers 2 --frames 1 -o " + out));
@@ -76,45 +92,30 @@ TEST(Distributed, AntialiasingGlossyGatherAndExactLightsMatchOneProcess) {
 // hash joins the VPLs'), and glass branches split the G-buffer: workers give
 // the one-process image.
 TEST(Distributed, CausticsAndGlassBranchesMatchOneProcess) {
-  const std::string out = test::output_path("dist-caustics.exr");
-  auto r = test::run(master("--workers 2 --frames 1 --caustic-photons 4000 --glass-branches 3 -o " + out, "glass"));
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  test::Prepared p(load_scene("glass"));
-  RenderSettings s;
-  s.method = MethodKind::Igi;
-  s.paths_per_set = 8;
-  s.glass_branches = 3;
-  s.caustics = true;
-  s.caustic_photons = 4000;
-  EXPECT_TRUE(test::images_identical("dist-caustics", read_image(out), p.render(s, kWidth, kHeight, 1, 1)));
+  expect_workers_match_one_process("dist-caustics", "--caustic-photons 4000 --glass-branches 3", "glass",
+                                   [](RenderSettings& s) {
+                                     s.glass_branches = 3;
+                                     s.caustics = true;
+                                     s.caustic_photons = 4000;
+                                   });
 }
 
 // The wavelet filter's wider border through master and workers (tiles of 16,
 // border 1 + 8): workers give the one-process image.
 TEST(Distributed, WaveletFilterMatchesOneProcess) {
-  const std::string out = test::output_path("dist-wavelet.exr");
-  auto r = test::run(master("--workers 2 --frames 1 --wavelet 2 -o " + out));
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  test::Prepared p(load_scene("cornell"));
-  RenderSettings s;
-  s.method = MethodKind::Igi;
-  s.paths_per_set = 8;
-  s.wavelet_levels = 2;
-  EXPECT_TRUE(test::images_identical("dist-wavelet", read_image(out), p.render(s, kWidth, kHeight, 1, 1)));
+  expect_workers_match_one_process("dist-wavelet", "--wavelet 2", "cornell",
+                                   [](RenderSettings& s) { s.wavelet_levels = 2; });
 }
 
 // Lightcuts' light tree and reconstruction grid through master and workers:
 // settings over the wire, tiles of 16 with the sample grid's cells across them.
 TEST(Distributed, LightcutsWithReconstructionCutsMatchTheSingleProcessRenderBitForBit) {
-  const std::string out = test::output_path("dist-lightcuts.exr");
-  auto r = test::run(master("--workers 2 --frames 1 --method lightcuts --vpl-paths 20 --lightcuts-spacing 6 -o " + out));
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  test::Prepared p(load_scene("cornell"));
-  RenderSettings s;
-  s.method = MethodKind::Lightcuts;
-  s.paths_per_set = 20;
-  s.lightcuts_spacing = 6;
-  EXPECT_TRUE(test::images_identical("dist-lightcuts", read_image(out), p.render(s, kWidth, kHeight, 1, 1)));
+  expect_workers_match_one_process("dist-lightcuts", "--method lightcuts --vpl-paths 20 --lightcuts-spacing 6",
+                                   "cornell", [](RenderSettings& s) {
+                                     s.method = MethodKind::Lightcuts;
+                                     s.paths_per_set = 20;
+                                     s.lightcuts_spacing = 6;
+                                   });
 }
 
 // Forced copies go to the other worker as each job goes out. The run waits
