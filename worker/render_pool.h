@@ -7,6 +7,11 @@
 // another pose waits until no tile renders, poses the scene, and goes on; a
 // frame's method is made and begun only once its pose stands, so no tile of
 // a frame ever sees another frame's scene.
+//
+// These are threads of their own, not tasks of the shared pool
+// (render/parallel.h): they block on the queue and on a pose change, which
+// a TBB task must not do. Work inside a frame (begin_frame's per-set work,
+// photons, the light tree) runs on the shared pool.
 #include <condition_variable>
 #include <deque>
 #include <map>

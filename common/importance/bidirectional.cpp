@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "importance/camera_points.h"
-#include "importance/parallel.h"
+#include "render/parallel.h"
 #include "importance/resample.h"
 #include "material/bsdf.h"
 #include "methods/clamp.h"

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
+#include "render/parallel.h"
 #include "sampling/content_hash.h"
 #include "sampling/hash.h"
 
@@ -47,9 +47,8 @@ class Builder {
     const uint32_t mid = depth < kMaxBinnedDepth ? split(begin, end) : median_split(begin, end);
     const uint32_t right = index + 2 * (mid - begin);
     if (depth < kParallelDepth && end - begin >= kParallelLeaves) {
-      std::thread left([&] { Builder(*this).build(begin, mid, index + 1, depth + 1); });
-      build(mid, end, right, depth + 1);
-      left.join();
+      parallel_pair([&] { Builder(*this).build(begin, mid, index + 1, depth + 1); },
+                    [&] { build(mid, end, right, depth + 1); });
     } else {
       build(begin, mid, index + 1, depth + 1);
       build(mid, end, right, depth + 1);
@@ -126,7 +125,7 @@ class Builder {
   static constexpr int kBins = 16;
   static constexpr uint32_t kBinned = 1024;
   static constexpr uint32_t kMedianBelow = 8;  // small nodes: binning costs more than it gains
-  // The top two levels of large trees build their halves on threads of their own.
+  // The top two levels of large trees build their halves at once (render/parallel.h).
   static constexpr int kParallelDepth = 2;
   static constexpr uint32_t kParallelLeaves = 1 << 15;
   static constexpr int kMaxBinnedDepth = 48;
@@ -267,9 +266,7 @@ LightTree build_light_tree(std::vector<LightLeaf> leaves, float scene_diagonal, 
     fill_cones(tree, ranges, 0, tree.nodes.size());
   } else {
     const size_t half = tree.nodes.size() / 2;
-    std::thread first_half([&] { fill_cones(tree, ranges, 0, half); });
-    fill_cones(tree, ranges, half, tree.nodes.size());
-    first_half.join();
+    parallel_pair([&] { fill_cones(tree, ranges, 0, half); }, [&] { fill_cones(tree, ranges, half, tree.nodes.size()); });
   }
   choose_representatives(tree, hash(seed, 0x6c747265u /* "ltre" */));
   tree.hash = hash_light_tree(tree);

@@ -1,11 +1,10 @@
 #include "photons/photon_paths.h"
 
 #include <algorithm>
-#include <atomic>
-#include <thread>
 
 #include "material/bsdf.h"
 #include "photons/caustic_settings.h"
+#include "render/parallel.h"
 #include "sampling/hash.h"
 #include "sampling/warp.h"
 #include "scene/surface.h"
@@ -63,21 +62,18 @@ std::vector<Photon> trace_photon_paths(const SceneContext& context, const Render
   const float inv_paths = 1.0f / float(paths);
   const uint32_t chunks = (paths + kChunk - 1) / kChunk;
   std::vector<std::vector<Photon>> per_chunk(chunks);
-  std::vector<RayCounts> per_worker(size_t(std::max(1, threads)));
-  std::atomic<uint32_t> next{0};
-  // Every chunk on a thread of our own with flush-to-zero set, whatever the
-  // caller's floating-point mode: the photons cannot depend on who calls.
-  auto work = [&](RayCounts& counts) {
-    enable_flush_to_zero();
-    for (uint32_t c; (c = next.fetch_add(1)) < chunks;)
-      for (uint32_t i = c * kChunk; i < std::min(paths, (c + 1) * kChunk); ++i)
-        trace_path(context, settings, i, path_seed, inv_paths, per_chunk[c], counts);
-  };
-  const int workers = std::clamp(int(chunks), 1, std::max(1, threads));
-  std::vector<std::thread> pool;
-  for (int t = 0; t < workers; ++t) pool.emplace_back(work, std::ref(per_worker[size_t(t)]));
-  for (std::thread& t : pool) t.join();
-  for (const RayCounts& c : per_worker) rays += c;
+  std::vector<RayCounts> per_chunk_rays(chunks);
+  // Each chunk a task of the shared pool (render/parallel.h), with
+  // flush-to-zero set whatever the caller's mode: the photons cannot depend
+  // on who calls.
+  parallel_tasks(
+      int(chunks),
+      [&](int c) {
+        for (uint32_t i = uint32_t(c) * kChunk; i < std::min(paths, (uint32_t(c) + 1) * kChunk); ++i)
+          trace_path(context, settings, i, path_seed, inv_paths, per_chunk[size_t(c)], per_chunk_rays[size_t(c)]);
+      },
+      threads);
+  for (const RayCounts& c : per_chunk_rays) rays += c;
   size_t total = 0;
   for (const auto& c : per_chunk) total += c.size();
   std::vector<Photon> photons;

@@ -13,8 +13,8 @@
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
-#include <xmmintrin.h>
 
+#include "render/parallel.h"
 #include "scene/accel.h"
 
 namespace igi {
@@ -37,19 +37,6 @@ std::vector<TileJob> make_tiles(int width, int height, int tile_w, int tile_h, i
 int default_thread_count() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 namespace {
-
-// FTZ/DAZ while this thread traces (Embree asks for it), restored after:
-// TBB's threads run other code too.
-class FlushToZeroScope {
- public:
-  FlushToZeroScope() : saved_(_mm_getcsr()) { enable_flush_to_zero(); }
-  ~FlushToZeroScope() { _mm_setcsr(saved_); }
-  FlushToZeroScope(const FlushToZeroScope&) = delete;
-  FlushToZeroScope& operator=(const FlushToZeroScope&) = delete;
-
- private:
-  unsigned saved_;
-};
 
 // Reports progress from the calling thread at most every 250 ms, while that
 // thread renders tiles like any other.
