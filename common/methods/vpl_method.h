@@ -52,7 +52,8 @@ class VplMethod final : public Method {
  private:
   struct Scratch;
   bool interleaved() const { return settings_.method == MethodKind::Igi; }
-  void collect_set_samples(const GBuffer& gbuffer, int set, int group, PixelBatch& batch) const;
+  void collect_set_samples(const GBuffer& gbuffer, std::span<const uint8_t> rotation, int set, int group,
+                           PixelBatch& batch) const;
   void shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch, RayCounts& rays) const;
   void shade_exact(const GBuffer& gbuffer, const TileJob& job, const GlossyHits& hits, Scratch& scratch,
                    RayCounts& rays) const;
