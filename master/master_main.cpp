@@ -70,11 +70,13 @@ void arm_test_hooks(const igi::MasterOptions& o, igi::MasterSession& session, ig
 
 int run(const igi::MasterOptions& o) {
   const std::optional<CurveSetup> curve = curve_setup(o);  // bad key files stop us before anything is bound
-  igi::Scene scene = igi::load_scene(o.render.scene);  // validates it, and gives the camera
+  igi::Scene scene = igi::load_scene(o.render.scene, nullptr, o.render.environment);  // validates it, and gives the camera
   igi::Scene as_workers_load_it = scene;                 // the master's own VPL sets judge each worker's
   if (!o.render.camera_file.empty()) igi::place_camera(scene, igi::read_camera_file(o.render.camera_file));  // before anything starts
   zmq::context_t context(o.io_threads);
-  igi::MasterSession session(o, igi::make_scene_source(o.render.scene), context, curve ? &curve->server : nullptr);
+  igi::SceneSource source = igi::make_scene_source(o.render.scene);
+  source.environment = scene.environment;
+  igi::MasterSession session(o, std::move(source), context, curve ? &curve->server : nullptr);
   session.judge_by(std::move(as_workers_load_it));
   if (curve)
     std::fprintf(stderr, "igi-master: listening on %s (CURVE; master public key %s; %zu authorised worker keys)\n",

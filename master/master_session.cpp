@@ -335,6 +335,7 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
   w.scene_name = scene_.name;
   w.scene_hash = scene_.hash;
   w.scene_size = scene_.size;
+  w.environment = scene_.environment;
   w.settings = options_.render.settings;
   w.credits = uint32_t(credits);
   w.heartbeat_ms = uint32_t(options_.heartbeat_ms);

@@ -55,6 +55,7 @@ struct SceneSource {
   uint64_t hash = 0;       // 0 for built-in scenes
   uint64_t size = 0;       // bytes of the file
   std::shared_ptr<const std::vector<uint8_t>> message;  // the encoded SceneData; null for built-in scenes
+  glm::vec3 environment{0.0f};  // the sky the master's scene stands under (Welcome carries it)
 };
 // Reads a scene file (or names a built-in scene) and encodes what workers may ask for.
 SceneSource make_scene_source(const std::string& scene);

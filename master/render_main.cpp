@@ -21,7 +21,7 @@ int run(const igi::RenderOptions& o) {
   std::optional<igi::Camera> camera;  // a bad camera file stops us before the scene loads
   if (!o.camera_file.empty()) camera = igi::read_camera_file(o.camera_file);
   std::vector<std::string> warnings;
-  igi::Scene scene = igi::load_scene(o.scene, &warnings);
+  igi::Scene scene = igi::load_scene(o.scene, &warnings, o.environment);
   for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (camera) igi::place_camera(scene, *camera);
   if (!o.export_gltf.empty()) {

@@ -93,6 +93,10 @@ void add_image_options(CLI::App& app, RenderOptions& o) {
       ->check(cli::bounded_number(protocol::kMaxSceneTime))->type_name("T");
   cli::add_vec3_option(app, "--move-lights", o.light_offset, 1e6,
                        "metres to move the scene's lights by, as the window's J/L, U/O, I/K keys do [0,0,0]");
+  cli::add_colour_option(app, "--environment", o.environment, protocol::kMaxEnvironment,
+                         "light the scene with a constant sky of this radiance (linear RGB; 1,1,1 is white), seen "
+                         "where rays leave the scene; replaces the scene's own (glTF scene extras \"environment\") "
+                         "[none]");
 }
 
 void add_vpl_options(CLI::App& app, RenderSettings& s) {

@@ -2,6 +2,7 @@
 // Command-line options shared by igi-render and igi-master: which scene,
 // which method with which settings, what image. Declared once (CLI11), for
 // both programs' command lines and help.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,7 @@ struct RenderOptions {
   double time = 0.0, time_step = 1.0 / 30.0;
   bool loop = false;
   glm::vec3 light_offset{0.0f};  // --move-lights: metres, as the window's keys move them
+  std::optional<glm::vec3> environment;  // --environment: a constant sky's radiance, replacing the scene's
 };
 
 // Declares the render options on `app`, writing into `options` (which must

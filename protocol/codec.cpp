@@ -239,6 +239,7 @@ void write(Writer& w, const Welcome& m) {
   w.string(m.scene_name);
   w.u64(m.scene_hash);
   w.u64(m.scene_size);
+  w.vec3(m.environment);
   write(w, m.settings);
   w.u32(m.credits);
   w.u32(m.heartbeat_ms);
@@ -260,6 +261,10 @@ void read(Reader& r, Welcome& m) {
   m.scene_size = r.u64("scene_size");
   if (m.scene_size > kMaxSceneBytes)
     r.fail("scene_size", std::to_string(m.scene_size) + " bytes, over the limit of " + std::to_string(kMaxSceneBytes));
+  m.environment = r.vec3("environment");
+  for (int c = 0; c < 3; ++c)
+    if (!(m.environment[c] >= 0.0f && m.environment[c] <= kMaxEnvironment))
+      r.fail("environment", show(m.environment[c]) + ", expected a radiance from 0 to " + show(float(kMaxEnvironment)));
   read(r, m.settings);
   m.credits = r.u32("credits");
   check_range(r, "credits", m.credits, 1, kMaxCredits);

@@ -37,8 +37,9 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // frame's settings (the window changes them live). 8: FrameSetup carries the
 // scene's pose (animation time, moved lights). 9: settings.clamp is a fraction of the
 // scene's mean chord, at most kMaxClamp; FrameSetup.sample_begin is the ir/igi/lightcuts
-// pass the clamp relaxes with (methods/clamp.h).
-inline constexpr uint16_t kVersion = 10;
+// pass the clamp relaxes with (methods/clamp.h). 10: settings carry the wavelet
+// filter's levels. 11: Welcome carries the scene's environment (a constant sky).
+inline constexpr uint16_t kVersion = 11;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;
@@ -47,6 +48,7 @@ inline constexpr int kMaxImageSide = 16384;
 inline constexpr int kMaxTileSide = 1024;
 inline constexpr size_t kMaxMessageBytes = kMaxSceneBytes + 65536;
 inline constexpr double kMaxSceneTime = 1e9;  // seconds
+inline constexpr double kMaxEnvironment = 1e6;  // a sky's radiance, per channel (--environment)
 // Welcome's liveness and flow control: the decoder refuses a Welcome outside
 // these, and the master's command line refuses the options that would fill
 // them in (protocol/liveness_options.h, --credits), so both say the same.
@@ -80,6 +82,9 @@ struct Welcome {
   std::string scene_name;   // built-in scene name, or the file's name (no directories)
   uint64_t scene_hash = 0;  // XXH3-64 of the file's bytes (scene/scene_file.h); 0 for built-in scenes
   uint64_t scene_size = 0;  // bytes of the file; 0 for built-in scenes
+  // The sky the master's scene stands under (its own, or --environment's):
+  // the worker's copy takes it, whatever the file says. Zero: none.
+  glm::vec3 environment{0.0f};
   RenderSettings settings;
   uint32_t credits = 2;         // jobs the worker may hold at once
   uint32_t heartbeat_ms = 500;  // both sides send at least this often

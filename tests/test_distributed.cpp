@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -51,11 +52,12 @@ Image single_process(const std::string& scene = "cornell") {
 // Master and two workers with `options` on `scene` give, bit for bit, the
 // one-process render with igi's settings (8 light paths) as `edit` changes them.
 void expect_workers_match_one_process(const std::string& name, const std::string& options, const std::string& scene,
-                                      const std::function<void(RenderSettings&)>& edit) {
+                                      const std::function<void(RenderSettings&)>& edit,
+                                      std::optional<glm::vec3> environment = std::nullopt) {
   const std::string out = test::output_path(name + ".exr");
   auto r = test::run(master("--workers 2 --frames 1 " + options + " -o " + out, scene));
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  test::Prepared p(load_scene(scene));
+  test::Prepared p(load_scene(scene, nullptr, environment));
   RenderSettings s;
   s.method = MethodKind::Igi;
   s.paths_per_set = 8;
@@ -105,6 +107,13 @@ TEST(Distributed, CausticsAndGlassBranchesMatchOneProcess) {
 TEST(Distributed, WaveletFilterMatchesOneProcess) {
   expect_workers_match_one_process("dist-wavelet", "--wavelet 2", "cornell",
                                    [](RenderSettings& s) { s.wavelet_levels = 2; });
+}
+
+// The environment travels in the Welcome: workers light the scene with the
+// master's sky (the Cornell box's open front shows it), not the file's none.
+TEST(Distributed, EnvironmentLightMatchesOneProcess) {
+  expect_workers_match_one_process("dist-environment", "--environment 0.2,0.3,0.4", "cornell",
+                                   [](RenderSettings&) {}, glm::vec3(0.2f, 0.3f, 0.4f));
 }
 
 // Lightcuts' light tree and reconstruction grid through master and workers:

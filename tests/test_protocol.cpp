@@ -50,7 +50,7 @@ bool same(const Hello& a, const Hello& b) {
 }
 bool same(const Welcome& a, const Welcome& b) {
   return a.session == b.session && a.scene_name == b.scene_name && a.scene_hash == b.scene_hash &&
-         a.scene_size == b.scene_size && same(a.settings, b.settings) && a.credits == b.credits &&
+         a.scene_size == b.scene_size && a.environment == b.environment && same(a.settings, b.settings) && a.credits == b.credits &&
          a.heartbeat_ms == b.heartbeat_ms && a.timeout_ms == b.timeout_ms && a.pixel_format == b.pixel_format;
 }
 bool same(const Refuse& a, const Refuse& b) { return a.reason == b.reason; }
@@ -114,7 +114,7 @@ std::vector<Message> samples() {
   for (size_t i = 0; i < scene.size(); ++i) scene[i] = uint8_t(i * 7);
   return {
       Hello{"igi-1.0-abc123", "avx2", 12},
-      Welcome{0x1122334455667788ull, "cornell.glb", 0xcbf29ce484222325ull, 123456, settings, 3, 250, 1700,
+      Welcome{0x1122334455667788ull, "cornell.glb", 0xcbf29ce484222325ull, 123456, {0.5f, 1.0f, 2.0f}, settings, 3, 250, 1700,
               PixelFormat::Float16},
       Refuse{"build id mismatch: worker abc, master def"},
       SceneRequest{0xdeadbeefcafef00dull},

@@ -1,6 +1,7 @@
 #include "worker_session.h"
 
 #include <cstdio>
+#include <cstring>
 #include <thread>
 
 #include "build_id.h"
@@ -17,7 +18,13 @@ namespace {
 constexpr int kLogFirst = 5;  // non-finite pixels are logged this often, then only counted
 constexpr double kFirstBackoff = 0.25, kMaxBackoff = 32.0;
 
-std::string scene_key(const std::string& name, uint64_t hash) { return name + "#" + hash_hex(hash); }
+// The scene as a worker holds it: the file (or built-in name) and the sky it stands under.
+std::string scene_key(const protocol::Welcome& w) {
+  uint32_t sky[3];
+  std::memcpy(sky, &w.environment[0], sizeof sky);
+  return w.scene_name + "#" + hash_hex(w.scene_hash) + "#" + std::to_string(sky[0]) + "," + std::to_string(sky[1]) +
+         "," + std::to_string(sky[2]);
+}
 
 }  // namespace
 
@@ -203,14 +210,14 @@ std::optional<WorkerSession::Outcome> WorkerSession::handle(protocol::Message& m
   } else if (auto* data = std::get_if<protocol::SceneData>(&m)) {
     if (!welcome_ || data->scene_hash != welcome_->scene_hash) return std::nullopt;  // not what we asked for
     auto bytes = std::make_shared<protocol::SceneData>(std::move(*data));
-    start_loading([cache = cache_, bytes, fail = options_.fail_scene_load] {
+    start_loading([cache = cache_, bytes, sky = welcome_->environment, fail = options_.fail_scene_load] {
       std::string path;
       try {
         path = cache->store(*bytes);  // checks the hash; writes only inside the cache folder
       } catch (const std::exception& e) {
         return LoadResult{nullptr, false, e.what(), true};
       }
-      return load(path, fail);
+      return load(path, sky, fail);
     });
   } else if (std::holds_alternative<protocol::FrameSetupMsg>(m) || std::holds_alternative<protocol::TileJobMsg>(m)) {
     if (!welcome_) return std::nullopt;  // not ours to render yet
@@ -221,11 +228,11 @@ std::optional<WorkerSession::Outcome> WorkerSession::handle(protocol::Message& m
 }
 
 // The scene, its BVH and lights, built on the loading thread.
-WorkerSession::LoadResult WorkerSession::load(const std::string& scene, bool fail) {
+WorkerSession::LoadResult WorkerSession::load(const std::string& scene, glm::vec3 environment, bool fail) {
   try {
     if (fail) throw std::runtime_error("--test-fail-scene-load");
     auto loaded = std::make_shared<Loaded>();
-    loaded->scene = std::make_unique<SceneState>(load_scene(scene));
+    loaded->scene = std::make_unique<SceneState>(load_scene(scene, nullptr, environment));
     return {loaded, false, {}, false};
   } catch (const std::exception& e) {
     return {nullptr, false, e.what(), false};
@@ -238,7 +245,7 @@ WorkerSession::LoadResult WorkerSession::load(const std::string& scene, bool fai
 void WorkerSession::on_welcome(const protocol::Welcome& welcome) {
   welcome_ = welcome;
   waiting_.clear();
-  const std::string key = scene_key(welcome.scene_name, welcome.scene_hash);
+  const std::string key = scene_key(welcome);
   if (loaded_ && loaded_key_ == key) {
     log("welcomed again: keeping scene " + loaded_->scene->scene().name + " and its BVH (no reload)");
     return start_pool();
@@ -248,8 +255,8 @@ void WorkerSession::on_welcome(const protocol::Welcome& welcome) {
   loaded_key_.clear();
   loading_key_ = key;
   start_loading([cache = cache_, welcome, fail = options_.fail_scene_load] {
-    if (welcome.scene_hash == 0) return load(welcome.scene_name, fail);  // built-in
-    if (auto path = cache->find(welcome.scene_name, welcome.scene_hash)) return load(*path, fail);
+    if (welcome.scene_hash == 0) return load(welcome.scene_name, welcome.environment, fail);  // built-in
+    if (auto path = cache->find(welcome.scene_name, welcome.scene_hash)) return load(*path, welcome.environment, fail);
     return LoadResult{nullptr, true, {}, false};
   });
 }
@@ -264,7 +271,7 @@ void WorkerSession::start_loading(std::function<LoadResult()> work) {
 std::optional<WorkerSession::Outcome> WorkerSession::poll_loading(zmq::socket_t& socket) {
   if (!loading_.valid() || loading_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return std::nullopt;
   LoadResult result = loading_.get();
-  const bool current = welcome_ && scene_key(welcome_->scene_name, welcome_->scene_hash) == loading_key_;
+  const bool current = welcome_ && scene_key(*welcome_) == loading_key_;
   if (result.refused) return refused(result.error);
   if (!result.error.empty()) {
     const std::string why = "cannot load the scene " + (welcome_ ? welcome_->scene_name : loading_key_) + ": " + result.error;

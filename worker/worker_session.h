@@ -78,7 +78,7 @@ class WorkerSession {
     std::string error;
     bool refused = false;  // bytes from the master that do not match their hash or name
   };
-  static LoadResult load(const std::string& scene, bool fail);
+  static LoadResult load(const std::string& scene, glm::vec3 environment, bool fail);
 
   Outcome serve(zmq::context_t& context);
   void wait_for_work(zmq::socket_t& socket);

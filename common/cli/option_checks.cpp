@@ -118,6 +118,25 @@ CLI::Option* add_vec3_option(CLI::App& app, const std::string& name, glm::vec3& 
       ->type_name("X,Y,Z");
 }
 
+CLI::Option* add_colour_option(CLI::App& app, const std::string& name, std::optional<glm::vec3>& out, double bound,
+                               const std::string& help) {
+  auto read = [bound](const std::string& text, glm::vec3& c) {
+    return read_vec3(text, bound, c) && c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f;
+  };
+  char expected[80];
+  std::snprintf(expected, sizeof expected, "expected R,G,B, three numbers from 0 to %g, got '", bound);
+  return app
+      .add_option_function<std::string>(
+          name, [&out, read](const std::string& v) { glm::vec3 c; if (read(v, c)) out = c; }, help)
+      ->check(CLI::Validator(
+          [=](std::string& text) -> std::string {
+            glm::vec3 c;
+            return read(text, c) ? "" : expected + text + "'";
+          },
+          ""))
+      ->type_name("R,G,B");
+}
+
 CLI::Option* add_size_option(CLI::App& app, const std::string& name, int& width, int& height, int max_side,
                              const std::string& help) {
   return app

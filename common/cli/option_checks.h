@@ -6,6 +6,7 @@
 // option's name in front of the checks' text).
 #include <charconv>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -52,6 +53,9 @@ CLI::Validator bounded_number(double bound);
 // A point or offset X,Y,Z (`name`: "--move-lights"), each a number within +-bound, into `out`.
 CLI::Option* add_vec3_option(CLI::App& app, const std::string& name, glm::vec3& out, double bound,
                              const std::string& help);
+// A colour R,G,B, each a number in [0, bound], into `out` (set once given).
+CLI::Option* add_colour_option(CLI::App& app, const std::string& name, std::optional<glm::vec3>& out, double bound,
+                               const std::string& help);
 
 // Options given twice: the last one counts (call before adding options).
 void take_last_by_default(CLI::App& app);

@@ -20,7 +20,10 @@ GatherPoint GatherPointTracer::trace(int x, int y, int k, RayCounts& rays) const
                 1e30f, kCameraRayMask};
   ++rays.primary;
   Hit hit;
-  if (!accel_.intersect(ray, hit)) return g;
+  if (!accel_.intersect(ray, hit)) {
+    g.emitted = accel_.scene().environment;  // the sky (black without one)
+    return g;
+  }
   GSample chain;
   follow_specular_chain(accel_, ray, hit, hash(hash(uint32_t(x), uint32_t(y), frame_.seed), uint32_t(k)),
                         specular_depth_, chain, rays);

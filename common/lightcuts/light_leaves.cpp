@@ -68,8 +68,17 @@ std::vector<LightLeaf> make_light_leaves(const Scene& scene, const VplSets& vpls
   const float inv_sets = 1.0f / float(std::max(1, vpls.set_count()));
   for (uint32_t i = 0; i < vpls.vpls.size(); ++i) {
     const Vpl& v = vpls.vpls[i];
-    if (v.kind != VplKind::Surface && v.kind != VplKind::Area) continue;  // punctual: from the scene
     LightLeaf leaf;
+    if (v.kind == VplKind::Directional) {  // the environment's, from a direction
+      leaf.light_class = LightClass::Directional;
+      leaf.position = -v.normal;
+      leaf.intensity = v.flux * inv_sets;
+      leaf.weight = max_component(leaf.intensity);
+      leaf.source = i;
+      if (leaf.weight > 0.0f) leaves.push_back(leaf);
+      continue;
+    }
+    if (v.kind != VplKind::Surface && v.kind != VplKind::Area) continue;  // punctual: from the scene
     if (vpl_leaf(scene, v, i, inv_sets, leaf)) leaves.push_back(leaf);
   }
   for (uint32_t i = 0; i < scene.lights.size(); ++i) {

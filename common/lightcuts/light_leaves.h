@@ -1,13 +1,14 @@
 #pragma once
-// The lights a light tree clusters: every Surface and Area VPL of a frame,
+// The lights a light tree clusters: every Surface, Area and Directional VPL of a frame,
 // all N x N sets together, plus every point, spot and directional light of
 // the scene, exact, each once.
 //
 // Scale. ir sums all S sets and divides by S, since each set alone estimates
 // the whole light. Lightcuts estimates that same sum, so a VPL leaf carries
 // its flux divided by S; punctual lights carry their own intensity (W/sr;
-// directional W/m^2). VPL kinds Point, Spot and Directional, if a VplSets
-// holds them, are skipped: those lights come from the scene instead.
+// directional W/m^2). Directional VPLs (the environment's, vpl/vpl.h) are
+// leaves with their irradiance divided by S; VPL kinds Point and Spot, if a
+// VplSets holds them, are skipped: those lights come from the scene.
 //
 // A leaf's light at a gather point x, seen from wo, with wi the unit
 // direction from x to the light, r its distance, G = min(|cos_x| cos_y / r^2, b)

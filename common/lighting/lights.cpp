@@ -25,6 +25,10 @@ LightSet::LightSet(const Scene& scene) : scene_(scene), light_of_triangle_(scene
     static constexpr LightKind kinds[] = {LightKind::Point, LightKind::Spot, LightKind::Directional};
     lights_.push_back({kinds[int(scene.lights[i].type)], i});
   }
+  if (scene.has_environment()) {
+    environment_ = int32_t(lights_.size());
+    lights_.push_back({LightKind::Environment, 0});
+  }
   refresh(scene.bounds());
 }
 
@@ -45,6 +49,8 @@ float LightSet::power(const Light& light) const {
     const Material& m = scene_.materials[scene_.triangle_material[light.index]];
     return luminance(m.emission) * triangle_area(light.index) * kPi;
   }
+  if (light.kind == LightKind::Environment)
+    return 4.0f * kPi * kPi * scene_radius_ * scene_radius_ * luminance(scene_.environment);
   const PunctualLight& p = scene_.lights[light.index];
   float i = luminance(p.intensity);
   switch (light.kind) {
@@ -80,6 +86,14 @@ LightSample LightSet::sample_light(uint32_t index, float select, glm::vec3 p, gl
     s.pdf = select * dist2 / (cos_light * triangle_area(light.index));
     return s;
   }
+  if (light.kind == LightKind::Environment) {
+    // Uniform over the sphere: a constant sky has nothing brighter to aim at.
+    s.direction = uniform_sphere(u);
+    s.distance = INFINITY;
+    s.radiance = scene_.environment;
+    s.pdf = select * kInv4Pi;
+    return s;
+  }
   const PunctualLight& pl = scene_.lights[light.index];
   s.delta = true;
   s.pdf = select;
@@ -110,6 +124,16 @@ float LightSet::pdf_area(uint32_t triangle, glm::vec3 p, glm::vec3 hit_point) co
   return distribution_.probability(uint32_t(light)) * dist2 / (cos_light * triangle_area(triangle));
 }
 
+float LightSet::pdf_environment() const {
+  return environment_ < 0 ? 0.0f : distribution_.probability(uint32_t(environment_)) * kInv4Pi;
+}
+
+glm::vec3 LightSet::disc_origin(glm::vec3 direction, glm::vec2 u) const {
+  const Onb frame(direction);
+  const float r = std::sqrt(u.x) * scene_radius_, phi = 2.0f * kPi * u.y;
+  return scene_center_ - direction * scene_radius_ + frame.to_world({r * std::cos(phi), r * std::sin(phi), 0.0f});
+}
+
 EmissionSample LightSet::sample_emission(float u_select, glm::vec2 u) const {
   return sample_emission(distribution_, u_select, u);
 }
@@ -132,13 +156,19 @@ EmissionSample LightSet::sample_emission(const Distribution1D& selection, float 
               (triangle_area(light.index) / select);
     return e;
   }
+  if (light.kind == LightKind::Environment) {
+    // The direction is the caller's (light_path.h), the origin on the disc
+    // across it: flux L x 4 pi (directions) x pi R^2 (the disc), per choice.
+    e.position = glm::vec3(0.0f);
+    e.normal = glm::vec3(0.0f);
+    e.power = scene_.environment * (4.0f * kPi * kPi * scene_radius_ * scene_radius_ / select);
+    return e;
+  }
   const PunctualLight& pl = scene_.lights[light.index];
   if (light.kind == LightKind::Directional) {
     // A point on a disc of the scene's radius facing the light, outside the scene.
     glm::vec3 dir = glm::normalize(pl.direction);
-    Onb frame(dir);
-    float r = std::sqrt(u.x) * scene_radius_, phi = 2.0f * kPi * u.y;
-    e.position = scene_center_ - dir * scene_radius_ + frame.to_world({r * std::cos(phi), r * std::sin(phi), 0.0f});
+    e.position = disc_origin(dir, u);
     e.normal = dir;
     e.power = pl.intensity * (kPi * scene_radius_ * scene_radius_ / select);
     return e;

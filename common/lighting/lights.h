@@ -1,9 +1,12 @@
 #pragma once
 // Every light of a scene in one list, chosen in proportion to its power:
-// emissive triangles (area lights, front face only) and punctual lights.
+// emissive triangles (area lights, front face only), punctual lights and
+// the environment (Scene::environment, a constant sky; last in the list).
 //
 // Units: area-light radiance W/(m^2 sr); point/spot intensity W/sr;
-// directional irradiance W/m^2. Power is the luminance of the emitted flux.
+// directional irradiance W/m^2; environment radiance W/(m^2 sr). Power is
+// the luminance of the emitted flux; the environment's is what enters the
+// scene's bounding sphere of radius R, 4 pi^2 R^2 L (as pbrt-v4 counts it).
 #include <cstdint>
 #include <vector>
 
@@ -14,11 +17,11 @@
 
 namespace igi {
 
-enum class LightKind : uint8_t { Area, Point, Spot, Directional };
+enum class LightKind : uint8_t { Area, Point, Spot, Directional, Environment };
 
 struct Light {
   LightKind kind;
-  uint32_t index;  // triangle (Area) or Scene::lights entry (others)
+  uint32_t index;  // triangle (Area), Scene::lights entry (punctual), 0 (Environment)
 };
 
 // A point on a light as seen from a shading point, for next-event estimation.
@@ -34,7 +37,7 @@ struct LightSample {
 // A ray leaving a light, for tracing light paths (VPLs).
 struct EmissionSample {
   glm::vec3 position;
-  glm::vec3 normal;     // area: surface normal; point/spot: zero; directional: travel direction
+  glm::vec3 normal;     // area: surface normal; point/spot/environment: zero; directional: travel direction
   glm::vec3 power;      // flux carried by this path: emitted quantity / (pdf of choosing it)
   LightKind kind;
   uint32_t light;       // index into LightSet::lights()
@@ -59,6 +62,9 @@ class LightSet {
   // Solid-angle density with which sample() would have picked the point hit on
   // emissive `triangle` at `hit_point` from `p` (for MIS of BSDF-sampled hits).
   float pdf_area(uint32_t triangle, glm::vec3 p, glm::vec3 hit_point) const;
+  // Solid-angle density with which sample() picks a direction of the
+  // environment (uniform over the sphere); 0 without one.
+  float pdf_environment() const;
 
   // A light and a point on it, with the power it carries (for VPL light paths).
   // Area lights: point uniform on the triangle; the direction is sampled by the caller.
@@ -68,6 +74,11 @@ class LightSet {
   EmissionSample sample_emission(const Distribution1D& selection, float u_select, glm::vec2 u) const;
   // Emitted power of light `light` (luminance of its flux): the weights of power selection.
   float light_power(uint32_t light) const { return power(lights_[light]); }
+
+  // Where a ray entering the scene along `direction` (unit) starts: on the
+  // disc of the scene's radius across it, outside the scene, u uniform on
+  // the disc (directional lights and the environment).
+  glm::vec3 disc_origin(glm::vec3 direction, glm::vec2 u) const;
 
   float scene_radius() const { return scene_radius_; }
   const Scene& scene() const { return scene_; }
@@ -80,6 +91,7 @@ class LightSet {
   std::vector<Light> lights_;
   std::vector<int32_t> light_of_triangle_;  // -1 when not emissive
   Distribution1D distribution_;
+  int32_t environment_ = -1;  // its index in lights_, -1 when the scene has none
   glm::vec3 scene_center_;
   float scene_radius_ = 1.0f;
 };

@@ -72,7 +72,10 @@ int follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, in
     g.throughput = b.throughput;
     if (!b.traced) {
       ++rays.secondary;
-      if (!accel.intersect(b.ray, b.hit)) continue;
+      if (!accel.intersect(b.ray, b.hit)) {
+        g.emitted += g.throughput * scene.environment;  // out of the scene: the sky
+        continue;
+      }
     }
     for (;; ++b.depth) {
       const SurfacePoint sp = surface_at(scene, b.hit, b.ray.direction);
@@ -102,7 +105,10 @@ int follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, in
       }
       b.ray = Ray{offset_origin(sp, wi), wi, 0.0f, 1e30f, b.ray.mask};
       ++rays.secondary;
-      if (!accel.intersect(b.ray, b.hit)) break;
+      if (!accel.intersect(b.ray, b.hit)) {
+        g.emitted += g.throughput * scene.environment;
+        break;
+      }
     }
   }
   return used;
@@ -141,9 +147,14 @@ void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis&
   }
   rtcIntersect16(valid, accel.handle(), &context, &packet);
   GSample more[kMaxGlassBranches];  // reset by follow_specular_tree as it uses them
+  const glm::vec3 sky = accel.scene().environment;
   for (int i = 0; i < 16; ++i) {
     const int x = bx + (i & 3), y = by + (i >> 2);
-    if (!valid[i] || packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+    if (!valid[i]) continue;
+    if (packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
+      out.at(k, size_t(y) * region.width + x).emitted = sky;  // the camera sees the sky (black without one)
+      continue;
+    }
     Ray ray{camera.origin, {packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]}, 0.0f, 1e30f, kCameraRayMask};
     Hit hit{packet.ray.tfar[i], accel.triangle_index(packet.hit.instID[0][i], packet.hit.geomID[i], packet.hit.primID[i]),
             {packet.hit.u[i], packet.hit.v[i]}};

@@ -19,8 +19,15 @@ void gather_at(const Accel& accel, const GSample& g, uint32_t owner, uint32_t se
     const Ray ray{offset_origin(g.surface, bs->wi), bs->wi};
     ++rays.secondary;
     Hit hit;
-    if (!accel.intersect(ray, hit)) continue;
     GSample y;
+    if (!accel.intersect(ray, hit)) {
+      if (!accel.scene().has_environment()) continue;
+      y.emitted = accel.scene().environment;  // the sky in the lobe
+      out.points.push_back(y);
+      out.owner.push_back(owner);
+      out.weight.push_back(bs->weight * inv_rays);
+      continue;
+    }
     follow_specular_chain(accel, ray, hit, hash(seed, uint32_t(j)), depth_limit(settings.specular_depth), y, rays);
     if (!y.valid() && y.emitted == glm::vec3(0.0f)) continue;
     out.points.push_back(y);

@@ -68,7 +68,14 @@ glm::vec3 PathTracer::radiance(Ray ray, uint32_t sample_index, uint32_t pixel_se
     // Camera rays and what mirrors and glass show of them skip the back of
     // single-sided faces; after a diffuse or glossy bounce every face is opaque.
     ray.mask = specular_bounce ? kCameraRayMask : kOpaqueRayMask;
-    if (!context_.accel.intersect(ray, hit)) break;
+    if (!context_.accel.intersect(ray, hit)) {
+      // Out of the scene: the environment, weighted against its light samples.
+      if (scene.has_environment()) {
+        const float w = specular_bounce ? 1.0f : power_heuristic(bsdf_pdf_prev, context_.lights.pdf_environment());
+        result += throughput * scene.environment * w;
+      }
+      break;
+    }
     SurfacePoint sp = surface_at(scene, hit, ray.direction);
     const glm::vec3 wo = -ray.direction;
 

@@ -9,6 +9,7 @@ namespace igi {
 
 inline constexpr float kPi = std::numbers::pi_v<float>;
 inline constexpr float kInvPi = 1.0f / kPi;
+inline constexpr float kInv4Pi = 0.25f / kPi;
 
 // Orthonormal basis (t, b, n) around a unit normal n (Duff et al. 2017).
 struct Onb {
@@ -28,6 +29,12 @@ struct Onb {
 inline glm::vec3 cosine_hemisphere(glm::vec2 u) {
   float r = std::sqrt(u.x), phi = 2.0f * kPi * u.y;
   return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u.x))};
+}
+
+// Uniform direction on the unit sphere; density 1 / (4 pi).
+inline glm::vec3 uniform_sphere(glm::vec2 u) {
+  float z = 1.0f - 2.0f * u.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+  return {r * std::cos(2.0f * kPi * u.y), r * std::sin(2.0f * kPi * u.y), z};
 }
 
 // Uniform point on a triangle as barycentrics (b1, b2) (Heitz 2019: low distortion).

@@ -247,6 +247,23 @@ std::shared_ptr<const SceneAnimation> make_animation(std::vector<AnimationChanne
   return animation;
 }
 
+// The scene's extras {"environment": [r, g, b]}: a constant sky's radiance
+// (gltf_writer.cpp writes it); none when absent.
+glm::vec3 read_environment(const tinygltf::Model& model, GltfDiagnostics& diag) {
+  if (model.scenes.empty()) return glm::vec3(0.0f);
+  const tinygltf::Value& extras = model.scenes[size_t(std::max(0, model.defaultScene)) % model.scenes.size()].extras;
+  if (!extras.IsObject() || !extras.Has("environment")) return glm::vec3(0.0f);
+  const tinygltf::Value& v = extras.Get("environment");
+  glm::vec3 c(0.0f);
+  bool ok = v.IsArray() && v.ArrayLen() == 3;
+  for (int i = 0; ok && i < 3; ++i) {
+    ok = v.Get(i).IsNumber();
+    if (ok) c[i] = float(v.Get(i).GetNumberAsDouble());
+  }
+  if (!ok) diag.fail("scenes", "extras.environment must be three numbers [r, g, b]");
+  return c;  // finite and >= 0: Scene::validate
+}
+
 // Scene::validate names the scene, not the file: prefix the file.
 void validate_scene(const Scene& scene, const GltfDiagnostics& diag) {
   try {
@@ -258,13 +275,13 @@ void validate_scene(const Scene& scene, const GltfDiagnostics& diag) {
 
 }  // namespace
 
-LoadedScene load_gltf(const std::string& path) {
+LoadedScene load_gltf(const std::string& path, std::optional<glm::vec3> environment) {
   const std::string folder = fs::path(path).parent_path().string();
-  return load_gltf_memory(read_file(path), path, folder.empty() ? "." : folder);
+  return load_gltf_memory(read_file(path), path, folder.empty() ? "." : folder, environment);
 }
 
 LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& name,
-                             const std::string& resource_dir) {
+                             const std::string& resource_dir, std::optional<glm::vec3> environment) {
   GltfDiagnostics diag;
   diag.file = name;
   const tinygltf::Model model = parse_model(bytes, resource_dir, diag);
@@ -285,6 +302,7 @@ LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& 
   scene.camera = nodes.camera;
   if (!nodes.pose_nodes.empty()) scene.animation = make_animation(std::move(channels), nodes, std::move(parts), scene, diag);
   scene.name = nodes.scene_name.empty() ? fs::path(name).stem().string() : nodes.scene_name;
+  scene.environment = environment ? *environment : read_environment(model, diag);
   validate_scene(scene, diag);
   loaded.warnings = std::move(diag.warnings);
   return loaded;

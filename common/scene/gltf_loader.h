@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <optional>
 #include <vector>
 
 #include "scene/scene.h"
@@ -37,14 +38,17 @@ struct LoadedScene {
 
 // Binary when the file starts with the "glTF" magic or is named *.glb;
 // JSON otherwise.
-// External URIs resolve inside the file's folder.
-LoadedScene load_gltf(const std::string& path);
+// External URIs resolve inside the file's folder. The environment (a
+// constant sky) comes from the glTF scene's extras, {"environment": [r, g,
+// b]}, unless `environment` is given: then that one (the command line's).
+LoadedScene load_gltf(const std::string& path, std::optional<glm::vec3> environment = std::nullopt);
 
 // The same from bytes in memory (the fuzz targets, scenes off the wire).
 // `name` stands for the file in messages and, like a path, says .glb when
 // the bytes lack the magic. External URIs resolve inside `resource_dir`;
 // with an empty `resource_dir` every external URI is refused.
 LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& name,
-                             const std::string& resource_dir = "");
+                             const std::string& resource_dir = "",
+                             std::optional<glm::vec3> environment = std::nullopt);
 
 }  // namespace igi

@@ -273,6 +273,13 @@ tinygltf::Model to_model(const Scene& scene, const std::string& stem) {
   tinygltf::Scene root;
   root.name = scene.name;
   for (size_t i = 0; i < model.nodes.size(); ++i) root.nodes.push_back(int(i));
+  if (scene.has_environment()) {  // gltf_loader.cpp reads it back
+    tinygltf::Value::Array sky;
+    for (int c = 0; c < 3; ++c) sky.emplace_back(double(scene.environment[c]));
+    tinygltf::Value::Object extras;
+    extras["environment"] = tinygltf::Value(std::move(sky));
+    root.extras = tinygltf::Value(std::move(extras));
+  }
   model.scenes.push_back(root);
   model.defaultScene = 0;
   return model;

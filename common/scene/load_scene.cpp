@@ -5,9 +5,17 @@
 
 namespace igi {
 
-Scene load_scene(const std::string& name_or_path, std::vector<std::string>* warnings) {
-  if (is_builtin_scene(name_or_path)) return make_builtin_scene(name_or_path);
-  LoadedScene loaded = load_gltf(name_or_path);
+Scene load_scene(const std::string& name_or_path, std::vector<std::string>* warnings,
+                 std::optional<glm::vec3> environment) {
+  if (is_builtin_scene(name_or_path)) {
+    Scene scene = make_builtin_scene(name_or_path);
+    if (environment) {
+      scene.environment = *environment;
+      scene.validate();
+    }
+    return scene;
+  }
+  LoadedScene loaded = load_gltf(name_or_path, environment);
   if (warnings) *warnings = std::move(loaded.warnings);
   return std::move(loaded.scene);
 }

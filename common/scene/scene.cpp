@@ -38,7 +38,7 @@ Bounds Scene::bounds() const {
 }
 
 bool Scene::has_light() const {
-  if (!lights.empty()) return true;
+  if (!lights.empty() || has_environment()) return true;
   for (uint32_t m : triangle_material)
     if (materials[m].is_emissive()) return true;
   return false;
@@ -89,7 +89,11 @@ void Scene::validate() const {
     if (m.base_color_texture >= int(textures.size()))
       throw SceneError(where + "material '" + m.name + "' names texture " +
                        std::to_string(m.base_color_texture) + " of " + std::to_string(textures.size()));
-  if (!has_light()) throw SceneError(where + "no light (no emissive material and no punctual light)");
+  if (!finite(environment) || environment.x < 0.0f || environment.y < 0.0f || environment.z < 0.0f)
+    throw SceneError(where + "the environment's radiance must be finite and >= 0");
+  if (!has_light())
+    throw SceneError(where + "no light (no emissive material, no punctual light, no environment): "
+                             "light it with a sky, --environment 1,1,1");
 }
 
 }  // namespace igi

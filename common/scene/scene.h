@@ -99,6 +99,10 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<PunctualLight> lights;
+  // A constant sky around the scene: radiance (W/(m^2 sr)) arriving from
+  // every direction a ray leaves the scene by; zero for none. From the
+  // command line (--environment) or the glTF scene's extras.
+  glm::vec3 environment{0.0f};
   std::optional<Camera> camera;
   // What moves (animated nodes, the area lights) and how; null when nothing
   // can. pose_scene() in scene/animation.h moves it.
@@ -106,6 +110,7 @@ struct Scene {
 
   Bounds bounds() const;
   bool has_light() const;
+  bool has_environment() const { return environment.x > 0.0f || environment.y > 0.0f || environment.z > 0.0f; }
   // A camera that frames the bounding box from the +z side, looking down -z.
   Camera auto_camera() const;
   Camera camera_or_auto() const { return camera ? *camera : auto_camera(); }

@@ -31,6 +31,15 @@ LightPathStart start_light_path(const LightSet& lights, const Scene& scene, Samp
       start.ray = Ray{e.position, e.normal};
       start.flux = e.power;
       break;
+    case LightKind::Environment: {
+      // Into the scene along a uniform direction, from the disc across it.
+      const glm::vec3 d = uniform_sphere(u_dir);
+      start.ray = Ray{lights.disc_origin(d, u_point), d};
+      start.flux = e.power;
+      start.from_environment = true;
+      start.irradiance = e.power * (kInvPi / (lights.scene_radius() * lights.scene_radius()));
+      break;
+    }
     default: {
       const PunctualLight& pl = scene.lights[lights.lights()[e.light].index];
       glm::vec3 d;
@@ -40,8 +49,7 @@ LightPathStart start_light_path(const LightSet& lights, const Scene& scene, Samp
         float pdf = 1.0f / (2.0f * kPi * (1.0f - cos_max));
         start.flux = e.power * (spot_attenuation(pl, d) / pdf);
       } else {
-        float z = 1.0f - 2.0f * u_dir.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-        d = glm::vec3(r * std::cos(2.0f * kPi * u_dir.y), r * std::sin(2.0f * kPi * u_dir.y), z);
+        d = uniform_sphere(u_dir);
         start.flux = e.power * (4.0f * kPi);
       }
       start.ray = Ray{e.position, d};

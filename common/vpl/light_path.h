@@ -28,12 +28,17 @@ struct LightPathStart {
   // leave no such vertex.
   bool on_area_light = false;
   glm::vec3 position{0.0f}, normal{0.0f}, power{0.0f};
+  // The environment: the path's direction (ray.direction) as a directional
+  // light of this irradiance (W/m^2 per path, L 4 pi / the choice's
+  // probability): what the Directional VPL it leaves carries.
+  bool from_environment = false;
+  glm::vec3 irradiance{0.0f};
 };
 
 // Picks a light in proportion to its power (or by `selection`, a
 // distribution over the LightSet's entries: light importance), a point on it
 // and a direction (cosine-distributed for area lights, uniform for point
-// lights and inside a spot's cone), from the stream's next kStartDims dimensions.
+// lights and the environment, inside a spot's cone), from the stream's next kStartDims dimensions.
 LightPathStart start_light_path(const LightSet& lights, const Scene& scene, SampleStream& u,
                                 const Distribution1D* selection = nullptr);
 

@@ -10,10 +10,12 @@
 //   Directional: flux, from direction -normal, at infinity
 // The geometry term cos_x cos_y / r^2 is what clamping bounds.
 //
-// VPL sets hold Surface and Area VPLs only. Point, spot and directional
-// lights start light paths like any light, but their own light is exact:
-// the methods evaluate each once per shading point (methods/direct_lights.h)
-// rather than through M identical copies per set.
+// VPL sets hold Surface and Area VPLs, and Directional ones for the
+// environment (one per light path leaving it: the sky's direct light, from
+// the path's direction, flux = irradiance L 4 pi / its choice's probability).
+// Point, spot and directional lights start light paths like any light, but
+// their own light is exact: the methods evaluate each once per shading point
+// (methods/direct_lights.h) rather than through M identical copies per set.
 #include <cstdint>
 #include <vector>
 

@@ -20,15 +20,18 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
   const LightPathStart start = start_light_path(ctx.lights, ctx.scene, start_stream, options.selection);
   // The vertex the path leaves from: the Area VPL it leaves on the light, or the punctual light.
   LightVertex previous{LightVertex::From::Punctual, start.light};
-  // An area light leaves a VPL on itself. Point, spot and directional lights
-  // leave none: the methods evaluate their light exactly (vpl/vpl.h); their
+  // An area light leaves a VPL on itself, the environment a directional one.
+  // Point, spot and directional lights leave none: the methods evaluate their light exactly (vpl/vpl.h); their
   // paths still carry it on.
-  if (start.on_area_light) {
+  if (start.on_area_light || start.from_environment) {
+    // The environment's path leaves a Directional VPL: the sky's light from
+    // the path's direction, at infinity (a constant sky is no punctual light
+    // to evaluate exactly, so its direct light comes from these).
     Vpl v;
-    v.kind = VplKind::Area;
+    v.kind = start.on_area_light ? VplKind::Area : VplKind::Directional;
     v.position = start.position;
-    v.normal = start.normal;
-    v.flux = start.power * inv_paths;
+    v.normal = start.on_area_light ? start.normal : start.ray.direction;
+    v.flux = (start.on_area_light ? start.power : start.irradiance) * inv_paths;
     out.push_back(v);
     if (options.vertices) options.vertices->push_back(LightVertex{});
     previous = {LightVertex::From::Vpl, uint32_t(first)};
