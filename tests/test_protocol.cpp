@@ -528,8 +528,10 @@ TEST(Protocol, HugeLengthsAndBadBytesAreRejectedBeforeUse) {
   EXPECT_EQ(patched(sample_half_tile_result(), pixels_at, {0, 1, 0, 0}),
             "TileResult.pixels: truncated: 256 elements of 6 bytes, 384 bytes left");
   Welcome welcome = sample<Welcome>();
-  size_t method_at = 8 + 8 + 4 + welcome.scene_name.size() + 16;
+  size_t method_at = 8 + 8 + 4 + welcome.scene_name.size() + 16 + 12;  // past the environment's 3 floats
   EXPECT_EQ(patched(welcome, method_at, {7}), "Welcome.settings.method: 7, expected [0, 3]");
+  EXPECT_EQ(patched(welcome, method_at - 12, {0, 0, 0x80, 0xbf}),  // -1.0f
+            "Welcome.environment: -1, expected a radiance from 0 to 1000000");
   // method u8; path, light and specular depth, interleave, paths_per_set, aa_samples i32; glossy_threshold
   // f32; glossy_rays i32; clamp f32; compensation_samples i32; then filter.
   EXPECT_EQ(patched(welcome, method_at + 1 + 24 + 4 + 4 + 4 + 4, {2}), "Welcome.settings.filter: boolean byte 2, expected 0 or 1");
