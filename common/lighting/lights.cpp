@@ -49,8 +49,7 @@ float LightSet::power(const Light& light) const {
     const Material& m = scene_.materials[scene_.triangle_material[light.index]];
     return luminance(m.emission) * triangle_area(light.index) * kPi;
   }
-  if (light.kind == LightKind::Environment)
-    return 4.0f * kPi * kPi * scene_radius_ * scene_radius_ * luminance(scene_.environment);
+  if (light.kind == LightKind::Environment) return sky_etendue() * luminance(scene_.environment);
   const PunctualLight& p = scene_.lights[light.index];
   float i = luminance(p.intensity);
   switch (light.kind) {
@@ -124,6 +123,8 @@ float LightSet::pdf_area(uint32_t triangle, glm::vec3 p, glm::vec3 hit_point) co
   return distribution_.probability(uint32_t(light)) * dist2 / (cos_light * triangle_area(triangle));
 }
 
+float LightSet::sky_etendue() const { return 4.0f * kPi * kPi * scene_radius_ * scene_radius_; }
+
 float LightSet::pdf_environment() const {
   return environment_ < 0 ? 0.0f : distribution_.probability(uint32_t(environment_)) * kInv4Pi;
 }
@@ -161,7 +162,7 @@ EmissionSample LightSet::sample_emission(const Distribution1D& selection, float 
     // across it: flux L x 4 pi (directions) x pi R^2 (the disc), per choice.
     e.position = glm::vec3(0.0f);
     e.normal = glm::vec3(0.0f);
-    e.power = scene_.environment * (4.0f * kPi * kPi * scene_radius_ * scene_radius_ / select);
+    e.power = scene_.environment * (sky_etendue() / select);
     return e;
   }
   const PunctualLight& pl = scene_.lights[light.index];

@@ -86,6 +86,8 @@ class LightSet {
 
  private:
   float power(const Light& light) const;
+  // 4 pi (directions) x pi R^2 (the disc across each): the environment's flux per unit radiance.
+  float sky_etendue() const;
 
   const Scene& scene_;
   std::vector<Light> lights_;
