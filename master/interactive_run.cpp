@@ -175,6 +175,7 @@ std::string act(const PanelActions& a, const PanelOptions& p, CameraController& 
 PanelOptions panel_options(const MasterOptions& o) {
   PanelOptions p;
   p.shown = o.panel;
+  p.help = o.help;
   p.overlay = *parse_overlay(o.overlay);  // checked with the options
   if (!o.render.camera_file.empty()) p.bookmark = o.render.camera_file;
   return p;
@@ -206,7 +207,7 @@ struct Shower {
     std::vector<TileSource> sources = std::move(record.tile_sources);  // the overlay's, not the file's
     if (stats) stats->add(record);
     record.tile_sources = std::move(sources);
-    panel.frame_shown(record, std::move(shown.peers));
+    panel.frame_shown(record, std::move(shown.peers), fps);
   }
 };
 

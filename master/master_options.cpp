@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cli/option_checks.h"
+#include "display/window_keys.h"
 #include "protocol/curve.h"
 #include "protocol/liveness_options.h"
 #include "protocol/messages.h"
@@ -21,11 +22,11 @@ constexpr int kMaxLocalWorkers = 1024;
 constexpr int kMaxFrames = 100000000;     // --frames and --first-frame: their sum stays an int
 constexpr int kMaxWaitSeconds = 86400;    // --min-workers-wait
 
-const char* kWindowHelp =
-    "window: drag with the left button to look, W/A/S/D/Q/E to move, R to reset, Esc to quit;\n"
-    "  J/L, U/O, I/K move the scene's lights along x, y, z;\n"
-    "  F1 panel, F2 tile overlay, F5/F9 save/load camera, F12 save the accumulated image (EXR and PNG);\n"
-    "  while the camera and settings are still, frames accumulate (new seed and sub-pixel position each)";
+// The window's keys (display/window_keys.h), and what accumulates.
+std::string window_help() {
+  return "window keys:\n" + window_keys_text("  ") +
+         "while the camera and settings are still, frames accumulate (new seed and sub-pixel position each)";
+}
 
 void add_network_options(CLI::App& app, MasterOptions& o) {
   const std::string group = "Cluster options";
@@ -90,7 +91,7 @@ void add_run_options(CLI::App& app, MasterOptions& o) {
                  "then exit")->check(integer(1, INT_MAX))->group(group)->type_name("N");
   app.add_option_function<std::string>(
          "--panel", [&o](const std::string& v) { o.panel = v == "on"; },
-         "window: the settings and cluster panel at start [on]")
+         "window: the settings panel and the frame rate over the image at start (Tab toggles them) [on]")
       ->check(cli::one_of({"on", "off"}))->group(group)->type_name("on|off");
   app.add_option("--overlay", o.overlay, "window: tint tiles by the worker that rendered them: off, tint, solid [off]")
       ->check(cli::one_of({"off", "tint", "solid"}))->group(group)->type_name("off|tint|solid");
@@ -103,12 +104,13 @@ void add_test_options(CLI::App& app, MasterOptions& o, std::string& panel_edit) 
   app.add_option("--test-stop-worker-after", o.stop_worker_after)->check(integer(0, INT_MAX))->group("");
   app.add_option("--test-send-hwm", o.send_hwm)->check(integer(0, INT_MAX))->group("");
   app.add_option("--test-panel-edit", panel_edit)->group("");
+  app.add_flag("--test-show-help", o.help)->group("");
 }
 
 void declare(CLI::App& app, MasterOptions& o, std::string& panel_edit) {
   cli::take_last_by_default(app);
   cli::add_version_flag(app);
-  app.footer(kWindowHelp);
+  app.footer(window_help());
   add_network_options(app, o);
   add_run_options(app, o);
   add_test_options(app, o, panel_edit);

@@ -34,7 +34,8 @@ struct MasterOptions {
   std::string pixels = "auto";    // pixel format on the wire: auto (float for float files, else half), float, half
   int io_threads = 1;             // ZeroMQ I/O threads (receive and send off the session thread)
   int screenshot_after = 4;       // window: save --screenshot after this many accumulated frames
-  bool panel = true;              // window: the settings and cluster panel shown at start (F1 toggles)
+  bool panel = true;              // window: the panel and the frame rate shown at start (Tab toggles)
+  bool help = false;              // window: the keys' help shown at start (F1 toggles; a test hook)
   std::string overlay = "off";    // window: tile overlay at start: off, tint or solid (F2 cycles)
   // Test hooks.
   int kill_worker_after = 0;      // SIGKILL local worker 0 after this many results (once all have joined)

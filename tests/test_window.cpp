@@ -1,5 +1,6 @@
 // The window shows what the renderer wrote: a screenshot of it under Xvfb
 // equals the PNG (both are 8-bit sRGB of the same image).
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 
@@ -103,6 +104,42 @@ TEST(Window, ThePanelShowsOverTheImageAndHidesWithTheOption) {
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 120; ++x, ++corner) differ += glm::length(with.at(x, y) - without.at(x, y)) > 0.02f;
   EXPECT_GT(differ, corner / 2) << "the panel's title bar should cover the top-left corner";
+  EXPECT_GT(without.mean().x, 0.02f) << "a lit Cornell box";
+}
+
+// At the default 640x480 the panel (sections but quality closed), the frame
+// rate in the bottom-right corner and, on F1, the keys' help in the middle:
+// the panel and the frame rate together cover at most a third of the image.
+TEST(Window, AtTheDefaultSizeThePanelLeavesTwoThirdsOfTheImage) {
+  IGI_NEED_XVFB();
+  auto run = [](const std::string& name, const std::string& extra) {
+    const std::string shot = test::output_path(name);
+    std::filesystem::remove(shot);
+    const std::string command = std::string("timeout -s KILL 60 xvfb-run -a -s '-screen 0 640x480x24' ") +
+                                IGI_MASTER_BINARY + " --workers 2 --worker-threads 1 --vpl-paths 4 --size 640x480 " +
+                                "--quiet --screenshot-after 1 --screenshot " + shot + " " + extra + " >/dev/null 2>&1";
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+    return read_image(shot);
+  };
+  const Image with = run("panel-640.png", ""), without = run("panel-640-off.png", "--panel off"),
+              help = run("panel-640-help.png", "--panel off --test-show-help");
+  ASSERT_EQ(with.width, 640);
+  ASSERT_EQ(without.width, 640);
+  ASSERT_EQ(help.width, 640);
+  auto differing = [](const Image& a, const Image& b, int x0, int y0, int x1, int y1) {
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) n += glm::length(a.at(x, y) - b.at(x, y)) > 0.02f;
+    return double(n) / ((x1 - x0) * (y1 - y0));
+  };
+  const double covered = differing(with, without, 0, 0, 640, 480);
+  std::printf("panel and frame rate cover %.1f %% of 640x480\n", 100.0 * covered);
+  EXPECT_LE(covered, 1.0 / 3.0) << "the panel covers more than a third of the image";
+  EXPECT_GE(covered, 0.05) << "no panel over the image";
+  EXPECT_GT(differing(with, without, 0, 0, 200, 20), 0.5) << "the panel's title bar, top left";
+  EXPECT_GT(differing(with, without, 420, 462, 540, 472), 0.5) << "the frame rate, bottom right, over the floor";
+  EXPECT_GT(differing(help, without, 220, 200, 420, 280), 0.3) << "the keys' help, in the middle";
+  EXPECT_EQ(differing(help, without, 0, 0, 40, 480), 0.0) << "the help alone leaves the left edge";
   EXPECT_GT(without.mean().x, 0.02f) << "a lit Cornell box";
 }
 

@@ -95,15 +95,36 @@ bool SettingsPanel::commit(const RenderSettings& edited) {
 
 bool SettingsPanel::take_change() { return std::exchange(changed_, false); }
 
+namespace {
+
+// The option a widget stands for, and what it does, when the mouse rests on it.
+void tip(const char* option, const char* what) {
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\n%s", what, option);
+}
+
+// A square count s x s (1, 4, ... 64) as a list of counts, the command line's unit.
+void square_count(const char* label, int& count, const char* option, const char* what) {
+  static const char* kCounts[] = {"1", "4", "9", "16", "25", "36", "49", "64"};
+  int side = std::clamp(int(subpixel_side(count)), 1, 8);
+  if (ImGui::BeginCombo(label, kCounts[side - 1])) {
+    for (int i = 1; i <= 8; ++i)
+      if (ImGui::Selectable(kCounts[i - 1], i == side)) count = i * i;
+    ImGui::EndCombo();
+  }
+  tip(option, what);
+}
+
+}  // namespace
+
 void SettingsPanel::draw() {
   RenderSettings s = editing_;
-  ImGui::SliderFloat("exposure", &exposure_, 1.0f / 64, 64.0f, "%.3g", ImGuiSliderFlags_Logarithmic | kBound);
-  draw_method(s);
-  if (vpl_method(s.method)) {
-    draw_vpls(s);
-    draw_filter(s);
+  if (ImGui::CollapsingHeader("quality", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::SliderFloat("exposure", &exposure_, 1.0f / 64, 64.0f, "%.3g", ImGuiSliderFlags_Logarithmic | kBound);
+    tip("--exposure", "display brightness (not sent: the workers' colours stay linear)");
+    draw_method(s);
   }
-  draw_extras(s);
+  if (vpl_method(s.method) && ImGui::CollapsingHeader("filter")) draw_filter(s);
+  if (s.method != MethodKind::PathTracer && ImGui::CollapsingHeader("lighting")) draw_lighting(s);
   if (std::memcmp(&s, &editing_, sizeof s) != 0) commit(s);
   if (!error_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "not sent: %s", error_.c_str());
 }
@@ -114,59 +135,85 @@ void SettingsPanel::draw_method(RenderSettings& s) {
       if (ImGui::Selectable(method_name(m), m == s.method)) s.method = m;
     ImGui::EndCombo();
   }
+  tip("--method", "pt: the path-traced reference; ir, igi: virtual point lights; lightcuts: VPL clusters");
   if (s.method == MethodKind::PathTracer) {
-    ImGui::SliderInt("path depth (0 = RR)", &s.path_depth, 0, 64, "%d", kBound);
+    ImGui::SliderInt("path depth", &s.path_depth, 0, 64, "%d", kBound);
+    tip("--path-depth", "longest path in bounces, 0 = unbounded (Russian roulette)");
     return;
   }
-  ImGui::SliderInt("light depth (0 = RR)", &s.light_depth, 0, 64, "%d", kBound);
-  ImGui::SliderInt("specular depth", &s.specular_depth, 0, 64, "%d", kBound);
+  ImGui::DragInt("paths per set", &s.paths_per_set, 1.0f, 1, kPanelMaxPaths, "%d", kBound);
+  tip("--vpl-paths", "light paths traced for each VPL set; their hits are the VPLs");
+  ImGui::SliderInt("VPL sets (NxN)", &s.interleave, 1, kMaxInterleave, "%d", kBound);
+  tip("--vpl-sets", "N x N interleaved VPL sets: each pixel of an N x N block takes its own");
+  if (s.method == MethodKind::Lightcuts) return draw_lightcuts(s);
+  square_count("anti-aliasing", s.aa_samples, "--aa", "sub-samples per pixel, each shaded by its share of the light paths");
+  ImGui::SliderFloat("clamp", &s.clamp, 0.0f, kMaxClamp, "%.3f", kBound | ImGuiSliderFlags_Logarithmic);
+  tip("--clamp", "clamps VPL light closer than this share of the scene's mean chord; 0 = off");
+  ImGui::SliderInt("compensation", &s.compensation_samples, 0, kMaxCompensationSamples, "%d", kBound);
+  tip("--compensate", "eye samples per pixel that return the light the clamp removed; 0 = off");
 }
 
-void SettingsPanel::draw_vpls(RenderSettings& s) {
-  ImGui::SliderInt("VPL sets N (N x N)", &s.interleave, 1, kMaxInterleave, "%d", kBound);
-  ImGui::DragInt("VPL paths per set", &s.paths_per_set, 1.0f, 1, kPanelMaxPaths, "%d", kBound);
-  int side = std::max(1, int(subpixel_side(s.aa_samples)));
-  if (ImGui::SliderInt("anti-aliasing s (s x s)", &side, 1, 8, "%d", kBound)) s.aa_samples = side * side;
-  ImGui::SliderFloat("clamp (0 = off)", &s.clamp, 0.0f, kMaxClamp, "%.3f", kBound | ImGuiSliderFlags_Logarithmic);
-  ImGui::SliderInt("compensation samples", &s.compensation_samples, 0, kMaxCompensationSamples, "%d", kBound);
-  ImGui::SliderFloat("glossy threshold", &s.glossy_threshold, 0.0f, 1.0f, "%.2f", kBound);
-  ImGui::SliderInt("glossy rays", &s.glossy_rays, 1, kMaxGlossyRays, "%d", kBound);
-  ImGui::SliderInt("glass branches", &s.glass_branches, 1, kMaxGlassBranches, "%d", kBound);
+void SettingsPanel::draw_lightcuts(RenderSettings& s) {
+  ImGui::SliderFloat("clamp", &s.clamp, 0.0f, kMaxClamp, "%.3f", kBound | ImGuiSliderFlags_Logarithmic);
+  tip("--clamp", "clamps VPL light closer than this share of the scene's mean chord; 0 = off");
+  ImGui::SliderFloat("error bound", &s.lightcuts_error, 0.001f, 0.5f, "%.3f", ImGuiSliderFlags_Logarithmic | kBound);
+  tip("--lightcuts-error", "refine until each cluster's error bound is below this share of the pixel");
+  ImGui::DragInt("largest cut", &s.lightcuts_max_cut, 10.0f, 1, lightcuts::kMaxCut, "%d", kBound);
+  tip("--lightcuts-max-cut", "at most this many clusters (shadow rays) in a pixel's cut");
+  ImGui::SliderInt("cut spacing", &s.lightcuts_spacing, 0, lightcuts::kMaxSpacing, "%d", kBound);
+  tip("--lightcuts-spacing", "full cuts every S pixels only, the rest reconstructed; 0 = off");
+  square_count("gather points", s.lightcuts_samples, "--lightcuts-samples", "gather points per pixel");
 }
 
 void SettingsPanel::draw_filter(RenderSettings& s) {
-  if (s.method != MethodKind::Igi && s.method != MethodKind::InstantRadiosity) return;
+  if (s.method != MethodKind::Igi && s.method != MethodKind::InstantRadiosity)
+    return ImGui::TextUnformatted("(lightcuts: no filter)");
   if (s.method == MethodKind::Igi) {
     ImGui::Checkbox("discontinuity filter", &s.filter);
+    tip("--no-filter", "averages each pixel's VPL sets over similar neighbours");
     if (s.filter) {
-      ImGui::SliderFloat("filter normal cos", &s.filter_normal_cos, -1.0f, 1.0f, "%.2f", kBound);
-      ImGui::SliderFloat("filter depth ratio", &s.filter_depth_ratio, 0.0f, 1.0f, "%.3f", kBound);
+      ImGui::SliderFloat("normal match", &s.filter_normal_cos, -1.0f, 1.0f, "%.2f", kBound);
+      tip("--filter-normal", "neighbours need a normal dot product above this");
+      ImGui::SliderFloat("depth match", &s.filter_depth_ratio, 0.0f, 1.0f, "%.3f", kBound);
+      tip("--filter-depth", "neighbours need a relative depth difference below this");
     }
   }
-  ImGui::SliderInt("wavelet levels (0 = off)", &s.wavelet_levels, 0, kMaxWaveletLevels, "%d", kBound);
+  ImGui::SliderInt("wavelet levels", &s.wavelet_levels, 0, kMaxWaveletLevels, "%d", kBound);
+  tip("--wavelet", "edge-avoiding wavelet filter after the discontinuity buffer; 0 = off");
 }
 
-void SettingsPanel::draw_extras(RenderSettings& s) {
-  if (s.method == MethodKind::Lightcuts) {
-    ImGui::SliderFloat("lightcuts error", &s.lightcuts_error, 0.001f, 0.5f, "%.3f", ImGuiSliderFlags_Logarithmic | kBound);
-    ImGui::DragInt("lightcuts max cut", &s.lightcuts_max_cut, 10.0f, 1, lightcuts::kMaxCut, "%d", kBound);
-    ImGui::SliderInt("reconstruction spacing (0 = off)", &s.lightcuts_spacing, 0, lightcuts::kMaxSpacing, "%d", kBound);
-    int side = std::max(1, int(subpixel_side(s.lightcuts_samples)));
-    if (ImGui::SliderInt("gather points s (s x s)", &side, 1, 8, "%d", kBound)) s.lightcuts_samples = side * side;
+void SettingsPanel::draw_lighting(RenderSettings& s) {
+  ImGui::SliderInt("light depth", &s.light_depth, 0, 64, "%d", kBound);
+  tip("--light-depth", "longest VPL light path, 0 = unbounded (Russian roulette)");
+  ImGui::SliderInt("mirror depth", &s.specular_depth, 0, 64, "%d", kBound);
+  tip("--specular-depth", "mirrors and glass followed from the camera, 0 = unbounded");
+  if (s.method == MethodKind::Lightcuts) return;
+  ImGui::SliderFloat("glossy cutoff", &s.glossy_threshold, 0.0f, 1.0f, "%.2f", kBound);
+  tip("--glossy-threshold", "surfaces smoother than this roughness gather their lobe with rays");
+  ImGui::SliderInt("glossy rays", &s.glossy_rays, 1, kMaxGlossyRays, "%d", kBound);
+  tip("--glossy-rays", "gather rays per sub-sample of such a surface");
+  ImGui::SliderInt("glass branches", &s.glass_branches, 1, kMaxGlassBranches, "%d", kBound);
+  tip("--glass-branches", "glass seen from the camera splits into reflection and refraction this deep");
+  ImGui::DragInt("importance", &s.importance_paths, 100.0f, 0, kMaxImportancePaths, "%d", kBound);
+  tip("--importance", "light importance: camera paths that estimate each light's share of the view; 0 = lights by power");
+  if (s.importance_paths > 0) {
+    ImGui::SliderFloat("power share", &s.importance_floor, 0.0f, 1.0f, "%.2f", kBound);
+    tip("--importance-floor", "share of light paths still started by power");
   }
-  if (s.method == MethodKind::InstantRadiosity || s.method == MethodKind::Igi) {
-    ImGui::DragInt("importance paths (0 = off)", &s.importance_paths, 100.0f, 0, kMaxImportancePaths, "%d", kBound);
-    if (s.importance_paths > 0)
-      ImGui::SliderFloat("importance floor", &s.importance_floor, 0.0f, 1.0f, "%.2f", kBound);
-    ImGui::DragInt("bidir VPLs kept (0 = off)", &s.bidir_vpls, 1.0f, 0, kMaxBidirVpls, "%d", kBound);
-    if (s.bidir_vpls > 0)
-      ImGui::DragInt("bidir camera paths (0 = M)", &s.bidir_camera_paths, 1.0f, 0, kMaxBidirPaths, "%d", kBound);
-    ImGui::Checkbox("caustic photons", &s.caustics);
-    if (s.caustics) {
-      ImGui::DragInt("photon paths", &s.caustic_photons, 100.0f, 1, 1 << 22, "%d", kBound);
-      ImGui::SliderFloat("photon radius", &s.caustic_radius, photons::kMinCausticRadius, photons::kMaxCausticRadius,
-                         "%.4f", ImGuiSliderFlags_Logarithmic | kBound);
-    }
+  ImGui::DragInt("bidirectional", &s.bidir_vpls, 1.0f, 0, kMaxBidirVpls, "%d", kBound);
+  tip("--bidir", "bidirectional instant radiosity: per set, keep this many VPLs of light and camera paths by contribution; 0 = off");
+  if (s.bidir_vpls > 0) {
+    ImGui::DragInt("camera paths", &s.bidir_camera_paths, 1.0f, 0, kMaxBidirPaths, "%d", kBound);
+    tip("--bidir-camera-paths", "camera paths per set, 0 = as many as light paths");
+  }
+  ImGui::Checkbox("caustic photons", &s.caustics);
+  tip("--caustics", "adds caustics from a photon map (light through mirrors and glass)");
+  if (s.caustics) {
+    ImGui::DragInt("photon paths", &s.caustic_photons, 100.0f, 1, 1 << 22, "%d", kBound);
+    tip("--caustic-photons", "photon paths shot per frame");
+    ImGui::SliderFloat("photon radius", &s.caustic_radius, photons::kMinCausticRadius, photons::kMaxCausticRadius,
+                       "%.4f", ImGuiSliderFlags_Logarithmic | kBound);
+    tip("--caustic-radius", "photon gather radius, a share of the scene diagonal");
   }
 }
 

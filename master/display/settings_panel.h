@@ -20,7 +20,9 @@ std::optional<std::string> panel_settings_error(const RenderSettings& settings);
 class SettingsPanel {
  public:
   SettingsPanel(const RenderSettings& settings, float exposure);
-  // Draws the widgets (inside an ImGui window the caller opened).
+  // Draws the widgets in three sections, quality (open), filter and lighting
+  // (closed), inside an ImGui window the caller opened; each widget's tooltip
+  // names its command-line option, in the command line's units.
   void draw();
   // The working copy, bounded, becomes the committed settings when valid (the
   // widgets call this; so does the test hook). True when the committed set changed.
@@ -33,9 +35,9 @@ class SettingsPanel {
 
  private:
   void draw_method(RenderSettings& s);
-  void draw_vpls(RenderSettings& s);
+  void draw_lightcuts(RenderSettings& s);
   void draw_filter(RenderSettings& s);
-  void draw_extras(RenderSettings& s);
+  void draw_lighting(RenderSettings& s);
   RenderSettings committed_, editing_;
   float exposure_;
   std::string error_;

@@ -5,15 +5,54 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include <algorithm>
+#include <cstdio>
+#include <functional>
+
 #include "display/cluster_panel.h"
+#include "display/window_keys.h"
 
 namespace igi {
+namespace {
+
+// A box of text in a corner of the window, over the image: pivot (0, 0) top
+// left ... (1, 1) bottom right.
+void corner_box(const char* name, ImVec2 pivot, const std::function<void()>& contents) {
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  const float margin = 6.0f;
+  ImGui::SetNextWindowPos(ImVec2(margin + pivot.x * (size.x - 2 * margin), margin + pivot.y * (size.y - 2 * margin)),
+                          ImGuiCond_Always, pivot);
+  ImGui::SetNextWindowBgAlpha(0.88f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                 ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoInputs;
+  if (ImGui::Begin(name, nullptr, flags)) contents();
+  ImGui::End();
+}
+
+// One line of text in a corner of the window, on a dark box, placed from its
+// own size in this frame (an auto-sized window would lag a frame behind).
+void corner_text(const char* text, ImVec2 pivot) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize, size = ImGui::CalcTextSize(text);
+  const float margin = 6.0f, pad = 5.0f;
+  const ImVec2 box(size.x + 2 * pad, size.y + 2 * pad);
+  const ImVec2 at(margin + pivot.x * (display.x - 2 * margin - box.x), margin + pivot.y * (display.y - 2 * margin - box.y));
+  ImDrawList* draw = ImGui::GetForegroundDrawList();
+  draw->AddRectFilled(at, ImVec2(at.x + box.x, at.y + box.y), IM_COL32(0, 0, 0, 150), 4.0f);
+  draw->AddText(ImVec2(at.x + pad, at.y + pad), IM_COL32(255, 255, 255, 255), text);
+}
+
+}  // namespace
+
+float panel_width(float window_width) { return std::clamp(window_width / 3.0f, 240.0f, 420.0f); }
 
 WindowPanel::WindowPanel(GLFWwindow* window, const RenderSettings& settings, float exposure, PanelOptions options)
     : gui_(window), settings_(settings, exposure), options_(std::move(options)) {}
 
-void WindowPanel::frame_shown(const FrameRecord& record, std::vector<PeerView> peers) {
+void WindowPanel::frame_shown(const FrameRecord& record, std::vector<PeerView> peers, double fps) {
   graph_.add(1e3 * record.seconds);
+  fps_ = fps;
+  ++frames_;
   last_ = record;
   peers_ = std::move(peers);
 }
@@ -22,7 +61,9 @@ void WindowPanel::frame_shown(const FrameRecord& record, std::vector<PeerView> p
 PanelActions WindowPanel::read_keys() {
   PanelActions a;
   if (gui_.wants_keyboard()) return a;  // typing a file name
-  if (ImGui::IsKeyPressed(GLFW_KEY_F1, false)) options_.shown = !options_.shown;
+  if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false)) options_.shown = !options_.shown;
+  const bool question = ImGui::IsKeyPressed(GLFW_KEY_SLASH, false) && ImGui::GetIO().KeyShift;
+  if (ImGui::IsKeyPressed(GLFW_KEY_F1, false) || question) options_.help = !options_.help;
   if (ImGui::IsKeyPressed(GLFW_KEY_F2, false)) options_.overlay = next_overlay(options_.overlay);
   a.save_camera = ImGui::IsKeyPressed(GLFW_KEY_F5, false);
   a.load_camera = ImGui::IsKeyPressed(GLFW_KEY_F9, false);
@@ -51,25 +92,61 @@ PanelActions WindowPanel::build(int accumulated) {
   PanelActions actions = read_keys();
   draw_tile_overlay(last_.tile_sources, options_.overlay);
   if (options_.shown) {
-    ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Once);
-    ImGui::SetNextWindowSize(ImVec2(400, 0.95f * ImGui::GetIO().DisplaySize.y), ImGuiCond_Once);
-    ImGui::Begin("igi-master (F1 hides)");
-    ImGui::PushItemWidth(190);
-    ImGui::Text("%d frames accumulated", accumulated);
-    if (ImGui::CollapsingHeader("settings", ImGuiTreeNodeFlags_DefaultOpen)) settings_.draw();
-    if (ImGui::CollapsingHeader("cluster", ImGuiTreeNodeFlags_DefaultOpen)) {
-      graph_.draw();
-      draw_cluster_panel(peers_, last_);
-      int overlay = int(options_.overlay);
-      ImGui::Combo("tile overlay (F2)", &overlay, "off\0tint\0solid\0");
-      options_.overlay = OverlayMode(overlay);
-    }
-    if (ImGui::CollapsingHeader("camera and images")) draw_bookmarks(actions);
-    ImGui::PopItemWidth();
-    ImGui::End();
+    draw_panel(actions);
+    draw_readout(accumulated);
   }
+  if (options_.help) draw_help();
   ImGui::EndFrame();
   return actions;
+}
+
+// Top left, a third of the window's width at most where it can (240 px at
+// least), as tall as its open sections; settings open, the rest closed.
+void WindowPanel::draw_panel(PanelActions& actions) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const float width = panel_width(display.x);
+  ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Once);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0), ImVec2(width, 0.95f * display.y));
+  ImGui::Begin("igi-master (Tab hides, F1 help)", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::PushItemWidth(0.45f * width);  // the rest for labels of 15 characters
+  settings_.draw();
+  if (ImGui::CollapsingHeader("cluster")) {
+    graph_.draw();
+    draw_cluster_panel(peers_, last_);
+    int overlay = int(options_.overlay);
+    ImGui::Combo("tile overlay (F2)", &overlay, "off\0tint\0solid\0");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("who rendered which tile\n--overlay");
+    options_.overlay = OverlayMode(overlay);
+  }
+  if (ImGui::CollapsingHeader("camera and images")) draw_bookmarks(actions);
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+// Bottom right: frame rate, frame time, frames shown and passes accumulated.
+void WindowPanel::draw_readout(int accumulated) {
+  char text[128] = "waiting for the first frame";
+  if (frames_ > 0)
+    std::snprintf(text, sizeof text, "%.1f fps  %.0f ms  frame %llu  %d pass%s", fps_, 1e3 * last_.seconds,
+                  (unsigned long long)frames_, accumulated, accumulated == 1 ? "" : "es");
+  corner_text(text, ImVec2(1, 1));
+}
+
+void WindowPanel::draw_help() {
+  corner_box("##help", ImVec2(0.5f, 0.5f), [] {
+    ImGui::TextUnformatted("keys (F1 or ? closes)");
+    ImGui::Separator();
+    if (!ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingFixedFit)) return;
+    for (const WindowKey& k : kWindowKeys) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(k.keys);
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(k.action);
+    }
+    ImGui::EndTable();
+    ImGui::TextUnformatted("still camera and settings: frames accumulate");
+  });
 }
 
 }  // namespace igi

@@ -1,11 +1,12 @@
 #pragma once
-// Everything the master's window draws over the image, and its keys:
-//   F1  panel on/off (settings, cluster, frame-time graph, bookmarks)
-//   F2  tile overlay: off, tint, solid (who rendered which tile)
-//   F5  save the camera to the bookmark file    F9  load it
-//   F12 save the accumulated image as EXR and PNG (PREFIX-NNNN.exr/.png)
+// Everything the master's window draws over the image, and its keys
+// (display/window_keys.h): the panel top left (Tab: settings, cluster,
+// frame-time graph, bookmarks), frame rate and passes bottom right, the keys'
+// help in the middle (F1 or ?), the tile overlay (F2); F5/F9 save and load the
+// camera, F12 the accumulated image as EXR and PNG (PREFIX-NNNN.exr/.png).
 // It draws with Dear ImGui; it never waits on the session: what it shows
 // comes with each frame (FrameRecord, PeerView), copied by the session thread.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,11 +21,15 @@ struct GLFWwindow;
 
 namespace igi {
 
+// The panel's width for a window this wide: a third, within 240 and 420 pixels.
+float panel_width(float window_width);
+
 struct PanelOptions {
-  bool shown = true;
+  bool shown = true;  // the panel and the frame rate
   OverlayMode overlay = OverlayMode::Off;
   std::string bookmark = "camera.json";
   std::string shot_prefix = "igi-shot";
+  bool help = false;  // the keys' help
 };
 
 // What the user asked for in this frame of the panel.
@@ -35,8 +40,8 @@ struct PanelActions {
 class WindowPanel {
  public:
   WindowPanel(GLFWwindow* window, const RenderSettings& settings, float exposure, PanelOptions options);
-  // A frame the window shows now: its record, the workers when it completed, its time.
-  void frame_shown(const FrameRecord& record, std::vector<PeerView> peers);
+  // A frame the window shows now: its record, the workers when it completed, the frame rate.
+  void frame_shown(const FrameRecord& record, std::vector<PeerView> peers, double fps);
   // Builds the panels and draws them into the back buffer (over the image): build() then render().
   PanelActions draw(int accumulated);
   PanelActions build(int accumulated);  // ImGui's lists only (CPU)
@@ -50,6 +55,9 @@ class WindowPanel {
 
  private:
   PanelActions read_keys();
+  void draw_panel(PanelActions& actions);
+  void draw_readout(int accumulated);
+  void draw_help();
   void draw_bookmarks(PanelActions& actions);
   Gui gui_;
   SettingsPanel settings_;
@@ -58,6 +66,8 @@ class WindowPanel {
   FrameRecord last_;
   std::vector<PeerView> peers_;
   std::string message_;
+  double fps_ = 0.0;
+  uint64_t frames_ = 0;  // shown
 };
 
 }  // namespace igi
