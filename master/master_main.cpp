@@ -70,12 +70,14 @@ void arm_test_hooks(const igi::MasterOptions& o, igi::MasterSession& session, ig
 
 int run(const igi::MasterOptions& o) {
   const std::optional<CurveSetup> curve = curve_setup(o);  // bad key files stop us before anything is bound
-  igi::Scene scene = igi::load_scene(o.render.scene, nullptr, o.render.environment);  // validates it, and gives the camera
+  igi::Scene scene = igi::load_scene(o.render.scene, nullptr, igi::sky_choice(o.render));  // validates it, and gives the camera
   igi::Scene as_workers_load_it = scene;                 // the master's own VPL sets judge each worker's
   if (!o.render.camera_file.empty()) igi::place_camera(scene, igi::read_camera_file(o.render.camera_file));  // before anything starts
   zmq::context_t context(o.io_threads);
   igi::SceneSource source = igi::make_scene_source(o.render.scene);
   source.environment = scene.environment;
+  if (const auto sky = igi::sky_choice(o.render); sky && !sky->map.empty())
+    igi::add_environment_map(source, sky->map, sky->rotation);
   igi::MasterSession session(o, std::move(source), context, curve ? &curve->server : nullptr);
   session.judge_by(std::move(as_workers_load_it));
   if (curve)

@@ -72,6 +72,17 @@ SceneSource make_scene_source(const std::string& scene) {
   return source;
 }
 
+void add_environment_map(SceneSource& source, const std::string& path, float rotation) {
+  std::optional<std::vector<uint8_t>> bytes = read_file_bytes(path);
+  if (!bytes) throw std::runtime_error("cannot read the environment map " + path);
+  source.map_name = std::filesystem::path(path).filename().string();
+  source.map_hash = content_hash(*bytes);
+  source.map_size = bytes->size();
+  source.map_rotation = rotation;
+  protocol::SceneData data{source.map_hash, source.map_name, std::move(*bytes)};
+  source.map_message = std::make_shared<const std::vector<uint8_t>>(protocol::encode(data));
+}
+
 MasterSession::MasterSession(const MasterOptions& options, SceneSource scene, zmq::context_t& context,
                              const protocol::CurveServerKeys* curve)
     : options_(options),
@@ -291,6 +302,12 @@ void MasterSession::handle(const std::string& identity, const protocol::Message&
   if (auto* hello = std::get_if<protocol::Hello>(&message)) return on_hello(identity, *hello);
   if (peer == peers_.end()) return on_bad_message(identity, "message from a peer that never said hello");
   if (auto* request = std::get_if<protocol::SceneRequest>(&message)) {
+    if (request->scene_hash == scene_.map_hash && scene_.map_message) {
+      log(peer->second.name + " has no copy of " + scene_.map_name + ": sending " + std::to_string(scene_.map_size) +
+          " bytes");
+      send_frame(identity, shared_frame(scene_.map_message));
+      return;
+    }
     if (request->scene_hash != scene_.hash || !scene_.message) return drop_peer(identity, "asked for an unknown scene");
     log(peer->second.name + " has no copy of " + scene_.name + ": sending " + std::to_string(scene_.size) + " bytes");
     send_frame(identity, shared_frame(scene_.message));
@@ -341,6 +358,10 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
   w.heartbeat_ms = uint32_t(options_.heartbeat_ms);
   w.timeout_ms = uint32_t(options_.timeout_ms);
   w.pixel_format = pixel_format_;
+  w.environment_map = scene_.map_name;
+  w.environment_map_hash = scene_.map_hash;
+  w.environment_map_size = scene_.map_size;
+  w.environment_rotation = scene_.map_rotation;
   send(identity, w);
 }
 

@@ -56,9 +56,16 @@ struct SceneSource {
   uint64_t size = 0;       // bytes of the file
   std::shared_ptr<const std::vector<uint8_t>> message;  // the encoded SceneData; null for built-in scenes
   glm::vec3 environment{0.0f};  // the sky the master's scene stands under (Welcome carries it)
+  // Its map, when it has one: workers ask for it by hash as for the scene.
+  std::string map_name;
+  uint64_t map_hash = 0, map_size = 0;
+  float map_rotation = 0.0f;
+  std::shared_ptr<const std::vector<uint8_t>> map_message;  // the encoded SceneData
 };
 // Reads a scene file (or names a built-in scene) and encodes what workers may ask for.
 SceneSource make_scene_source(const std::string& scene);
+// Reads the environment map `path` into `source`, for workers to ask for.
+void add_environment_map(SceneSource& source, const std::string& path, float rotation);
 
 struct PeerStats {
   uint64_t tiles = 0;

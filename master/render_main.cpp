@@ -21,12 +21,15 @@ int run(const igi::RenderOptions& o) {
   std::optional<igi::Camera> camera;  // a bad camera file stops us before the scene loads
   if (!o.camera_file.empty()) camera = igi::read_camera_file(o.camera_file);
   std::vector<std::string> warnings;
-  igi::Scene scene = igi::load_scene(o.scene, &warnings, o.environment);
+  igi::Scene scene = igi::load_scene(o.scene, &warnings, igi::sky_choice(o));
   for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (camera) igi::place_camera(scene, *camera);
   if (!o.export_gltf.empty()) {
     igi::write_gltf(scene, o.export_gltf);
     std::printf("wrote %s\n", o.export_gltf.c_str());
+    if (scene.environment_map)  // glTF's extras hold a constant sky only
+      std::fprintf(stderr, "igi-render: the environment map is not in %s (its extras hold only the sky's scale); "
+                           "render it with --environment FILE again\n", o.export_gltf.c_str());
     return 0;
   }
   igi::FrameSetup frame;

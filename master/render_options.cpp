@@ -93,10 +93,16 @@ void add_image_options(CLI::App& app, RenderOptions& o) {
       ->check(cli::bounded_number(protocol::kMaxSceneTime))->type_name("T");
   cli::add_vec3_option(app, "--move-lights", o.light_offset, 1e6,
                        "metres to move the scene's lights by, as the window's J/L, U/O, I/K keys do [0,0,0]");
-  cli::add_colour_option(app, "--environment", o.environment, protocol::kMaxEnvironment,
-                         "light the scene with a constant sky of this radiance (linear RGB; 1,1,1 is white), seen "
-                         "where rays leave the scene; replaces the scene's own (glTF scene extras \"environment\") "
-                         "[none]");
+  cli::add_sky_option(app, "--environment", o.environment, protocol::kMaxEnvironment,
+                      "light the scene with a sky, seen where rays leave the scene: a constant radiance (linear "
+                      "RGB; 1,1,1 is white) or an HDR environment map (an equirectangular .exr or .hdr, +y up, "
+                      "its middle looking along -z); replaces the scene's own (glTF scene extras "
+                      "\"environment\") [none]");
+  app.add_option("--environment-scale", o.environment_scale, "--environment's radiance times K [1]")
+      ->check(cli::non_negative_number())->check(cli::bounded_number(protocol::kMaxEnvironment))->type_name("K");
+  app.add_option("--environment-rotation", o.environment_rotation,
+                 "turns --environment's map by DEG degrees about +y (right-handed) [0]")
+      ->check(cli::bounded_number(360.0))->type_name("DEG");
 }
 
 void add_vpl_options(CLI::App& app, RenderSettings& s) {
@@ -191,7 +197,19 @@ void add_render_options(CLI::App& app, RenderOptions& o) {
   add_lightcuts_and_importance_options(app, o.settings);
 }
 
+std::optional<SkyChoice> sky_choice(const RenderOptions& o) {
+  if (!o.environment) return std::nullopt;
+  SkyChoice sky = *o.environment;
+  sky.radiance *= o.environment_scale;
+  sky.rotation = o.environment_rotation;
+  return sky;
+}
+
 void check_render_options(const CLI::App& app, const RenderOptions& o) {
+  if (!o.environment && (app.count("--environment-scale") || app.count("--environment-rotation")))
+    throw OptionError("--environment-scale and --environment-rotation need --environment");
+  if (o.environment && o.environment->map.empty() && app.count("--environment-rotation"))
+    throw OptionError("--environment-rotation turns a map: a constant sky (--environment R,G,B) has none");
   if (app.count("--max-depth"))
     throw OptionError("--max-depth was split: --path-depth (pt), --light-depth (VPL light paths) and "
                       "--specular-depth (mirrors and glass from the camera)");

@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "methods/settings.h"
+#include "scene/load_scene.h"
 
 namespace CLI {
 class App;
@@ -37,7 +38,10 @@ struct RenderOptions {
   double time = 0.0, time_step = 1.0 / 30.0;
   bool loop = false;
   glm::vec3 light_offset{0.0f};  // --move-lights: metres, as the window's keys move them
-  std::optional<glm::vec3> environment;  // --environment: a constant sky's radiance, replacing the scene's
+  // --environment: a constant sky's radiance or a map, replacing the scene's;
+  // --environment-scale multiplies it, --environment-rotation turns a map.
+  std::optional<SkyChoice> environment;
+  float environment_scale = 1.0f, environment_rotation = 0.0f;
 };
 
 // Declares the render options on `app`, writing into `options` (which must
@@ -46,6 +50,9 @@ void add_render_options(CLI::App& app, RenderOptions& options);
 // What no single option can check: the settings together, and the memory
 // lightcuts and a caustic map would need. Throws cli::OptionError.
 void check_render_options(const CLI::App& app, const RenderOptions& options);
+
+// The sky the options ask for (scale and rotation applied), or none.
+std::optional<SkyChoice> sky_choice(const RenderOptions& options);
 
 // Parses argv[1] on; throws cli::OptionError with a message naming the option and the value.
 RenderOptions parse_render_options(const std::vector<std::string>& args);

@@ -245,6 +245,10 @@ void write(Writer& w, const Welcome& m) {
   w.u32(m.heartbeat_ms);
   w.u32(m.timeout_ms);
   w.u8(static_cast<uint8_t>(m.pixel_format));
+  w.string(m.environment_map);
+  w.u64(m.environment_map_hash);
+  w.u64(m.environment_map_size);
+  w.f32(m.environment_rotation);
 }
 
 PixelFormat read_pixel_format(Reader& r, const char* field) {
@@ -273,6 +277,16 @@ void read(Reader& r, Welcome& m) {
   m.timeout_ms = r.u32("timeout_ms");
   check_range(r, "timeout_ms", m.timeout_ms, kMinTimeoutMs, kMaxTimeoutMs);
   m.pixel_format = read_pixel_format(r, "pixel_format");
+  m.environment_map = r.string("environment_map", kMaxString);
+  if (!m.environment_map.empty()) check_file_name(r, "environment_map", m.environment_map);
+  m.environment_map_hash = r.u64("environment_map_hash");
+  m.environment_map_size = r.u64("environment_map_size");
+  if (m.environment_map_size > kMaxSceneBytes)
+    r.fail("environment_map_size", std::to_string(m.environment_map_size) + " bytes, over the limit of " +
+                                       std::to_string(kMaxSceneBytes));
+  m.environment_rotation = r.f32("environment_rotation");
+  if (!(std::abs(m.environment_rotation) <= 360.0f))
+    r.fail("environment_rotation", show(m.environment_rotation) + ", expected degrees within +-360");
 }
 
 void write(Writer& w, const Refuse& m) { w.string(m.reason); }

@@ -38,7 +38,8 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // scene's pose (animation time, moved lights). 9: settings.clamp is a fraction of the
 // scene's mean chord, at most kMaxClamp; FrameSetup.sample_begin is the ir/igi/lightcuts
 // pass the clamp relaxes with (methods/clamp.h). 10: settings carry the wavelet
-// filter's levels. 11: Welcome carries the scene's environment (a constant sky).
+// filter's levels. 11: Welcome carries the scene's environment (a constant sky, or a map
+// that workers ask for by hash as they ask for the scene).
 inline constexpr uint16_t kVersion = 11;
 
 // Size limits, checked before anything is allocated.
@@ -92,6 +93,12 @@ struct Welcome {
   // waits longer than this for the master (so the master always gives up first).
   uint32_t timeout_ms = 1500;
   PixelFormat pixel_format = PixelFormat::Float32;  // how TileResults carry pixels
+  // With an environment map (scene/environment_map.h): the sky is the map
+  // times `environment`. A worker without the file asks for it by hash
+  // (SceneRequest), as for the scene. Empty name: a constant sky.
+  std::string environment_map;  // the file's name (no directories)
+  uint64_t environment_map_hash = 0, environment_map_size = 0;
+  float environment_rotation = 0.0f;  // degrees about +y
 };
 
 struct Refuse {
@@ -99,7 +106,7 @@ struct Refuse {
 };
 
 struct SceneRequest {
-  uint64_t scene_hash = 0;
+  uint64_t scene_hash = 0;  // the scene's, or the environment map's
 };
 
 struct SceneData {

@@ -53,11 +53,13 @@ Image single_process(const std::string& scene = "cornell") {
 // one-process render with igi's settings (8 light paths) as `edit` changes them.
 void expect_workers_match_one_process(const std::string& name, const std::string& options, const std::string& scene,
                                       const std::function<void(RenderSettings&)>& edit,
-                                      std::optional<glm::vec3> environment = std::nullopt) {
+                                      const std::optional<SkyChoice>& sky = std::nullopt,
+                                      std::string* output = nullptr) {
   const std::string out = test::output_path(name + ".exr");
   auto r = test::run(master("--workers 2 --frames 1 " + options + " -o " + out, scene));
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  test::Prepared p(load_scene(scene, nullptr, environment));
+  if (output) *output = r.output;
+  test::Prepared p(load_scene(scene, nullptr, sky));
   RenderSettings s;
   s.method = MethodKind::Igi;
   s.paths_per_set = 8;
@@ -113,7 +115,26 @@ TEST(Distributed, WaveletFilterMatchesOneProcess) {
 // master's sky (the Cornell box's open front shows it), not the file's none.
 TEST(Distributed, EnvironmentLightMatchesOneProcess) {
   expect_workers_match_one_process("dist-environment", "--environment 0.2,0.3,0.4", "cornell",
-                                   [](RenderSettings&) {}, glm::vec3(0.2f, 0.3f, 0.4f));
+                                   [](RenderSettings&) {}, SkyChoice{glm::vec3(0.2f, 0.3f, 0.4f)});
+}
+
+// An environment map, scaled and turned: the workers have no copy and ask the
+// master for it by hash, as for a scene; their frame is the one-process frame.
+TEST(Distributed, EnvironmentMapTravelsToWorkersAndMatchesOneProcess) {
+  Image map(32, 16);
+  for (int y = 0; y < map.height; ++y)
+    for (int x = 0; x < map.width; ++x) map.at(x, y) = glm::vec3(0.2f + 0.05f * float(x % 7), 0.3f, 0.2f + 0.1f * float(y));
+  map.at(20, 4) = glm::vec3(400.0f, 350.0f, 300.0f);  // a sun
+  const std::string path = test::output_path("dist-sky-map.exr");
+  write_image(map, path);
+  std::error_code error;  // the workers' cache (igi-worker-cache here) must not hold it from an earlier run
+  for (const auto& entry : std::filesystem::directory_iterator("igi-worker-cache", error))
+    if (entry.path().filename().string().ends_with("-dist-sky-map.exr")) std::filesystem::remove(entry.path(), error);
+  std::string output;
+  expect_workers_match_one_process("dist-environment-map",
+                                   "--environment " + path + " --environment-scale 0.5 --environment-rotation 30",
+                                   "corner", [](RenderSettings&) {}, SkyChoice{glm::vec3(0.5f), path, 30.0f}, &output);
+  EXPECT_NE(output.find("has no copy of dist-sky-map.exr"), std::string::npos) << output;
 }
 
 // Lightcuts' light tree and reconstruction grid through master and workers:

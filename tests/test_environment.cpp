@@ -6,7 +6,12 @@
 // lightcuts (the same VPLs as leaves) must all find it.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <memory>
+
 #include "lighting/lights.h"
+#include "sampling/hash.h"
+#include "sampling/warp.h"
 #include "render/offline_render.h"
 #include "scene/accel.h"
 #include "scene/load_scene.h"
@@ -17,7 +22,7 @@ namespace {
 constexpr float kAlbedo = 0.5f;
 constexpr int kSize = 48;
 
-Scene quad_under_sky(glm::vec3 sky) {
+Scene quad_under_sky(glm::vec3 sky, std::shared_ptr<const EnvironmentMap> map = nullptr) {
   Scene s;
   s.name = "quad-under-sky";
   s.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};  // facing +z, where the auto camera is
@@ -27,6 +32,7 @@ Scene quad_under_sky(glm::vec3 sky) {
   m.base_color = glm::vec3(kAlbedo);
   s.materials = {m};
   s.environment = sky;
+  s.environment_map = std::move(map);
   s.validate();
   return s;
 }
@@ -93,8 +99,105 @@ TEST(Environment, ASceneWithoutLightOrSkyNamesTheOptionAndABadSkyIsRefused) {
   EXPECT_THROW(quad_under_sky(glm::vec3(1.0f, -1.0f, 1.0f)), SceneError);
   EXPECT_THROW(quad_under_sky(glm::vec3(NAN, 1.0f, 1.0f)), SceneError);
   // The command line's sky replaces a built-in scene's (none) and lights it.
-  EXPECT_EQ(load_scene("cornell", nullptr, glm::vec3(0.25f)).environment, glm::vec3(0.25f));
+  EXPECT_EQ(load_scene("cornell", nullptr, SkyChoice{glm::vec3(0.25f)}).environment, glm::vec3(0.25f));
   EXPECT_EQ(load_scene("cornell").environment, glm::vec3(0.0f));
+}
+
+// ---- Environment maps (scene/environment_map.h).
+
+// 32 x 16 texels of a smooth sky and one sun texel far brighter than the rest.
+Image sun_and_sky() {
+  Image map(32, 16);
+  for (int y = 0; y < map.height; ++y)
+    for (int x = 0; x < map.width; ++x) map.at(x, y) = glm::vec3(0.3f + 0.02f * x, 0.4f, 0.3f + 0.05f * y);
+  map.at(4, 5) = glm::vec3(200.0f, 180.0f, 150.0f);
+  return map;
+}
+
+// Each sample's radiance and density are the map's at its direction, and
+// luminance / pdf is the same for every sample (the map's integral): the
+// density is luminance x solid angle, exactly. The sun is drawn as often as
+// its share of that integral.
+TEST(EnvironmentMap, SamplesFollowLuminanceTimesSolidAngleExactly) {
+  const EnvironmentMap map(sun_and_sky(), 37.0f);
+  const float integral = map.luminance_integral();
+  const glm::vec3 sun = map.image().at(4, 5);
+  int suns = 0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const glm::vec2 u(float(hash(uint32_t(i), 1u) >> 8) * 0x1p-24f, float(hash(uint32_t(i), 2u) >> 8) * 0x1p-24f);
+    const EnvironmentMap::Sample s = map.sample(u);
+    ASSERT_GT(s.pdf, 0.0f);
+    ASSERT_NEAR(glm::length(s.direction), 1.0f, 1e-5f);
+    ASSERT_EQ(map.radiance(s.direction), s.radiance) << "sample " << i;
+    ASSERT_NEAR(map.pdf(s.direction), s.pdf, 1e-4f * s.pdf) << "sample " << i;
+    ASSERT_NEAR(luminance(s.radiance) / s.pdf, integral, 1e-3f * integral) << "sample " << i;
+    suns += s.radiance == sun;
+  }
+  const double solid_angle = 2.0 * kPi / 32 * (std::cos(5 * kPi / 16) - std::cos(6 * kPi / 16));
+  const double share = luminance(sun) * solid_angle / integral;
+  EXPECT_NEAR(double(suns) / n, share, 4.0 * std::sqrt(share * (1 - share) / n));
+}
+
+// The map's middle column looks along -z; turned by 90 degrees about +y it looks along -x.
+TEST(EnvironmentMap, TheMiddleLooksAlongMinusZAndRotationTurnsItAboutUp) {
+  Image image(8, 4);
+  image.at(4, 1) = image.at(4, 2) = glm::vec3(1.0f);  // either side of the horizon, just right of the middle
+  const glm::vec3 ahead = glm::normalize(glm::vec3(0.05f, 0.0f, -1.0f));
+  EXPECT_EQ(EnvironmentMap(image, 0.0f).radiance(ahead), glm::vec3(1.0f));
+  EXPECT_EQ(EnvironmentMap(image, 0.0f).radiance(-ahead), glm::vec3(0.0f));
+  EXPECT_EQ(EnvironmentMap(image, 90.0f).radiance(glm::vec3(-1.0f, 0.0f, -0.05f)), glm::vec3(1.0f));
+  EXPECT_EQ(EnvironmentMap(image, 90.0f).radiance(ahead), glm::vec3(0.0f));
+  EXPECT_EQ(EnvironmentMap(image, 0.0f).radiance(glm::vec3(0.05f, 3.0f, -1.0f)), glm::vec3(0.0f)) << "row 0 is up";
+  EXPECT_THROW(EnvironmentMap(Image(1, 1), 0.0f), std::runtime_error);
+  image.at(0, 0) = glm::vec3(-1.0f);
+  EXPECT_THROW(EnvironmentMap(image, 0.0f), std::runtime_error);
+}
+
+// The quad (normal +z) under the sun-and-sky map: its irradiance sums each
+// texel's radiance x the integral of cos over the texel's patch (the columns
+// split at the quad's horizon, so no patch straddles it), and it reflects
+// albedo / pi of that. pt (map-sampled light samples, MIS with BSDF samples
+// that escape), igi (Directional VPLs drawn from the map) and lightcuts find it.
+TEST(Environment, UnderAnEnvironmentMapTheQuadReflectsTheIrradianceOfItsTexels) {
+  const Image texels = sun_and_sky();
+  double expected = 0.0;
+  for (int y = 0; y < texels.height; ++y)
+    for (int x = 0; x < texels.width; ++x) {
+      // Longitude phi = 2 pi (u - 1/2), polar angle theta from +y; +z is -sin(theta) cos(phi).
+      const double phi0 = 2 * kPi * (double(x) / texels.width - 0.5), phi1 = phi0 + 2 * kPi / texels.width;
+      const double t0 = kPi * y / texels.height, t1 = kPi * (y + 1) / texels.height;
+      const double cos_integral = -(std::sin(phi1) - std::sin(phi0)) *
+                                  ((t1 - t0) / 2 - (std::sin(2 * t1) - std::sin(2 * t0)) / 4);
+      if (cos_integral <= 0.0) continue;  // below the quad's horizon
+      const glm::vec3 c = texels.at(x, y);
+      expected += (c.x + c.y + c.z) / 3.0 * cos_integral;
+    }
+  expected *= kAlbedo / kPi;
+  const Scene scene = quad_under_sky(glm::vec3(1.0f), std::make_shared<const EnvironmentMap>(texels, 0.0f));
+  struct Case {
+    MethodKind method;
+    int samples;
+    double tolerance;
+  };
+  for (const Case& c : {Case{MethodKind::PathTracer, 64, 0.02}, Case{MethodKind::Igi, 16, 0.03},
+                        Case{MethodKind::Lightcuts, 4, 0.05}}) {
+    SCOPED_TRACE(method_name(c.method));
+    EXPECT_NEAR(central_mean(render(scene, c.method, c.samples)), expected, c.tolerance * expected);
+  }
+}
+
+// A map of ones is the constant sky of the same radiance, and a black map lights nothing.
+TEST(Environment, AMapOfOnesIsTheConstantSkyAndABlackMapIsNoLight) {
+  Image ones(16, 8);
+  for (glm::vec3& p : ones.pixels) p = glm::vec3(1.0f);
+  const EnvironmentMap map(ones, 12.0f);
+  EXPECT_NEAR(map.integral().x, 4.0f * kPi, 1e-4f);
+  const Image image = render(quad_under_sky(glm::vec3(0.5f), std::make_shared<const EnvironmentMap>(ones, 12.0f)),
+                             MethodKind::PathTracer, 64);
+  EXPECT_NEAR(central_mean(image), 0.5 * kAlbedo, 0.02 * kAlbedo);
+  EXPECT_THROW(quad_under_sky(glm::vec3(1.0f), std::make_shared<const EnvironmentMap>(Image(16, 8), 0.0f)),
+               SceneError);
 }
 
 }  // namespace

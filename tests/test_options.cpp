@@ -83,6 +83,24 @@ TEST(Options, SceneTimeAndLightMovesAreChecked) {
                   {"--time-step", "'1e10'"}});
 }
 
+// The sky: a colour or a file that exists, scale and rotation only with it,
+// rotation only for a map; a file that is no image is refused before any work.
+TEST(Options, TheEnvironmentIsAColourOrAMapFile) {
+  const std::string render = std::string(IGI_RENDER_BINARY) + " --quiet -o /dev/null";
+  expect_refused({render + " --environment /no/such/sky.exr", 1, {"igi-render: --environment", "no such file",
+                                                                   "'/no/such/sky.exr'"}});
+  expect_refused({render + " --environment 1,x,1", 1, {"--environment", "not a colour"}});
+  expect_refused({render + " --environment-scale 2", 1, {"--environment-scale", "need --environment"}});
+  expect_refused({std::string(IGI_MASTER_BINARY) + " --workers 0 --frames 1 --environment 1,1,1 --environment-rotation 10",
+                  1, {"--environment-rotation", "a constant sky"}});
+  const std::string not_an_image = test::output_path("not-a-sky.exr");
+  std::ofstream(not_an_image) << "no image";
+  const test::RunResult r = test::run(render + " --environment " + not_an_image, 30);
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("environment map"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("not-a-sky.exr"), std::string::npos) << r.output;
+}
+
 // Above the upper bound: --vpl-sets N makes N x N sets, so 50000 would overflow an int.
 TEST(Options, ValuesAboveTheirRangeAreRefused) {
   expect_refused({std::string(IGI_RENDER_BINARY) + " --quiet -o /dev/null --vpl-sets 50000", 1,

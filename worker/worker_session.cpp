@@ -22,8 +22,11 @@ constexpr double kFirstBackoff = 0.25, kMaxBackoff = 32.0;
 std::string scene_key(const protocol::Welcome& w) {
   uint32_t sky[3];
   std::memcpy(sky, &w.environment[0], sizeof sky);
+  uint32_t rotation;
+  std::memcpy(&rotation, &w.environment_rotation, sizeof rotation);
   return w.scene_name + "#" + hash_hex(w.scene_hash) + "#" + std::to_string(sky[0]) + "," + std::to_string(sky[1]) +
-         "," + std::to_string(sky[2]);
+         "," + std::to_string(sky[2]) + "#" + w.environment_map + "#" + hash_hex(w.environment_map_hash) + "#" +
+         std::to_string(rotation);
 }
 
 }  // namespace
@@ -208,16 +211,17 @@ std::optional<WorkerSession::Outcome> WorkerSession::handle(protocol::Message& m
     log("master said bye: " + bye->reason);
     return Outcome::Bye;
   } else if (auto* data = std::get_if<protocol::SceneData>(&m)) {
-    if (!welcome_ || data->scene_hash != welcome_->scene_hash) return std::nullopt;  // not what we asked for
+    if (!welcome_ || (data->scene_hash != welcome_->scene_hash &&
+                      (welcome_->environment_map.empty() || data->scene_hash != welcome_->environment_map_hash)))
+      return std::nullopt;  // not what we asked for
     auto bytes = std::make_shared<protocol::SceneData>(std::move(*data));
-    start_loading([cache = cache_, bytes, sky = welcome_->environment, fail = options_.fail_scene_load] {
-      std::string path;
+    start_loading([cache = cache_, bytes, welcome = *welcome_, fail = options_.fail_scene_load] {
       try {
-        path = cache->store(*bytes);  // checks the hash; writes only inside the cache folder
+        cache->store(*bytes);  // checks the hash; writes only inside the cache folder
       } catch (const std::exception& e) {
-        return LoadResult{nullptr, false, e.what(), true};
+        return LoadResult{nullptr, 0, e.what(), true};
       }
-      return load(path, sky, fail);
+      return find_and_load(*cache, welcome, fail);  // the other file may still be missing
     });
   } else if (std::holds_alternative<protocol::FrameSetupMsg>(m) || std::holds_alternative<protocol::TileJobMsg>(m)) {
     if (!welcome_) return std::nullopt;  // not ours to render yet
@@ -228,14 +232,31 @@ std::optional<WorkerSession::Outcome> WorkerSession::handle(protocol::Message& m
 }
 
 // The scene, its BVH and lights, built on the loading thread.
-WorkerSession::LoadResult WorkerSession::load(const std::string& scene, glm::vec3 environment, bool fail) {
+WorkerSession::LoadResult WorkerSession::find_and_load(const SceneCache& cache, const protocol::Welcome& w, bool fail) {
+  std::string scene = w.scene_name;  // built in
+  if (w.scene_hash != 0) {
+    const std::optional<std::string> path = cache.find(w.scene_name, w.scene_hash);
+    if (!path) return {nullptr, w.scene_hash, {}, false};
+    scene = *path;
+  }
+  SkyChoice sky{w.environment};  // the master's sky, whatever the file says
+  if (!w.environment_map.empty()) {
+    const std::optional<std::string> map = cache.find(w.environment_map, w.environment_map_hash);
+    if (!map) return {nullptr, w.environment_map_hash, {}, false};
+    sky.map = *map;
+    sky.rotation = w.environment_rotation;
+  }
+  return load(scene, sky, fail);
+}
+
+WorkerSession::LoadResult WorkerSession::load(const std::string& scene, const SkyChoice& sky, bool fail) {
   try {
     if (fail) throw std::runtime_error("--test-fail-scene-load");
     auto loaded = std::make_shared<Loaded>();
-    loaded->scene = std::make_unique<SceneState>(load_scene(scene, nullptr, environment));
-    return {loaded, false, {}, false};
+    loaded->scene = std::make_unique<SceneState>(load_scene(scene, nullptr, sky));
+    return {loaded, 0, {}, false};
   } catch (const std::exception& e) {
-    return {nullptr, false, e.what(), false};
+    return {nullptr, 0, e.what(), false};
   }
 }
 
@@ -255,9 +276,7 @@ void WorkerSession::on_welcome(const protocol::Welcome& welcome) {
   loaded_key_.clear();
   loading_key_ = key;
   start_loading([cache = cache_, welcome, fail = options_.fail_scene_load] {
-    if (welcome.scene_hash == 0) return load(welcome.scene_name, welcome.environment, fail);  // built-in
-    if (auto path = cache->find(welcome.scene_name, welcome.scene_hash)) return load(*path, welcome.environment, fail);
-    return LoadResult{nullptr, true, {}, false};
+    return find_and_load(*cache, welcome, fail);
   });
 }
 
@@ -280,10 +299,12 @@ std::optional<WorkerSession::Outcome> WorkerSession::poll_loading(zmq::socket_t&
     socket.set(zmq::sockopt::linger, 500);  // the Bye leaves before the process does
     return Outcome::SceneFailed;
   }
-  if (result.need_bytes) {
+  if (result.need_hash != 0) {
     if (!current) return std::nullopt;
-    log("scene " + welcome_->scene_name + " not found locally: asking the master for it");
-    send(socket, protocol::SceneRequest{welcome_->scene_hash});
+    const bool map = result.need_hash != welcome_->scene_hash;
+    log((map ? "environment map " + welcome_->environment_map : "scene " + welcome_->scene_name) +
+        " not found locally: asking the master for it");
+    send(socket, protocol::SceneRequest{result.need_hash});
     return std::nullopt;
   }
   loaded_ = result.loaded;

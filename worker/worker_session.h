@@ -32,6 +32,7 @@
 
 #include "protocol/curve.h"
 #include "protocol/messages.h"
+#include "scene/load_scene.h"
 #include "protocol/monitor.h"
 #include "render_pool.h"
 #include "scene_cache.h"
@@ -71,14 +72,16 @@ class WorkerSession {
   enum class Outcome { Bye, Refused, MasterLost, Quarantined, SceneFailed, RenderFailed };
   using Clock = std::chrono::steady_clock;
   struct Loaded;  // scene, BVH, lights, pool
-  // What the loading thread found: a loaded scene, or that the master must send the bytes, or why not.
+  // What the loading thread found: a loaded scene, or the file the master must send, or why not.
   struct LoadResult {
     std::shared_ptr<Loaded> loaded;
-    bool need_bytes = false;
+    uint64_t need_hash = 0;  // the scene's or the environment map's
     std::string error;
     bool refused = false;  // bytes from the master that do not match their hash or name
   };
-  static LoadResult load(const std::string& scene, glm::vec3 environment, bool fail);
+  // The scene and its map (built in, in a search folder or the cache), loaded; or the one to ask for.
+  static LoadResult find_and_load(const SceneCache& cache, const protocol::Welcome& welcome, bool fail);
+  static LoadResult load(const std::string& scene, const SkyChoice& sky, bool fail);
 
   Outcome serve(zmq::context_t& context);
   void wait_for_work(zmq::socket_t& socket);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 
 #include "build_id.h"
 
@@ -118,23 +119,32 @@ CLI::Option* add_vec3_option(CLI::App& app, const std::string& name, glm::vec3& 
       ->type_name("X,Y,Z");
 }
 
-CLI::Option* add_colour_option(CLI::App& app, const std::string& name, std::optional<glm::vec3>& out, double bound,
-                               const std::string& help) {
+CLI::Option* add_sky_option(CLI::App& app, const std::string& name, std::optional<SkyChoice>& out, double bound,
+                            const std::string& help) {
   auto read = [bound](const std::string& text, glm::vec3& c) {
     return read_vec3(text, bound, c) && c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f;
   };
-  char expected[80];
-  std::snprintf(expected, sizeof expected, "expected R,G,B, three numbers from 0 to %g, got '", bound);
+  char expected[112];
+  std::snprintf(expected, sizeof expected, "expected R,G,B (three numbers from 0 to %g) or a map file, got '", bound);
   return app
       .add_option_function<std::string>(
-          name, [&out, read](const std::string& v) { glm::vec3 c; if (read(v, c)) out = c; }, help)
+          name,
+          [&out, read](const std::string& v) {
+            SkyChoice sky;
+            if (!read(v, sky.radiance)) sky = SkyChoice{glm::vec3(1.0f), v};
+            out = sky;
+          },
+          help)
       ->check(CLI::Validator(
           [=](std::string& text) -> std::string {
             glm::vec3 c;
-            return read(text, c) ? "" : expected + text + "'";
+            if (read(text, c)) return "";
+            std::error_code error;
+            if (std::filesystem::is_regular_file(text, error)) return "";
+            return expected + text + "': " + (text.find(',') != std::string::npos ? "not a colour" : "no such file");
           },
           ""))
-      ->type_name("R,G,B");
+      ->type_name("R,G,B|FILE");
 }
 
 CLI::Option* add_size_option(CLI::App& app, const std::string& name, int& width, int& height, int max_side,

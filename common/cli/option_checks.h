@@ -14,6 +14,8 @@
 #include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
 
+#include "scene/load_scene.h"
+
 namespace igi::cli {
 
 inline constexpr int kMaxThreads = 4096;  // --threads, --worker-threads: 0 = all cores
@@ -53,9 +55,11 @@ CLI::Validator bounded_number(double bound);
 // A point or offset X,Y,Z (`name`: "--move-lights"), each a number within +-bound, into `out`.
 CLI::Option* add_vec3_option(CLI::App& app, const std::string& name, glm::vec3& out, double bound,
                              const std::string& help);
-// A colour R,G,B, each a number in [0, bound], into `out` (set once given).
-CLI::Option* add_colour_option(CLI::App& app, const std::string& name, std::optional<glm::vec3>& out, double bound,
-                               const std::string& help);
+// A sky (`name`: "--environment"): a colour R,G,B, each a number in [0,
+// bound], or the path of a file that exists (an environment map), into `out`
+// (set once given).
+CLI::Option* add_sky_option(CLI::App& app, const std::string& name, std::optional<SkyChoice>& out, double bound,
+                            const std::string& help);
 
 // Options given twice: the last one counts (call before adding options).
 void take_last_by_default(CLI::App& app);

@@ -21,7 +21,7 @@ GatherPoint GatherPointTracer::trace(int x, int y, int k, RayCounts& rays) const
   ++rays.primary;
   Hit hit;
   if (!accel_.intersect(ray, hit)) {
-    g.emitted = accel_.scene().environment;  // the sky (black without one)
+    g.emitted = accel_.scene().sky(ray.direction);  // the sky (black without one)
     return g;
   }
   GSample chain;

@@ -49,7 +49,7 @@ float LightSet::power(const Light& light) const {
     const Material& m = scene_.materials[scene_.triangle_material[light.index]];
     return luminance(m.emission) * triangle_area(light.index) * kPi;
   }
-  if (light.kind == LightKind::Environment) return sky_etendue() * luminance(scene_.environment);
+  if (light.kind == LightKind::Environment) return luminance(sky_flux());
   const PunctualLight& p = scene_.lights[light.index];
   float i = luminance(p.intensity);
   switch (light.kind) {
@@ -86,11 +86,12 @@ LightSample LightSet::sample_light(uint32_t index, float select, glm::vec3 p, gl
     return s;
   }
   if (light.kind == LightKind::Environment) {
-    // Uniform over the sphere: a constant sky has nothing brighter to aim at.
-    s.direction = uniform_sphere(u);
+    const SkySample sky = sample_sky(u);
+    if (sky.pdf <= 0.0f) return LightSample{};
+    s.direction = sky.direction;
     s.distance = INFINITY;
-    s.radiance = scene_.environment;
-    s.pdf = select * kInv4Pi;
+    s.radiance = sky.radiance;
+    s.pdf = select * sky.pdf;
     return s;
   }
   const PunctualLight& pl = scene_.lights[light.index];
@@ -123,10 +124,22 @@ float LightSet::pdf_area(uint32_t triangle, glm::vec3 p, glm::vec3 hit_point) co
   return distribution_.probability(uint32_t(light)) * dist2 / (cos_light * triangle_area(triangle));
 }
 
-float LightSet::sky_etendue() const { return 4.0f * kPi * kPi * scene_radius_ * scene_radius_; }
+glm::vec3 LightSet::sky_flux() const {
+  const glm::vec3 over_sphere =
+      scene_.environment * (scene_.environment_map ? scene_.environment_map->integral() : glm::vec3(4.0f * kPi));
+  return over_sphere * (kPi * scene_radius_ * scene_radius_);
+}
 
-float LightSet::pdf_environment() const {
-  return environment_ < 0 ? 0.0f : distribution_.probability(uint32_t(environment_)) * kInv4Pi;
+LightSet::SkySample LightSet::sample_sky(glm::vec2 u) const {
+  if (!scene_.environment_map) return {uniform_sphere(u), scene_.environment, kInv4Pi};  // nothing brighter to aim at
+  const EnvironmentMap::Sample s = scene_.environment_map->sample(u);
+  return {s.direction, scene_.environment * s.radiance, s.pdf};
+}
+
+float LightSet::pdf_environment(glm::vec3 direction) const {
+  if (environment_ < 0) return 0.0f;
+  const float pdf = scene_.environment_map ? scene_.environment_map->pdf(direction) : kInv4Pi;
+  return distribution_.probability(uint32_t(environment_)) * pdf;
 }
 
 glm::vec3 LightSet::disc_origin(glm::vec3 direction, glm::vec2 u) const {
@@ -158,11 +171,11 @@ EmissionSample LightSet::sample_emission(const Distribution1D& selection, float 
     return e;
   }
   if (light.kind == LightKind::Environment) {
-    // The direction is the caller's (light_path.h), the origin on the disc
-    // across it: flux L x 4 pi (directions) x pi R^2 (the disc), per choice.
+    // The direction is the caller's (sample_sky), the origin on the disc
+    // across it: flux L / pdf (directions) x pi R^2 (the disc), per choice.
     e.position = glm::vec3(0.0f);
     e.normal = glm::vec3(0.0f);
-    e.power = scene_.environment * (sky_etendue() / select);
+    e.power = glm::vec3(1.0f / select);
     return e;
   }
   const PunctualLight& pl = scene_.lights[light.index];

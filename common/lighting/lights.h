@@ -1,12 +1,13 @@
 #pragma once
 // Every light of a scene in one list, chosen in proportion to its power:
 // emissive triangles (area lights, front face only), punctual lights and
-// the environment (Scene::environment, a constant sky; last in the list).
+// the environment (Scene::environment, a constant sky or a map; last in the list).
 //
 // Units: area-light radiance W/(m^2 sr); point/spot intensity W/sr;
 // directional irradiance W/m^2; environment radiance W/(m^2 sr). Power is
 // the luminance of the emitted flux; the environment's is what enters the
-// scene's bounding sphere of radius R, 4 pi^2 R^2 L (as pbrt-v4 counts it).
+// scene's bounding sphere of radius R, pi R^2 x the integral of L over the
+// sphere (4 pi^2 R^2 L for a constant sky, as pbrt-v4 counts it).
 #include <cstdint>
 #include <vector>
 
@@ -62,12 +63,24 @@ class LightSet {
   // Solid-angle density with which sample() would have picked the point hit on
   // emissive `triangle` at `hit_point` from `p` (for MIS of BSDF-sampled hits).
   float pdf_area(uint32_t triangle, glm::vec3 p, glm::vec3 hit_point) const;
-  // Solid-angle density with which sample() picks a direction of the
-  // environment (uniform over the sphere); 0 without one.
-  float pdf_environment() const;
+  // Solid-angle density with which sample() picks `direction` (towards the
+  // sky) of the environment: uniform over the sphere for a constant sky, by
+  // luminance for a map; 0 without one.
+  float pdf_environment(glm::vec3 direction) const;
+
+  // A direction towards the sky (uniform, or by the map's luminance) and the
+  // radiance from it; pdf in solid angle, without the light's selection.
+  struct SkySample {
+    glm::vec3 direction{0.0f};
+    glm::vec3 radiance{0.0f};
+    float pdf = 0.0f;
+  };
+  SkySample sample_sky(glm::vec2 u) const;
 
   // A light and a point on it, with the power it carries (for VPL light paths).
-  // Area lights: point uniform on the triangle; the direction is sampled by the caller.
+  // Area lights: point uniform on the triangle; the direction is sampled by
+  // the caller. The environment: power is its radiance scale / selection,
+  // the caller samples a direction (sample_sky) and the disc across it.
   EmissionSample sample_emission(float u_select, glm::vec2 u) const;
   // The same with the light chosen by `selection` (one weight per light, e.g.
   // light importance) instead of by power; power is divided by its probability.
@@ -86,8 +99,9 @@ class LightSet {
 
  private:
   float power(const Light& light) const;
-  // 4 pi (directions) x pi R^2 (the disc across each): the environment's flux per unit radiance.
-  float sky_etendue() const;
+  // The environment's flux into the scene: pi R^2 (the disc across each
+  // direction) x the radiance integrated over the sphere.
+  glm::vec3 sky_flux() const;
 
   const Scene& scene_;
   std::vector<Light> lights_;

@@ -73,7 +73,7 @@ int follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, in
     if (!b.traced) {
       ++rays.secondary;
       if (!accel.intersect(b.ray, b.hit)) {
-        g.emitted += g.throughput * scene.environment;  // out of the scene: the sky
+        g.emitted += g.throughput * scene.sky(b.ray.direction);  // out of the scene: the sky
         continue;
       }
     }
@@ -106,7 +106,7 @@ int follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, in
       b.ray = Ray{offset_origin(sp, wi), wi, 0.0f, 1e30f, b.ray.mask};
       ++rays.secondary;
       if (!accel.intersect(b.ray, b.hit)) {
-        g.emitted += g.throughput * scene.environment;
+        g.emitted += g.throughput * scene.sky(b.ray.direction);
         break;
       }
     }
@@ -147,12 +147,12 @@ void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis&
   }
   rtcIntersect16(valid, accel.handle(), &context, &packet);
   GSample more[kMaxGlassBranches];  // reset by follow_specular_tree as it uses them
-  const glm::vec3 sky = accel.scene().environment;
   for (int i = 0; i < 16; ++i) {
     const int x = bx + (i & 3), y = by + (i >> 2);
     if (!valid[i]) continue;
     if (packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
-      out.at(k, size_t(y) * region.width + x).emitted = sky;  // the camera sees the sky (black without one)
+      const glm::vec3 direction{packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]};
+      out.at(k, size_t(y) * region.width + x).emitted = accel.scene().sky(direction);  // black without one
       continue;
     }
     Ray ray{camera.origin, {packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]}, 0.0f, 1e30f, kCameraRayMask};

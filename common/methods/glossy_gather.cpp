@@ -23,7 +23,7 @@ void gather_at(const Accel& accel, const GSample& g, uint32_t owner, uint32_t se
     if (accel.intersect(ray, hit))
       follow_specular_chain(accel, ray, hit, hash(seed, uint32_t(j)), depth_limit(settings.specular_depth), y, rays);
     else
-      y.emitted = accel.scene().environment;  // the sky in the lobe (none: nothing is kept)
+      y.emitted = accel.scene().sky(ray.direction);  // the sky in the lobe (none: nothing is kept)
     if (!y.valid() && y.emitted == glm::vec3(0.0f)) continue;
     out.points.push_back(y);
     out.owner.push_back(owner);

@@ -71,8 +71,9 @@ glm::vec3 PathTracer::radiance(Ray ray, uint32_t sample_index, uint32_t pixel_se
     if (!context_.accel.intersect(ray, hit)) {
       // Out of the scene: the environment, weighted against its light samples.
       if (scene.has_environment()) {
-        const float w = specular_bounce ? 1.0f : power_heuristic(bsdf_pdf_prev, context_.lights.pdf_environment());
-        result += throughput * scene.environment * w;
+        const float w =
+            specular_bounce ? 1.0f : power_heuristic(bsdf_pdf_prev, context_.lights.pdf_environment(ray.direction));
+        result += throughput * scene.sky(ray.direction) * w;
       }
       break;
     }

@@ -21,4 +21,11 @@ uint32_t Distribution1D::sample(float u) const {
   return i;
 }
 
+uint32_t Distribution1D::sample(float u, float& remapped) const {
+  const uint32_t i = sample(u);
+  const double lo = i == 0 ? 0.0 : cdf_[i - 1], hi = cdf_[i];
+  remapped = hi > lo ? float(std::clamp((double(u) - lo) / (hi - lo), 0.0, 0x1.fffffep-1)) : 0.5f;
+  return i;
+}
+
 }  // namespace igi

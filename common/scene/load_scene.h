@@ -8,10 +8,19 @@
 
 namespace igi {
 
+// A sky from the command line (--environment R,G,B or FILE,
+// --environment-scale, --environment-rotation): a constant radiance, or an
+// equirectangular map (scene/environment_map.h) times `radiance`.
+struct SkyChoice {
+  glm::vec3 radiance{1.0f};
+  std::string map;        // the map's path; empty: a constant sky
+  float rotation = 0.0f;  // the map's, degrees about +y
+};
+
 // Throws SceneError with a message naming the file or scene on failure.
 // Warnings about glTF features that were mapped or ignored go to `warnings`.
-// `environment`, when given, replaces the scene's own sky (--environment).
+// `sky`, when given, replaces the scene's own (--environment).
 Scene load_scene(const std::string& name_or_path, std::vector<std::string>* warnings = nullptr,
-                 std::optional<glm::vec3> environment = std::nullopt);
+                 const std::optional<SkyChoice>& sky = std::nullopt);
 
 }  // namespace igi

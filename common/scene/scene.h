@@ -20,6 +20,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/camera.h"
+#include "scene/environment_map.h"
 
 namespace igi {
 
@@ -99,10 +100,13 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<PunctualLight> lights;
-  // A constant sky around the scene: radiance (W/(m^2 sr)) arriving from
-  // every direction a ray leaves the scene by; zero for none. From the
-  // command line (--environment) or the glTF scene's extras.
+  // The sky around the scene: radiance (W/(m^2 sr)) arriving from every
+  // direction a ray leaves the scene by, constant or, with a map, the map's
+  // radiance times this; zero for none. From the command line (--environment
+  // R,G,B or FILE, --environment-scale, --environment-rotation) or the glTF
+  // scene's extras.
   glm::vec3 environment{0.0f};
+  std::shared_ptr<const EnvironmentMap> environment_map;
   std::optional<Camera> camera;
   // What moves (animated nodes, the area lights) and how; null when nothing
   // can. pose_scene() in scene/animation.h moves it.
@@ -110,7 +114,14 @@ struct Scene {
 
   Bounds bounds() const;
   bool has_light() const;
-  bool has_environment() const { return environment.x > 0.0f || environment.y > 0.0f || environment.z > 0.0f; }
+  bool has_environment() const {
+    return (environment.x > 0.0f || environment.y > 0.0f || environment.z > 0.0f) &&
+           (!environment_map || environment_map->luminance_integral() > 0.0f);
+  }
+  // Radiance arriving from `direction` (towards the sky, any length > 0).
+  glm::vec3 sky(glm::vec3 direction) const {
+    return environment_map ? environment * environment_map->radiance(direction) : environment;
+  }
   // A camera that frames the bounding box from the +z side, looking down -z.
   Camera auto_camera() const;
   Camera camera_or_auto() const { return camera ? *camera : auto_camera(); }

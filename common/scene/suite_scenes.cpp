@@ -132,6 +132,39 @@ Scene make_corner_scene() {
   return s;
 }
 
+// An axis-aligned block's top and four sides, facing out.
+void add_block(Scene& s, glm::vec3 lo, glm::vec3 hi, uint32_t material) {
+  const glm::vec3 c = 0.5f * (lo + hi), h = 0.5f * (hi - lo);
+  const glm::vec3 x(h.x, 0, 0), y(0, h.y, 0), z(0, 0, h.z);
+  add_facing_quad(s, c + y, x, z, {0, 1, 0}, material);
+  add_facing_quad(s, c + x, y, z, {1, 0, 0}, material);
+  add_facing_quad(s, c - x, y, z, {-1, 0, 0}, material);
+  add_facing_quad(s, c + z, x, y, {0, 0, 1}, material);
+  add_facing_quad(s, c - z, x, y, {0, 0, -1}, material);
+}
+
+Scene make_courtyard_scene() {
+  Scene s;
+  s.name = "courtyard";
+  const uint32_t ground = diffuse(s, "ground", {0.5f, 0.48f, 0.45f});
+  const uint32_t white = diffuse(s, "white", glm::vec3(0.75f));
+  const uint32_t red = diffuse(s, "red", {0.7f, 0.15f, 0.1f});
+  Material metal;
+  metal.name = "metal";
+  metal.type = MaterialType::Conductor;
+  metal.base_color = {0.95f, 0.93f, 0.88f};
+  metal.alpha = 0.02f;
+  const uint32_t ball = add_material(s, metal);
+  add_facing_quad(s, {0, 0, 0}, {8, 0, 0}, {0, 0, 8}, {0, 1, 0}, ground);
+  add_block(s, {-2.5f, 0.0f, -2.0f}, {-0.5f, 3.0f, -1.0f}, white);
+  add_block(s, {0.8f, 0.0f, -0.6f}, {2.0f, 1.2f, 0.6f}, red);
+  add_bumpy_sphere(s, {-0.2f, 0.7f, 1.0f}, 0.7f, 24, [](float, float) { return 1.0f; }, ball);
+  s.environment = glm::vec3(1.0f);
+  s.camera = look_at({1.5f, 2.2f, 7.0f}, {-0.3f, 0.8f, -0.5f}, 50.0f);
+  group_by_material(s);
+  return s;
+}
+
 Scene make_tilted_light_scene() {
   Scene s;
   s.name = "tilted-light";

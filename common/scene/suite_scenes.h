@@ -25,6 +25,10 @@
 //           glass sphere hung so its caustic focuses on the floor in view:
 //           light that reaches a diffuse surface through mirrors and glass
 //           (caustics, common/photons/), and glass seen from the camera.
+//   courtyard  open ground of 16 x 16 m with two blocks and a metal ball, and
+//           no light of its own but a sky (constant 1, 1, 1 unless
+//           --environment names another, or an HDR map): what a glTF file
+//           without lights is, lit the way such files are.
 //   tilted-light  closed 4 x 3 x 4 m room lit by a small one-sided quad
 //           tilted towards a corner: the walls beside it see the light at
 //           grazing angles (area-light sampling far from the normal).
@@ -37,6 +41,7 @@ namespace igi {
 inline constexpr int kMaxRooms = 10;
 
 Scene make_corner_scene();
+Scene make_courtyard_scene();
 Scene make_tilted_light_scene();
 // 1 <= n <= kMaxRooms; throws SceneError otherwise.
 Scene make_rooms_scene(int n);

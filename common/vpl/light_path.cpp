@@ -32,12 +32,14 @@ LightPathStart start_light_path(const LightSet& lights, const Scene& scene, Samp
       start.flux = e.power;
       break;
     case LightKind::Environment: {
-      // Into the scene along a uniform direction, from the disc across it.
-      const glm::vec3 d = uniform_sphere(u_dir);
+      // Into the scene against a direction towards the sky (uniform, or by
+      // the map's luminance), from the disc across it.
+      const LightSet::SkySample sky = lights.sample_sky(u_dir);
+      const glm::vec3 d = -sky.direction;
       start.ray = Ray{lights.disc_origin(d, u_point), d};
-      start.flux = e.power;
       start.from_environment = true;
-      start.irradiance = e.power * (kInvPi / (lights.scene_radius() * lights.scene_radius()));
+      start.irradiance = sky.pdf > 0.0f ? e.power * sky.radiance / sky.pdf : glm::vec3(0.0f);
+      start.flux = start.irradiance * (kPi * lights.scene_radius() * lights.scene_radius());
       break;
     }
     default: {
