@@ -32,9 +32,9 @@
 
 #include "protocol/curve.h"
 #include "protocol/messages.h"
-#include "scene/load_scene.h"
 #include "protocol/monitor.h"
 #include "render_pool.h"
+#include "scene/load_scene.h"
 #include "scene_cache.h"
 
 namespace igi {
