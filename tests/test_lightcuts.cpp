@@ -16,6 +16,7 @@
 #include "support/image_compare.h"
 #include "support/process.h"
 #include "support/render_fixture.h"
+#include "support/tilted_normals.h"
 
 namespace igi {
 namespace {
@@ -135,6 +136,23 @@ TEST(LightcutsAccuracy, AnExhaustiveCutIsIrOverTheSameVpls) {
   const Difference d = relative_difference(a.image, b.image);
   std::printf("exhaustive cut against ir: mean %.2e, within 2 %%: %.4f, %.0f nodes per pixel\n", d.mean, d.within_2,
               double(a.stats.cut_nodes) / a.pixels());
+  EXPECT_LT(d.mean, 1e-4);
+  EXPECT_GE(d.within_2, 0.999);
+}
+
+// The same on a smooth-shaded mesh whose shading normals lean off the faces:
+// one shading rule (the path tracer's: light from below the shading normal,
+// or seen from below it, reflects nothing) in igi's fast lanes, its general
+// lanes and lightcuts, so the exhaustive cut is still ir.
+TEST(LightcutsAccuracy, OnTiltedShadingNormalsAnExhaustiveCutIsStillIr) {
+  static const test::Prepared tilted(test::tilted_cornell());
+  RenderSettings ir = lightcuts_settings(8);
+  ir.method = MethodKind::InstantRadiosity;
+  RenderSettings exhaustive = lightcuts_settings(8, 0, 1, 1e-7f);
+  exhaustive.lightcuts_max_cut = lightcuts::kMaxCut;
+  const Rendered a = render(tilted, exhaustive, 40, 30), b = render(tilted, ir, 40, 30);
+  const Difference d = relative_difference(a.image, b.image);
+  std::printf("tilted normals, exhaustive cut against ir: mean %.2e, within 2 %%: %.4f\n", d.mean, d.within_2);
   EXPECT_LT(d.mean, 1e-4);
   EXPECT_GE(d.within_2, 0.999);
 }

@@ -14,6 +14,7 @@
 #include "scene/suite_scenes.h"
 #include "scene/triangle.h"
 #include "support/render_fixture.h"
+#include "support/tilted_normals.h"
 #include "vpl/vpl_generator.h"
 
 namespace igi::lightcuts {
@@ -122,23 +123,6 @@ TEST(LightTree, RepresentativesAreChosenInProportionToWeight) {
   EXPECT_NEAR(double(heavy) / seeds, 0.75, 0.03);
 }
 
-// Cornell box with vertex normals tilted 12 degrees off the faces, so the
-// bounds' shading-normal terms are exercised too.
-Scene tilted_cornell() {
-  Scene s = make_cornell_box();
-  s.normals.assign(s.positions.size(), glm::vec3(0.0f));
-  for (size_t t = 0; t < s.triangles.size(); ++t) {
-    const glm::uvec3 tri = s.triangles[t];
-    const glm::vec3 n = triangle_normal(s, uint32_t(t));
-    const Onb f(n);
-    for (int k = 0; k < 3; ++k) {
-      const float phi = 2.1f * float(tri[k]);
-      s.normals[tri[k]] = glm::normalize(n + std::tan(0.21f) * (std::cos(phi) * f.t + std::sin(phi) * f.b));
-    }
-  }
-  return s;
-}
-
 // For every gather node and light node of a few pixels: the exact sum of the
 // unoccluded contributions of their pairs never exceeds the pair's bound.
 void expect_bounds_hold(const Scene& scene, float clamp, int samples_per_pixel) {
@@ -195,7 +179,7 @@ TEST(LightcutsBounds, HoldWithTheClamp) { expect_bounds_hold(make_cornell_box(),
 TEST(LightcutsBounds, HoldForGgxReceiversAndGlossyVpls) { expect_bounds_hold(make_glossy_cornell(0.3f), 0.0f, 1); }
 TEST(LightcutsBounds, HoldForSharpGgx) { expect_bounds_hold(make_glossy_cornell(0.04f), 0.0f, 1); }
 TEST(LightcutsBounds, HoldForSpotLights) { expect_bounds_hold(make_corner_scene(), 0.0f, 1); }
-TEST(LightcutsBounds, HoldForTiltedShadingNormals) { expect_bounds_hold(tilted_cornell(), 0.0f, 1); }
+TEST(LightcutsBounds, HoldForTiltedShadingNormals) { expect_bounds_hold(test::tilted_cornell(), 0.0f, 1); }
 TEST(LightcutsBounds, HoldForGatherClusters) { expect_bounds_hold(make_glossy_cornell(0.3f), 0.0f, 4); }
 
 }  // namespace

@@ -9,15 +9,9 @@
 namespace igi::lightcuts {
 namespace {
 
-// The BSDF at the gather point, albedo included.
-glm::vec3 receiver_bsdf(const GatherPoint& g, glm::vec3 wi) {
-  const SurfacePoint& sp = g.surface;
-  if (sp.material->type == MaterialType::Diffuse) {
-    const bool same_side = glm::dot(g.wo, sp.geometric_normal) * glm::dot(wi, sp.geometric_normal) > 0.0f;
-    return same_side ? sp.albedo * kInvPi : glm::vec3(0.0f);
-  }
-  return bsdf_eval(sp, g.wo, wi);
-}
+// The BSDF at the gather point, albedo included: bsdf_eval's rule, as every
+// VPL method shades (methods/vpl_contribution.h).
+glm::vec3 receiver_bsdf(const GatherPoint& g, glm::vec3 wi) { return bsdf_eval(g.surface, g.wo, wi); }
 
 // A surface VPL's BSDF, light arriving from its incident direction and leaving along `out`.
 glm::vec3 vpl_bsdf(const Scene& scene, const Vpl& v, glm::vec3 out) {

@@ -24,7 +24,10 @@ void PixelBatch::add(uint32_t id, const GSample& g) {
   px.push_back(sp.position.x); py.push_back(sp.position.y); pz.push_back(sp.position.z);
   nx.push_back(n.x); ny.push_back(n.y); nz.push_back(n.z);
   gx.push_back(ng.x); gy.push_back(ng.y); gz.push_back(ng.z);
-  fast.push_back(sp.material->type == MaterialType::Diffuse);
+  // The fast lanes test light against both normals; a viewer below the
+  // shading normal (a leaning normal at a silhouette) sees nothing reflected
+  // there (bsdf_eval): the general lanes say so.
+  fast.push_back(sp.material->type == MaterialType::Diffuse && glm::dot(g.wo, n) > 0.0f);
   ++count;
 }
 

@@ -23,13 +23,11 @@ struct VplShading {
   // threshold, methods/glossy_gather.h): see vpl_bsdf().
   float min_emitter_alpha = 0.0f;
 
-  // BSDF at the shading point with albedo 1.
+  // BSDF at the shading point with albedo 1: bsdf_eval's rule, the path
+  // tracer's, for every material (light and viewer on the geometric side and
+  // above the shading normal; shadow_batch's fast lanes test the same).
   static glm::vec3 demodulated_bsdf(const GSample& g, glm::vec3 wi) {
     const SurfacePoint& sp = g.surface;
-    if (sp.material->type == MaterialType::Diffuse) {
-      bool same_side = glm::dot(g.wo, sp.geometric_normal) * glm::dot(wi, sp.geometric_normal) > 0.0f;
-      return same_side ? glm::vec3(kInvPi) : glm::vec3(0.0f);
-    }
     SurfacePoint white = sp;
     white.albedo = glm::vec3(1.0f);
     return bsdf_eval(white, g.wo, wi);
