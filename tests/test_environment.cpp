@@ -62,13 +62,15 @@ double central_mean(const Image& image) {
   return sum / n;
 }
 
+// A method, its passes and its relative tolerance on a mean.
+struct Case {
+  MethodKind method;
+  int samples;
+  double tolerance;
+};
+
 TEST(Environment, AnOpenQuadReflectsAlbedoTimesTheSkyAndTheSkyIsSeenWhereRaysLeave) {
   const Scene scene = quad_under_sky(glm::vec3(1.0f));
-  struct Case {
-    MethodKind method;
-    int samples;
-    double tolerance;
-  };
   for (const Case& c : {Case{MethodKind::PathTracer, 64, 0.02}, Case{MethodKind::Igi, 16, 0.03},
                         Case{MethodKind::Lightcuts, 4, 0.04}}) {
     SCOPED_TRACE(method_name(c.method));
@@ -175,11 +177,6 @@ TEST(Environment, UnderAnEnvironmentMapTheQuadReflectsTheIrradianceOfItsTexels) 
     }
   expected *= kAlbedo / kPi;
   const Scene scene = quad_under_sky(glm::vec3(1.0f), std::make_shared<const EnvironmentMap>(texels, 0.0f));
-  struct Case {
-    MethodKind method;
-    int samples;
-    double tolerance;
-  };
   for (const Case& c : {Case{MethodKind::PathTracer, 64, 0.02}, Case{MethodKind::Igi, 16, 0.03},
                         Case{MethodKind::Lightcuts, 4, 0.05}}) {
     SCOPED_TRACE(method_name(c.method));
