@@ -76,8 +76,8 @@ int run(const igi::MasterOptions& o) {
   zmq::context_t context(o.io_threads);
   igi::SceneSource source = igi::make_scene_source(o.render.scene);
   source.environment = scene.environment;
-  if (const auto sky = igi::sky_choice(o.render); sky && !sky->map.empty())
-    igi::add_environment_map(source, sky->map, sky->rotation);
+  if (scene.environment_map)  // --environment FILE's, or the glTF scene's extras'
+    igi::add_environment_map(source, scene.environment_map->source(), scene.environment_map->rotation());
   igi::MasterSession session(o, std::move(source), context, curve ? &curve->server : nullptr);
   session.judge_by(std::move(as_workers_load_it));
   if (curve)

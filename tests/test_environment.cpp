@@ -7,6 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <regex>
 #include <memory>
 
 #include "lighting/lights.h"
@@ -14,7 +18,9 @@
 #include "sampling/warp.h"
 #include "render/offline_render.h"
 #include "scene/accel.h"
+#include "scene/gltf_writer.h"
 #include "scene/load_scene.h"
+#include "support/image_compare.h"
 
 namespace igi {
 namespace {
@@ -182,6 +188,32 @@ TEST(Environment, UnderAnEnvironmentMapTheQuadReflectsTheIrradianceOfItsTexels) 
     SCOPED_TRACE(method_name(c.method));
     EXPECT_NEAR(central_mean(render(scene, c.method, c.samples)), expected, c.tolerance * expected);
   }
+}
+
+// A glTF scene may name its own map in its extras ({"environment": "sky.exr",
+// "environment_rotation": 30}, beside the file): it loads as the same sky as
+// --environment sky.exr --environment-rotation 30, and a map outside the
+// scene's folder is refused.
+TEST(Environment, AGltfSceneNamesItsOwnMapInItsExtras) {
+  const std::string dir = test::output_path("extras-sky");
+  std::filesystem::create_directories(dir);
+  write_image(sun_and_sky(), dir + "/sky.exr");
+  write_gltf(quad_under_sky(glm::vec3(1.0f)), dir + "/quad.gltf");
+  std::ifstream in(dir + "/quad.gltf");
+  const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::regex sky("\"environment\"\\s*:\\s*\\[[^\\]]*\\]");
+  ASSERT_TRUE(std::regex_search(json, sky)) << json;
+  std::ofstream(dir + "/map.gltf") << std::regex_replace(json, sky, "\"environment\": \"sky.exr\", \"environment_rotation\": 30");
+  std::ofstream(dir + "/outside.gltf") << std::regex_replace(json, sky, "\"environment\": \"../sky.exr\"");
+  const Scene from_extras = load_scene(dir + "/map.gltf");
+  ASSERT_TRUE(from_extras.environment_map);
+  EXPECT_EQ(from_extras.environment, glm::vec3(1.0f));
+  EXPECT_EQ(from_extras.environment_map->rotation(), 30.0f);
+  const Scene from_options = load_scene(dir + "/quad.gltf", nullptr, SkyChoice{glm::vec3(1.0f), dir + "/sky.exr", 30.0f});
+  for (const glm::vec3 d : {glm::vec3(0, 0, -1), glm::vec3(0.3f, 0.5f, 0.8f), glm::vec3(-1, -0.2f, 0)})
+    EXPECT_EQ(from_extras.sky(d), from_options.sky(d));
+  write_image(sun_and_sky(), test::output_path("sky.exr"));
+  EXPECT_THROW(load_scene(dir + "/outside.gltf"), SceneError);
 }
 
 // A map of ones is the constant sky of the same radiance, and a black map lights nothing.

@@ -53,7 +53,9 @@ EnvironmentMap EnvironmentMap::load(const std::string& path, float rotation_degr
     throw std::runtime_error(std::string("environment map: ") + e.what());  // read_image names the file
   }
   try {
-    return EnvironmentMap(std::move(image), rotation_degrees);
+    EnvironmentMap map(std::move(image), rotation_degrees);
+    map.source_ = path;
+    return map;
   } catch (const std::exception& e) {
     throw std::runtime_error("environment map " + path + ": " + e.what());
   }

@@ -30,6 +30,8 @@ class EnvironmentMap {
   EnvironmentMap(Image image, float rotation_degrees);
   // Reads `path` (an equirectangular float image); errors name the file.
   static EnvironmentMap load(const std::string& path, float rotation_degrees);
+  // The file it was read from (empty when made from an image): what the master sends workers.
+  const std::string& source() const { return source_; }
 
   // Radiance arriving from `direction` (towards the sky; any length > 0).
   glm::vec3 radiance(glm::vec3 direction) const;
@@ -58,6 +60,7 @@ class EnvironmentMap {
   float solid_angle(int row) const;                // of one texel in `row`
 
   Image image_;
+  std::string source_;
   float rotation_;           // degrees
   float cos_rotation_, sin_rotation_;
   std::vector<float> row_cos_;          // cos of the polar angle at each row's top edge, and the last row's bottom

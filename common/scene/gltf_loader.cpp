@@ -247,20 +247,49 @@ std::shared_ptr<const SceneAnimation> make_animation(std::vector<AnimationChanne
   return animation;
 }
 
+// The scene's extras {"environment": "sky.hdr", "environment_rotation": 30}:
+// an environment map in the scene's folder (scene/environment_map.h), turned
+// by that many degrees about +y (0 when absent).
+void read_environment_map(const tinygltf::Value& extras, const std::string& resource_dir, GltfDiagnostics& diag,
+                          Scene& scene) {
+  const std::string name = extras.Get("environment").Get<std::string>();
+  float rotation = 0.0f;
+  if (extras.Has("environment_rotation")) {
+    const tinygltf::Value& r = extras.Get("environment_rotation");
+    if (!r.IsNumber() || !(std::abs(r.GetNumberAsDouble()) <= 360.0))
+      diag.fail("scenes", "extras.environment_rotation must be degrees within +-360");
+    rotation = float(r.GetNumberAsDouble());
+  }
+  const std::string path = (fs::path(resource_dir) / name).string();
+  ResourceFolder folder = resource_folder(resource_dir);
+  if (!folder.contains(path)) diag.fail("scenes", "extras.environment: " + name + " is outside the scene's folder");
+  try {
+    scene.environment_map = std::make_shared<const EnvironmentMap>(EnvironmentMap::load(path, rotation));
+  } catch (const std::exception& e) {
+    diag.fail("scenes", std::string("extras.environment: ") + e.what());
+  }
+}
+
 // The scene's extras {"environment": [r, g, b]}: a constant sky's radiance
-// (gltf_writer.cpp writes it); none when absent.
-glm::vec3 read_environment(const tinygltf::Model& model, GltfDiagnostics& diag) {
+// (gltf_writer.cpp writes it), or the name of a map (read_environment_map,
+// then the radiance is 1, 1, 1: the map's own); none when absent.
+glm::vec3 read_environment(const tinygltf::Model& model, const std::string& resource_dir, GltfDiagnostics& diag,
+                           Scene& scene) {
   if (model.scenes.empty()) return glm::vec3(0.0f);
   const tinygltf::Value& extras = model.scenes[size_t(std::max(0, model.defaultScene)) % model.scenes.size()].extras;
   if (!extras.IsObject() || !extras.Has("environment")) return glm::vec3(0.0f);
   const tinygltf::Value& v = extras.Get("environment");
+  if (v.IsString()) {
+    read_environment_map(extras, resource_dir, diag, scene);
+    return glm::vec3(1.0f);
+  }
   glm::vec3 c(0.0f);
   bool ok = v.IsArray() && v.ArrayLen() == 3;
   for (int i = 0; ok && i < 3; ++i) {
     ok = v.Get(i).IsNumber();
     if (ok) c[i] = float(v.Get(i).GetNumberAsDouble());
   }
-  if (!ok) diag.fail("scenes", "extras.environment must be three numbers [r, g, b]");
+  if (!ok) diag.fail("scenes", "extras.environment must be three numbers [r, g, b] or a map's file name");
   return c;  // finite and >= 0: Scene::validate
 }
 
@@ -302,7 +331,8 @@ LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& 
   scene.camera = nodes.camera;
   if (!nodes.pose_nodes.empty()) scene.animation = make_animation(std::move(channels), nodes, std::move(parts), scene, diag);
   scene.name = nodes.scene_name.empty() ? fs::path(name).stem().string() : nodes.scene_name;
-  scene.environment = environment ? *environment : read_environment(model, diag);
+  // The command line's sky replaces the file's (a worker's copy: the master's sky, its map sent apart).
+  scene.environment = environment ? *environment : read_environment(model, resource_dir, diag, scene);
   validate_scene(scene, diag);
   loaded.warnings = std::move(diag.warnings);
   return loaded;
