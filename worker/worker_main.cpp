@@ -19,7 +19,8 @@ constexpr int kUsageStatus = 2;  // bad options or key files
 const char* kExitStatus =
     "exit status: 0 the master said goodbye, 2 bad options or key files, 3 refused (another build or\n"
     "  protocol version, an unknown key), 4 gave up (no master for --give-up seconds), 5 quarantined\n"
-    "  (its VPL sets differ from the other workers'), 6 the scene does not load here";
+    "  (its VPL sets differ from the master's own, or its results keep failing validation), 6 the scene\n"
+    "  or its environment map does not load here, 7 a frame needs more memory than this machine has";
 
 // Keys through an inherited descriptor: never on the command line, where any user sees them.
 igi::protocol::CurveClientKeys read_keys_from_fd(int fd) {
