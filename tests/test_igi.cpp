@@ -32,7 +32,8 @@ struct TileCase {
 // Every option that changes how a pixel is shaded, on a scene where it acts:
 // anti-aliasing, the glossy gather (glossy), exact spot light (corner),
 // bias compensation, glass branches and the caustic photon map (glass), light
-// importance (rooms) and bidirectional IR (corridor).
+// importance (rooms), bidirectional IR (corridor) and the sky's directional
+// VPLs and misses (courtyard, with the glossy gather on its metal ball).
 std::vector<TileCase> tile_cases() {
   RenderSettings all = vpl_settings(MethodKind::Igi, 4, 0.05f, true, 2);
   all.aa_samples = 4;
@@ -62,7 +63,9 @@ std::vector<TileCase> tile_cases() {
           {"lightcuts", "cornell", vpl_settings(MethodKind::Lightcuts, 4, 0.05f)},
           {"igi_importance", "rooms", importance},
           {"igi_bidir", "corridor", bidir},
-          {"ir_importance_bidir", "rooms-3", ir_both}};
+          {"ir_importance_bidir", "rooms-3", ir_both},
+          {"igi_aa_sky", "courtyard", all},
+          {"lightcuts_sky", "courtyard", vpl_settings(MethodKind::Lightcuts, 4, 0.05f)}};
 }
 
 class TileInvariance : public ::testing::TestWithParam<TileCase> {};
