@@ -8,10 +8,8 @@
 
 #include "cli/option_checks.h"
 #include "image/image.h"
-#include "lightcuts/lightcuts_settings.h"
 #include "methods/clamp.h"
 #include "methods/memory_check.h"
-#include "photons/caustic_settings.h"
 #include "protocol/messages.h"
 #include "scene/builtin_scenes.h"
 
@@ -35,21 +33,6 @@ std::string shown_default(double value) {
 }
 
 constexpr int kMaxSamples = 1 << 20;    // --spp: samples per pixel or passes
-constexpr int kMaxAntialiasText = 1 << 20;  // --aa: the square numbers up to 64 are checked with the settings
-
-// Before any work: options lightcuts cannot use, and VPL counts that would not fit in memory.
-void check_lightcuts(const RenderSettings& s) {
-  if (s.method != MethodKind::Lightcuts) return;
-  if (const std::string error = lightcuts::settings_error(s); !error.empty()) throw OptionError(error);
-}
-
-// Before any work: a caustic map that could not fit in memory.
-void check_caustics(const RenderSettings& s) {
-  if (!s.caustics) return;
-  if (s.method != MethodKind::InstantRadiosity && s.method != MethodKind::Igi)
-    throw OptionError("--caustics: only the ir and igi methods add caustic photons (pt finds caustics "
-                      "by itself), got --method " + std::string(method_name(s.method)));
-}
 
 // Before any work: VPLs, a light tree or a caustic map that could not fit in this machine's memory,
 // and tiles whose scratch could not: igi-render's threads, or the local workers' (every core) under igi-master.
@@ -107,60 +90,60 @@ void add_image_options(CLI::App& app, RenderOptions& o) {
 
 void add_vpl_options(CLI::App& app, RenderSettings& s) {
   app.add_option("--path-depth", s.path_depth, "pt: longest path in bounces, 0 = unbounded (Russian roulette)" + shown_default(kDefaults.settings.path_depth))
-      ->check(integer(0, kMaxDepth))->type_name("D");
+      ->check(integer<int>())->type_name("D");
   app.add_option("--light-depth", s.light_depth, "ir/igi: longest VPL light path, 0 = unbounded (Russian roulette)" + shown_default(kDefaults.settings.light_depth))
-      ->check(integer(0, kMaxDepth))->type_name("D");
+      ->check(integer<int>())->type_name("D");
   app.add_option("--specular-depth", s.specular_depth,
                  "ir/igi: mirrors and glass followed from the camera, 0 = unbounded" + shown_default(kDefaults.settings.specular_depth))
-      ->check(integer(0, kMaxDepth))->type_name("D");
+      ->check(integer<int>())->type_name("D");
   app.add_option("--max-depth")->group("");  // split: refused with a message that says how
   app.add_option("--vpl-sets", s.interleave, "ir/igi: N x N interleaved VPL sets" + shown_default(kDefaults.settings.interleave))
-      ->check(integer(1, kMaxInterleave))->type_name("N");
+      ->check(integer<int>())->type_name("N");
   app.add_option("--vpl-paths", s.paths_per_set, "ir/igi: light paths per VPL set" + shown_default(kDefaults.settings.paths_per_set))
-      ->check(integer(1, kMaxPathsPerSet))->type_name("M");
+      ->check(integer<int>())->type_name("M");
   app.add_option("--aa", s.aa_samples, "ir/igi: S sub-samples per pixel (1, 4, 9, ...), each shaded by 1/S of the "
                  "pixel's light paths (anti-aliasing by VPL groups); needs --vpl-paths >= S" + shown_default(kDefaults.settings.aa_samples))
-      ->check(integer(1, kMaxAntialiasText))->type_name("S");
+      ->check(integer<int>())->type_name("S");
   app.add_option("--glossy-threshold", s.glossy_threshold, "ir/igi: GGX surfaces with alpha below A gather their "
                  "lobe with rays instead of VPL light; 0 = VPLs shade every glossy surface" + shown_default(kDefaults.settings.glossy_threshold))
-      ->check(non_negative_number())->type_name("A");
+      ->check(cli::number())->type_name("A");
   app.add_option("--glossy-rays", s.glossy_rays, "ir/igi: gather rays per sub-sample of such a surface" + shown_default(kDefaults.settings.glossy_rays))
-      ->check(integer(1, kMaxGlossyRays))->type_name("K");
+      ->check(integer<int>())->type_name("K");
   app.add_option("--clamp", s.clamp, "ir/igi/lightcuts: clamp 1/r^2 below distance C x the scene's mean chord (about "
                  "a room); pass k of --spp clamps at C / (k + 1)^(1/4) of it, so passes converge; 0 = off, at most "
                  + std::to_string(int(kMaxClamp)) + shown_default(kDefaults.settings.clamp))
-      ->check(non_negative_number())->type_name("C");
+      ->check(cli::number())->type_name("C");
   app.add_option("--compensate", s.compensation_samples,
                  "ir/igi: bias compensation, N eye samples per pixel (needs --clamp), 0 = off" + shown_default(kDefaults.settings.compensation_samples))
-      ->check(integer(0, kMaxCompensationSamples))->type_name("N");
+      ->check(integer<int>())->type_name("N");
   app.add_option("--glass-branches", s.glass_branches, "ir/igi: glass seen from the camera splits into reflection "
                  "and refraction at its first B - 1 surfaces, each branch filtered on its own; 1 = pick one by "
-                 "Fresnel" + shown_default(kDefaults.settings.glass_branches))->check(integer(1, kMaxGlassBranches))->type_name("B");
+                 "Fresnel" + shown_default(kDefaults.settings.glass_branches))->check(integer<int>())->type_name("B");
 }
 
 void add_filter_and_caustic_options(CLI::App& app, RenderSettings& s) {
   app.add_flag_callback("--no-filter", [&s] { s.filter = false; }, "igi: skip the discontinuity buffer");
   app.add_option("--filter-normal", s.filter_normal_cos, "igi: neighbours need normal dot above C" + shown_default(kDefaults.settings.filter_normal_cos))
-      ->check(non_negative_number())->type_name("C");
+      ->check(cli::number())->type_name("C");
   app.add_option("--filter-depth", s.filter_depth_ratio,
                  "igi: neighbours need relative depth difference below R" + shown_default(kDefaults.settings.filter_depth_ratio))
-      ->check(non_negative_number())->type_name("R");
+      ->check(cli::number())->type_name("R");
   app.add_option("--wavelet", s.wavelet_levels,
                  "ir/igi: levels of the edge-avoiding wavelet filter after the discontinuity buffer (smooths one "
                  "pass; a tile's border grows by 2^(L+1), so larger --tile costs less); 0 = off" +
                      shown_default(kDefaults.settings.wavelet_levels))
-      ->check(integer(0, kMaxWaveletLevels))->type_name("L");
+      ->check(integer<int>())->type_name("L");
   app.add_flag("--caustics", s.caustics, "ir/igi: add caustics from a photon map (light through mirrors and glass)");
   app.add_option_function<int>(
          "--caustic-photons", [&s](int n) { s.caustic_photons = n, s.caustics = true; },
          "ir/igi: photon paths shot per frame, >= 1; implies --caustics" +
              shown_default(kDefaults.settings.caustic_photons))
-      ->check(integer(0, photons::kMaxCausticPhotons))->type_name("N");
+      ->check(integer<int>())->type_name("N");
   app.add_option_function<float>(
          "--caustic-radius", [&s](float r) { s.caustic_radius = r, s.caustics = true; },
          "ir/igi: photon gather radius, a fraction of the scene diagonal; implies --caustics" +
              shown_default(kDefaults.settings.caustic_radius))
-      ->check(non_negative_number())->type_name("R");
+      ->check(cli::number())->type_name("R");
 }
 
 void add_lightcuts_and_importance_options(CLI::App& app, RenderSettings& s) {
@@ -168,24 +151,24 @@ void add_lightcuts_and_importance_options(CLI::App& app, RenderSettings& s) {
                  "until every cluster's error bound is below E x the pixel's total, 0 < E < 1" + shown_default(kDefaults.settings.lightcuts_error))
       ->check(cli::number())->type_name("E");
   app.add_option("--lightcuts-max-cut", s.lightcuts_max_cut, "lightcuts: at most N nodes (shadow rays) in a cut" + shown_default(kDefaults.settings.lightcuts_max_cut))
-      ->check(integer(1, lightcuts::kMaxCut))->type_name("N");
+      ->check(integer<int>())->type_name("N");
   app.add_option("--lightcuts-spacing", s.lightcuts_spacing,
                  "lightcuts: reconstruction cuts, full cuts every S pixels only, 0 = off" + shown_default(kDefaults.settings.lightcuts_spacing))
-      ->check(integer(0, lightcuts::kMaxSpacing))->type_name("S");
+      ->check(integer<int>())->type_name("S");
   app.add_option("--lightcuts-samples", s.lightcuts_samples,
                  "lightcuts: K = 1, 4, 9 ... 64 gather points per pixel (multidimensional)" + shown_default(kDefaults.settings.lightcuts_samples))
-      ->check(integer(1, lightcuts::kMaxSamples))->type_name("K");
+      ->check(integer<int>())->type_name("K");
   app.add_option("--importance", s.importance_paths, "ir/igi: start VPL light paths at lights by their estimated "
                  "share of the image, from N camera paths (light importance for the view), 0 = by power" + shown_default(kDefaults.settings.importance_paths))
-      ->check(integer(0, kMaxImportancePaths))->type_name("N");
+      ->check(integer<int>())->type_name("N");
   app.add_option("--importance-floor", s.importance_floor, "ir/igi: share of light paths still started by power, "
-                 "0..1" + shown_default(kDefaults.settings.importance_floor))->check(non_negative_number())->type_name("F");
+                 "0..1" + shown_default(kDefaults.settings.importance_floor))->check(cli::number())->type_name("F");
   app.add_option("--bidir", s.bidir_vpls, "ir/igi: bidirectional instant radiosity: per set, keep K of the VPLs of "
                  "--vpl-paths light paths and R camera paths, by their estimated contribution" + shown_default(kDefaults.settings.bidir_vpls))
-      ->check(integer(0, kMaxBidirVpls))->type_name("K");
+      ->check(integer<int>())->type_name("K");
   app.add_option("--bidir-camera-paths", s.bidir_camera_paths,
                  "ir/igi with --bidir: camera paths per set, 0 = --vpl-paths" + shown_default(kDefaults.settings.bidir_camera_paths))
-      ->check(integer(0, kMaxBidirPaths))->type_name("R");
+      ->check(integer<int>())->type_name("R");
 }
 
 }  // namespace
@@ -217,8 +200,6 @@ void check_render_options(const CLI::App& app, const RenderOptions& o) {
   // Before any work: an image that could not be written after the render.
   if (o.export_gltf.empty())
     if (auto error = image_path_error(o.output)) throw OptionError("-o " + *error);
-  check_lightcuts(o.settings);
-  check_caustics(o.settings);
   check_memory(o);
 }
 

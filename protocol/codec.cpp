@@ -8,10 +8,6 @@
 #include <cstdio>
 #include <numbers>
 
-#include "lightcuts/lightcuts_settings.h"
-#include "methods/clamp.h"
-#include "methods/subpixel.h"
-#include "photons/caustic_settings.h"
 #include "protocol/wire.h"
 
 namespace igi::protocol {
@@ -19,7 +15,7 @@ namespace {
 
 constexpr size_t kHeaderBytes = 8;
 constexpr int64_t kMaxThreads = 4096;
-// Settings bounds are the command lines' (methods/settings.h); liveness and
+// Settings are checked by methods/settings.h's check_settings(); liveness and
 // credits are messages.h's, which the master's command line checks too.
 constexpr int64_t kMaxBorder = 64;
 // sin of the smallest angle allowed between camera forward and up.
@@ -118,83 +114,38 @@ void write(Writer& w, const RenderSettings& s) {
   w.i32(s.bidir_camera_paths);
 }
 
-// RenderSettings in write()'s order, in three parts: paths and VPLs, the
-// filters and lightcuts, then light transport.
-void read_paths_and_vpls(Reader& r, RenderSettings& s) {
-  uint8_t method = r.u8("settings.method");
-  check_range(r, "settings.method", method, 0, static_cast<uint8_t>(MethodKind::Lightcuts));
-  if (r.ok()) s.method = static_cast<MethodKind>(method);
+// RenderSettings in write()'s order, then the one check of them all
+// (methods/settings.h): the wire knows the fields, not each method's rules.
+void read(Reader& r, RenderSettings& s) {
+  s.method = static_cast<MethodKind>(r.u8("settings.method"));
   s.path_depth = r.i32("settings.path_depth");
-  check_range(r, "settings.path_depth", s.path_depth, 0, kMaxDepth);
   s.light_depth = r.i32("settings.light_depth");
-  check_range(r, "settings.light_depth", s.light_depth, 0, kMaxDepth);
   s.specular_depth = r.i32("settings.specular_depth");
-  check_range(r, "settings.specular_depth", s.specular_depth, 0, kMaxDepth);
   s.interleave = r.i32("settings.interleave");
-  check_range(r, "settings.interleave", s.interleave, 1, kMaxInterleave);
   s.paths_per_set = r.i32("settings.paths_per_set");
-  check_range(r, "settings.paths_per_set", s.paths_per_set, 1, kMaxPathsPerSet);
   s.aa_samples = r.i32("settings.aa_samples");
-  check_range(r, "settings.aa_samples", s.aa_samples, 1, std::min(kMaxAntialiasSamples, s.paths_per_set));
-  if (r.ok() && subpixel_side(s.aa_samples) == 0) r.fail("settings.aa_samples", std::to_string(s.aa_samples) + ", expected a square number");
   s.glossy_threshold = r.f32("settings.glossy_threshold");
-  check_closed(r, "settings.glossy_threshold", s.glossy_threshold, 0.0f, 1.0f);
   s.glossy_rays = r.i32("settings.glossy_rays");
-  check_range(r, "settings.glossy_rays", s.glossy_rays, 1, kMaxGlossyRays);
   s.clamp = r.f32("settings.clamp");
-  check_closed(r, "settings.clamp", s.clamp, 0.0f, kMaxClamp);
   s.compensation_samples = r.i32("settings.compensation_samples");
-  check_range(r, "settings.compensation_samples", s.compensation_samples, 0, kMaxCompensationSamples);
-}
-
-void read_filters_and_lightcuts(Reader& r, RenderSettings& s) {
   s.filter = r.boolean("settings.filter");
   s.filter_normal_cos = r.f32("settings.filter_normal_cos");
-  check_closed(r, "settings.filter_normal_cos", s.filter_normal_cos, -1.0f, 1.0f);
   s.filter_depth_ratio = r.f32("settings.filter_depth_ratio");
-  check_finite_non_negative(r, "settings.filter_depth_ratio", s.filter_depth_ratio);
   s.wavelet_levels = r.i32("settings.wavelet_levels");
-  check_range(r, "settings.wavelet_levels", s.wavelet_levels, 0, kMaxWaveletLevels);
   s.lightcuts_error = r.f32("settings.lightcuts_error");
-  if (!(s.lightcuts_error > 0.0f && s.lightcuts_error < 1.0f))
-    r.fail("settings.lightcuts_error", show(s.lightcuts_error) + ", expected (0, 1)");
   s.lightcuts_max_cut = r.i32("settings.lightcuts_max_cut");
-  check_range(r, "settings.lightcuts_max_cut", s.lightcuts_max_cut, 1, lightcuts::kMaxCut);
   s.lightcuts_spacing = r.i32("settings.lightcuts_spacing");
-  check_range(r, "settings.lightcuts_spacing", s.lightcuts_spacing, 0, lightcuts::kMaxSpacing);
   s.lightcuts_samples = r.i32("settings.lightcuts_samples");
-  check_range(r, "settings.lightcuts_samples", s.lightcuts_samples, 1, lightcuts::kMaxSamples);
-}
-
-void read_light_transport(Reader& r, RenderSettings& s) {
   s.glass_branches = r.i32("settings.glass_branches");
-  check_range(r, "settings.glass_branches", s.glass_branches, 1, kMaxGlassBranches);
   s.caustics = r.boolean("settings.caustics");
   s.caustic_photons = r.i32("settings.caustic_photons");
-  check_range(r, "settings.caustic_photons", s.caustic_photons, 1, photons::kMaxCausticPhotons);
   s.caustic_radius = r.f32("settings.caustic_radius");
-  check_closed(r, "settings.caustic_radius", s.caustic_radius, photons::kMinCausticRadius, photons::kMaxCausticRadius);
-  // What else lightcuts refuses (a non-square sample count, spacing with samples).
-  if (r.ok() && s.method == MethodKind::Lightcuts && !lightcuts::settings_error(s).empty())
-    r.fail("settings.lightcuts", lightcuts::settings_error(s));
   s.importance_paths = r.i32("settings.importance_paths");
-  check_range(r, "settings.importance_paths", s.importance_paths, 0, kMaxImportancePaths);
   s.importance_floor = r.f32("settings.importance_floor");
-  check_closed(r, "settings.importance_floor", s.importance_floor, 0.0f, 1.0f);
   s.bidir_vpls = r.i32("settings.bidir_vpls");
-  check_range(r, "settings.bidir_vpls", s.bidir_vpls, 0, kMaxBidirVpls);
   s.bidir_camera_paths = r.i32("settings.bidir_camera_paths");
-  check_range(r, "settings.bidir_camera_paths", s.bidir_camera_paths, 0, kMaxBidirPaths);
-  // What else they refuse together (the method, the counts they need).
-  if (r.ok()) {
-    if (auto e = importance_settings_error(s)) r.fail("settings.importance", *e);
-  }
-}
-
-void read(Reader& r, RenderSettings& s) {
-  read_paths_and_vpls(r, s);
-  read_filters_and_lightcuts(r, s);
-  read_light_transport(r, s);
+  if (!r.ok()) return;
+  if (auto error = check_settings(s)) r.fail(("settings." + error->field).c_str(), error->message);
 }
 
 void write(Writer& w, const TileJob& t) {

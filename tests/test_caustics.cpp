@@ -279,12 +279,12 @@ TEST(CausticOptions, BadValuesAreRefusedBeforeAnyWork) {
     return settings_error(s).value_or("");
   };
   EXPECT_EQ(error([](RenderSettings&) {}), "");
-  EXPECT_EQ(error([](RenderSettings& s) { s.caustic_photons = 0; }).rfind("--caustic-photons: 0, expected 1 to 67108864", 0), 0u);
-  EXPECT_EQ(error([](RenderSettings& s) { s.caustic_photons = (1 << 26) + 1; }).rfind("--caustic-photons: 67108865", 0), 0u);
+  EXPECT_EQ(error([](RenderSettings& s) { s.caustic_photons = 0; }).rfind("--caustic-photons: expected 1..67108864 photon paths per frame", 0), 0u);
+  EXPECT_NE(error([](RenderSettings& s) { s.caustic_photons = (1 << 26) + 1; }).find("got 67108865"), std::string::npos);
   EXPECT_EQ(error([](RenderSettings& s) { s.caustic_radius = 0; })
-                .rfind("--caustic-radius: 0, expected a fraction of the scene diagonal in [1e-05, 0.25]", 0), 0u);
-  EXPECT_EQ(error([](RenderSettings& s) { s.caustic_radius = 0.5f; }).rfind("--caustic-radius: 0.5", 0), 0u);
-  EXPECT_EQ(error([](RenderSettings& s) { s.caustic_radius = NAN; }).rfind("--caustic-radius: nan", 0), 0u);
+                .rfind("--caustic-radius: expected a fraction of the scene diagonal in [1e-05, 0.25], got 0", 0), 0u);
+  EXPECT_NE(error([](RenderSettings& s) { s.caustic_radius = 0.5f; }).find("got 0.5"), std::string::npos);
+  EXPECT_NE(error([](RenderSettings& s) { s.caustic_radius = NAN; }).find("got nan"), std::string::npos);
   EXPECT_EQ(error([](RenderSettings& s) { s.glass_branches = 9; }), "--glass-branches: expected 1..8, got 9");
   EXPECT_EQ(error([](RenderSettings& s) { s.glass_branches = 0; }), "--glass-branches: expected 1..8, got 0");
   // Beyond memory: 2^26 paths may store 4 photons each.
@@ -300,11 +300,11 @@ TEST(CausticOptions, BadValuesAreRefusedBeforeAnyWork) {
   };
   const std::string render = std::string(IGI_RENDER_BINARY) + " --scene no-such-scene --quiet -o " + test::output_path("bad.exr");
   const std::vector<Case> cases = {
-      {render + " --caustic-photons 0", "--caustic-photons: 0, expected 1 to 67108864 photon paths per frame"},
-      {render + " --caustic-radius x", "--caustic-radius: expected a non-negative number, got 'x'"},
+      {render + " --caustic-photons 0", "--caustic-photons: expected 1..67108864 photon paths per frame (leave out --caustics to turn caustics off), got 0"},
+      {render + " --caustic-radius x", "--caustic-radius: expected a number, got 'x'"},
       {render + " --caustics --method pt", "--caustics: only the ir and igi methods"},
       {std::string(IGI_MASTER_BINARY) + " --workers 0 --frames 1 --caustic-radius 0 -o " + test::output_path("bad.exr"),
-       "--caustic-radius: 0, expected"},
+       "--caustic-radius: expected a fraction of the scene diagonal in [1e-05, 0.25], got 0"},
   };
   for (const Case& c : cases) {
     const test::RunResult r = test::run(c.command, 20);

@@ -258,15 +258,15 @@ TEST(Lightcuts, BadOptionsAreRefusedBeforeAnyWork) {
   };
   const std::string render = std::string(IGI_RENDER_BINARY) + " --method lightcuts -o " + test::output_path("bad.exr");
   const std::vector<Case> cases = {
-      {render + " --lightcuts-error 1.5", "--lightcuts-error: 1.5, expected a number in (0, 1)"},
-      {render + " --lightcuts-error 0", "--lightcuts-error: 0, expected a number in (0, 1)"},
-      {render + " --lightcuts-max-cut 0", "--lightcuts-max-cut: expected an integer >= 1"},
-      {render + " --lightcuts-samples 8", "--lightcuts-samples: 8, expected a square number"},
+      {render + " --lightcuts-error 1.5", "--lightcuts-error: expected a number in (0, 1), got 1.5"},
+      {render + " --lightcuts-error 0", "--lightcuts-error: expected a number in (0, 1), got 0"},
+      {render + " --lightcuts-max-cut 0", "--lightcuts-max-cut: expected 1..1048576, got 0"},
+      {render + " --lightcuts-samples 8", "--lightcuts-samples: expected a square number of gather points per pixel (1, 4, 9, ..., 64), got 8"},
       // 16 x 16 sets of 2^20 paths: billions of VPLs. Refused at once, nothing traced.
       {render + " --vpl-sets 16 --vpl-paths 1048576", "lower --vpl-paths, --vpl-sets or --light-depth"},
       {std::string(IGI_MASTER_BINARY) + " --workers 0 --frames 1 --method lightcuts --lightcuts-error 2 -o " +
            test::output_path("bad.exr"),
-       "--lightcuts-error: 2, expected a number in (0, 1)"},
+       "--lightcuts-error: expected a number in (0, 1), got 2"},
   };
   for (const Case& c : cases) {
     const test::RunResult r = test::run(c.command, 20);

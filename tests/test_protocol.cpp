@@ -375,7 +375,7 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {settings_edited([](auto& s) { s.light_depth = 1025; }), "Welcome.settings.light_depth"},
       {settings_edited([](auto& s) { s.specular_depth = -2; }), "Welcome.settings.specular_depth"},
       {settings_edited([](auto& s) { s.aa_samples = 0; }), "Welcome.settings.aa_samples"},
-      {settings_edited([](auto& s) { s.aa_samples = 8; }), "Welcome.settings.aa_samples: 8, expected a square"},
+      {settings_edited([](auto& s) { s.aa_samples = 8; }), "Welcome.settings.aa_samples: --aa: expected a square"},
       {settings_edited([](auto& s) { s.aa_samples = 81; }), "Welcome.settings.aa_samples"},
       {settings_edited([](auto& s) { s.aa_samples = 16; s.paths_per_set = 9; }), "Welcome.settings.aa_samples"},
       {settings_edited([](auto& s) { s.glossy_threshold = -0.1f; }), "Welcome.settings.glossy_threshold"},
@@ -390,9 +390,9 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {settings_edited([](auto& s) { s.bidir_vpls = -1; }), "Welcome.settings.bidir_vpls"},
       {settings_edited([](auto& s) { s.bidir_vpls = (1 << 16) + 1; }), "Welcome.settings.bidir_vpls"},
       {settings_edited([](auto& s) { s.bidir_camera_paths = 4097; }), "Welcome.settings.bidir_camera_paths"},
-      {settings_edited([](auto& s) { s.method = MethodKind::PathTracer; s.importance_paths = 0; }),
-       "Welcome.settings.importance: --bidir: only for --method ir or igi"},
-      {settings_edited([](auto& s) { s.bidir_vpls = 4; }), "Welcome.settings.importance: --bidir 4 with --aa 9"},
+      {settings_edited([](auto& s) { s.method = MethodKind::PathTracer; s.importance_paths = 0; s.caustics = false; }),
+       "Welcome.settings.bidir_vpls: --bidir: only for --method ir or igi"},
+      {settings_edited([](auto& s) { s.bidir_vpls = 4; }), "Welcome.settings.bidir_vpls: --bidir 4 with --aa 9"},
       {settings_edited([](auto& s) { s.interleave = 0; }), "Welcome.settings.interleave"},
       {settings_edited([](auto& s) { s.paths_per_set = (1 << 20) + 1; }), "Welcome.settings.paths_per_set"},
       {settings_edited([](auto& s) { s.paths_per_set = -3; }), "Welcome.settings.paths_per_set"},
@@ -404,23 +404,23 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {settings_edited([](auto& s) { s.filter_normal_cos = NAN; }), "Welcome.settings.filter_normal_cos"},
       {settings_edited([](auto& s) { s.filter_depth_ratio = -1e-6f; }), "Welcome.settings.filter_depth_ratio"},
       {settings_edited([](auto& s) { s.wavelet_levels = kMaxWaveletLevels + 1; }), "Welcome.settings.wavelet_levels"},
-      {settings_edited([](auto& s) { s.method = MethodKind(4); }), "Welcome.settings.method: 4, expected [0, 3]"},
-      {settings_edited([](auto& s) { s.lightcuts_error = 0; }), "Welcome.settings.lightcuts_error: 0, expected (0, 1)"},
+      {settings_edited([](auto& s) { s.method = MethodKind(4); }), "Welcome.settings.method: --method: expected pt, ir, igi or lightcuts (0..3), got 4"},
+      {settings_edited([](auto& s) { s.lightcuts_error = 0; }), "Welcome.settings.lightcuts_error: --lightcuts-error: expected a number in (0, 1), got 0"},
       {settings_edited([](auto& s) { s.lightcuts_error = 1; }), "Welcome.settings.lightcuts_error"},
       {settings_edited([](auto& s) { s.lightcuts_error = NAN; }), "Welcome.settings.lightcuts_error"},
-      {settings_edited([](auto& s) { s.lightcuts_max_cut = 0; }), "Welcome.settings.lightcuts_max_cut: 0, expected [1, "},
+      {settings_edited([](auto& s) { s.lightcuts_max_cut = 0; }), "Welcome.settings.lightcuts_max_cut: --lightcuts-max-cut: expected 1.."},
       {settings_edited([](auto& s) { s.lightcuts_max_cut = (1 << 20) + 1; }), "Welcome.settings.lightcuts_max_cut"},
       {settings_edited([](auto& s) { s.lightcuts_spacing = -1; }), "Welcome.settings.lightcuts_spacing"},
       {settings_edited([](auto& s) { s.lightcuts_spacing = 65; }), "Welcome.settings.lightcuts_spacing"},
       {settings_edited([](auto& s) { s.lightcuts_samples = 0; }), "Welcome.settings.lightcuts_samples"},
       {settings_edited([](auto& s) { s.lightcuts_samples = 65; }), "Welcome.settings.lightcuts_samples"},
-      {settings_edited([](auto& s) { s.method = MethodKind::Lightcuts; s.lightcuts_samples = 5; }),
-       "Welcome.settings.lightcuts: --lightcuts-samples: 5, expected a square number"},
-      {settings_edited([](auto& s) { s.glass_branches = 0; }), "Welcome.settings.glass_branches: 0, expected [1, 8]"},
+      {settings_edited([](auto& s) { s.method = MethodKind::Lightcuts; s.caustics = false; s.lightcuts_samples = 5; }),
+       "Welcome.settings.lightcuts_samples: --lightcuts-samples: expected a square number"},
+      {settings_edited([](auto& s) { s.glass_branches = 0; }), "Welcome.settings.glass_branches: --glass-branches: expected 1..8, got 0"},
       {settings_edited([](auto& s) { s.glass_branches = 9; }), "Welcome.settings.glass_branches"},
-      {settings_edited([](auto& s) { s.caustic_photons = 0; }), "Welcome.settings.caustic_photons: 0, expected [1, "},
+      {settings_edited([](auto& s) { s.caustic_photons = 0; }), "Welcome.settings.caustic_photons: --caustic-photons: expected 1.."},
       {settings_edited([](auto& s) { s.caustic_photons = (1 << 26) + 1; }), "Welcome.settings.caustic_photons"},
-      {settings_edited([](auto& s) { s.caustic_radius = 0; }), "Welcome.settings.caustic_radius: 0, expected ["},
+      {settings_edited([](auto& s) { s.caustic_radius = 0; }), "Welcome.settings.caustic_radius: --caustic-radius: expected a fraction of the scene diagonal in ["},
       {settings_edited([](auto& s) { s.caustic_radius = 0.26f; }), "Welcome.settings.caustic_radius"},
       {settings_edited([](auto& s) { s.caustic_radius = NAN; }), "Welcome.settings.caustic_radius"},
       {edited<SceneData>([](SceneData& m) { m.file_name = "dir/scene.glb"; }), "SceneData.file_name"},
@@ -484,6 +484,7 @@ TEST(Protocol, LimitsThemselvesAreAccepted) {
       settings_edited([](auto& s) { s.importance_floor = 0; s.bidir_vpls = 9; s.bidir_camera_paths = 0; }),
       settings_edited([](auto& s) {
         s.method = MethodKind::Lightcuts;
+        s.caustics = false;  // caustics are ir and igi's
         s.importance_paths = s.bidir_vpls = 0;
         s.lightcuts_max_cut = 1 << 20;
         s.lightcuts_spacing = 64;
@@ -531,7 +532,7 @@ TEST(Protocol, HugeLengthsAndBadBytesAreRejectedBeforeUse) {
             "TileResult.pixels: truncated: 256 elements of 6 bytes, 384 bytes left");
   Welcome welcome = sample<Welcome>();
   size_t method_at = 8 + 8 + 4 + welcome.scene_name.size() + 16 + 12;  // past the environment's 3 floats
-  EXPECT_EQ(patched(welcome, method_at, {7}), "Welcome.settings.method: 7, expected [0, 3]");
+  EXPECT_EQ(patched(welcome, method_at, {7}), "Welcome.settings.method: --method: expected pt, ir, igi or lightcuts (0..3), got 7");
   EXPECT_EQ(patched(welcome, method_at - 12, {0, 0, 0x80, 0xbf}),  // -1.0f
             "Welcome.environment: -1, expected a radiance from 0 to 1000000");
   // The map's rotation, the Welcome's last 4 bytes: degrees within +-360.

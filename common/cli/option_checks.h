@@ -6,6 +6,7 @@
 // option's name in front of the checks' text).
 #include <charconv>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -27,10 +28,14 @@ struct OptionError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// An integer of type T (the whole text, no sign for unsigned types) in [min, max].
+// An integer of type T (the whole text, no sign for unsigned types) in [min,
+// max]; without bounds, any T (a RenderSettings field, whose range
+// check_settings() owns).
 template <class T>
-CLI::Validator integer(T min, T max) {
-  const std::string expected = "expected an integer >= " + std::to_string(min) + " and <= " + std::to_string(max);
+CLI::Validator integer(T min = std::numeric_limits<T>::min(), T max = std::numeric_limits<T>::max()) {
+  const bool any = min == std::numeric_limits<T>::min() && max == std::numeric_limits<T>::max();
+  const std::string expected =
+      any ? "expected an integer" : "expected an integer >= " + std::to_string(min) + " and <= " + std::to_string(max);
   return CLI::Validator(
       [=](std::string& text) -> std::string {
         T value{};

@@ -13,7 +13,7 @@ namespace igi::lightcuts {
 
 LightcutsMethod::LightcutsMethod(const SceneContext& context, const RenderSettings& settings)
     : context_(context), settings_(settings) {
-  if (std::string error = lightcuts::settings_error(settings); !error.empty()) throw std::invalid_argument(error);
+  if (auto error = settings_error(settings)) throw std::invalid_argument(*error);
 }
 
 void LightcutsMethod::begin_frame(const FrameSetup& frame) {

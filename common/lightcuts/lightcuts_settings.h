@@ -39,8 +39,6 @@ uint64_t bytes_per_vpl();
 // Mirrors and glass followed from the camera (the VPL methods' limit).
 inline int specular_depth(const RenderSettings& s) { return depth_limit(s.specular_depth); }
 
-// "" when the lightcuts options are usable, else what is wrong, naming the option.
-std::string settings_error(const RenderSettings& s);
 // "" when the worst-case VPL count fits in `memory_bytes`, else why not.
 std::string memory_error(const RenderSettings& s, uint64_t memory_bytes);
 // This machine's physical memory (0 when unknown).

@@ -1,6 +1,7 @@
 #include "methods/settings.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "lightcuts/lightcuts_settings.h"
 #include "methods/clamp.h"
@@ -25,66 +26,135 @@ std::optional<MethodKind> parse_method(const std::string& name) {
   return std::nullopt;
 }
 
+// ---- The one check of RenderSettings. Each rule names the field (as the wire
+// format does) and the option (as igi-render's command line does).
 namespace {
 
-std::optional<std::string> out_of_range(const char* option, int value, int lo, int hi, const char* what = "") {
-  if (value >= lo && value <= hi) return std::nullopt;
-  return std::string(option) + ": expected " + std::to_string(lo) + ".." + std::to_string(hi) + what + ", got " +
-         std::to_string(value);
+using Check = std::optional<SettingsError>;
+
+std::string text(double v) {
+  char out[32];
+  std::snprintf(out, sizeof out, "%g", v);
+  return out;
+}
+
+Check wrong(const char* field, std::string message) { return SettingsError{field, std::move(message)}; }
+
+Check integer(const char* field, const char* option, int v, int lo, int hi, const char* note = "") {
+  if (v >= lo && v <= hi) return std::nullopt;
+  return wrong(field, std::string(option) + ": expected " + std::to_string(lo) + ".." + std::to_string(hi) + note +
+                          ", got " + std::to_string(v));
+}
+
+// lo <= v <= hi, which NaN fails; `what` says what the number is.
+Check closed(const char* field, const char* option, float v, float lo, float hi, const char* what,
+             const char* note = "") {
+  if (v >= lo && v <= hi) return std::nullopt;
+  return wrong(field, std::string(option) + ": expected " + what + " in [" + text(lo) + ", " + text(hi) + "]" +
+                          note + ", got " + text(v));
+}
+
+Check check_paths(const RenderSettings& s) {
+  const char* unbounded = " (0 = unbounded)";
+  if (uint8_t(s.method) > uint8_t(MethodKind::Lightcuts))
+    return wrong("method", "--method: expected pt, ir, igi or lightcuts (0..3), got " + std::to_string(int(s.method)));
+  if (auto e = integer("path_depth", "--path-depth", s.path_depth, 0, kMaxDepth, unbounded)) return e;
+  if (auto e = integer("light_depth", "--light-depth", s.light_depth, 0, kMaxDepth, unbounded)) return e;
+  if (auto e = integer("specular_depth", "--specular-depth", s.specular_depth, 0, kMaxDepth, unbounded)) return e;
+  if (auto e = integer("interleave", "--vpl-sets", s.interleave, 1, kMaxInterleave)) return e;
+  if (auto e = integer("paths_per_set", "--vpl-paths", s.paths_per_set, 1, kMaxPathsPerSet)) return e;
+  if (subpixel_side(s.aa_samples) == 0 || s.aa_samples > kMaxAntialiasSamples)
+    return wrong("aa_samples", "--aa: expected a square number of sub-samples per pixel (1, 4, 9, ..., " +
+                                   std::to_string(kMaxAntialiasSamples) + "), got " + std::to_string(s.aa_samples));
+  if (s.paths_per_set < s.aa_samples)
+    return wrong("aa_samples", "--aa " + std::to_string(s.aa_samples) + " needs --vpl-paths >= " +
+                                   std::to_string(s.aa_samples) +
+                                   " (each sub-sample takes its own group of the set's light paths), got " +
+                                   std::to_string(s.paths_per_set));
+  if (auto e = closed("glossy_threshold", "--glossy-threshold", s.glossy_threshold, 0.0f, 1.0f,
+                      "a GGX alpha",
+                      " (0 = VPLs shade every glossy surface)"))
+    return e;
+  if (auto e = integer("glossy_rays", "--glossy-rays", s.glossy_rays, 1, kMaxGlossyRays)) return e;
+  if (auto e = closed("clamp", "--clamp", s.clamp, 0.0f, kMaxClamp, "a fraction of the scene's mean chord", " (0 = off)"))
+    return e;
+  return integer("compensation_samples", "--compensate", s.compensation_samples, 0, kMaxCompensationSamples);
+}
+
+Check check_filters(const RenderSettings& s) {
+  if (auto e = closed("filter_normal_cos", "--filter-normal", s.filter_normal_cos, -1.0f, 1.0f, "a cosine")) return e;
+  if (!(s.filter_depth_ratio >= 0.0f) || !std::isfinite(s.filter_depth_ratio))
+    return wrong("filter_depth_ratio", "--filter-depth: expected a finite number >= 0, got " + text(s.filter_depth_ratio));
+  if (auto e = integer("wavelet_levels", "--wavelet", s.wavelet_levels, 0, kMaxWaveletLevels)) return e;
+  return integer("glass_branches", "--glass-branches", s.glass_branches, 1, kMaxGlassBranches);
+}
+
+Check check_lightcuts(const RenderSettings& s) {
+  if (!(s.lightcuts_error > 0.0f && s.lightcuts_error < 1.0f))
+    return wrong("lightcuts_error", "--lightcuts-error: expected a number in (0, 1), got " + text(s.lightcuts_error));
+  if (auto e = integer("lightcuts_max_cut", "--lightcuts-max-cut", s.lightcuts_max_cut, 1, lightcuts::kMaxCut))
+    return e;
+  if (auto e = integer("lightcuts_spacing", "--lightcuts-spacing", s.lightcuts_spacing, 0, lightcuts::kMaxSpacing,
+                       " (0 = off)"))
+    return e;
+  if (subpixel_side(s.lightcuts_samples) == 0 || s.lightcuts_samples > lightcuts::kMaxSamples)
+    return wrong("lightcuts_samples", "--lightcuts-samples: expected a square number of gather points per pixel "
+                                      "(1, 4, 9, ..., 64), got " + std::to_string(s.lightcuts_samples));
+  // Only lightcuts uses both (the sample sweep in the tests sets them on other methods too).
+  if (s.method == MethodKind::Lightcuts && s.lightcuts_spacing > 1 && s.lightcuts_samples > 1)
+    return wrong("lightcuts_spacing", "--lightcuts-spacing and --lightcuts-samples cannot be combined: "
+                                      "reconstruction cuts interpolate one gather point per pixel");
+  return std::nullopt;
+}
+
+Check check_caustics(const RenderSettings& s) {
+  if (auto e = integer("caustic_photons", "--caustic-photons", s.caustic_photons, 1, photons::kMaxCausticPhotons,
+                       " photon paths per frame (leave out --caustics to turn caustics off)"))
+    return e;
+  if (auto e = closed("caustic_radius", "--caustic-radius", s.caustic_radius, photons::kMinCausticRadius,
+                      photons::kMaxCausticRadius, "a fraction of the scene diagonal"))
+    return e;
+  const bool vpl_method = s.method == MethodKind::InstantRadiosity || s.method == MethodKind::Igi;
+  if (s.caustics && !vpl_method)
+    return wrong("caustics", "--caustics: only the ir and igi methods add caustic photons (pt finds caustics by "
+                             "itself), got --method " + std::string(method_name(s.method)));
+  return std::nullopt;
+}
+
+Check check_importance(const RenderSettings& s) {
+  const char* off = " (0 = off)";
+  if (auto e = integer("importance_paths", "--importance", s.importance_paths, 0, kMaxImportancePaths, off)) return e;
+  if (auto e = closed("importance_floor", "--importance-floor", s.importance_floor, 0.0f, 1.0f, "a share")) return e;
+  if (auto e = integer("bidir_vpls", "--bidir", s.bidir_vpls, 0, kMaxBidirVpls, off)) return e;
+  if (auto e = integer("bidir_camera_paths", "--bidir-camera-paths", s.bidir_camera_paths, 0, kMaxBidirPaths,
+                       " (0 = --vpl-paths)"))
+    return e;
+  const bool vpl_method = s.method == MethodKind::InstantRadiosity || s.method == MethodKind::Igi;
+  if (!vpl_method && s.importance_paths > 0) return wrong("importance_paths", "--importance: only for --method ir or igi");
+  if (!vpl_method && s.bidir_vpls > 0) return wrong("bidir_vpls", "--bidir: only for --method ir or igi");
+  if (s.bidir_vpls == 0) return std::nullopt;
+  if (s.paths_per_set > kMaxBidirPaths)
+    return wrong("paths_per_set", "--bidir needs --vpl-paths <= " + std::to_string(kMaxBidirPaths) +
+                                      " (every candidate is tested against every camera path), got " +
+                                      std::to_string(s.paths_per_set));
+  if (s.bidir_vpls < s.aa_samples)
+    return wrong("bidir_vpls", "--bidir " + std::to_string(s.bidir_vpls) + " with --aa " +
+                                   std::to_string(s.aa_samples) + ": each sub-sample's group needs a VPL of its "
+                                   "own, so keep at least " + std::to_string(s.aa_samples));
+  return std::nullopt;
 }
 
 }  // namespace
 
-std::optional<std::string> importance_settings_error(const RenderSettings& s) {
-  if (auto e = out_of_range("--importance", s.importance_paths, 0, kMaxImportancePaths, " (0 = off)")) return e;
-  if (!(s.importance_floor >= 0.0f && s.importance_floor <= 1.0f))
-    return "--importance-floor: expected a share in [0, 1], got " + std::to_string(s.importance_floor);
-  if (auto e = out_of_range("--bidir", s.bidir_vpls, 0, kMaxBidirVpls, " (0 = off)")) return e;
-  if (auto e = out_of_range("--bidir-camera-paths", s.bidir_camera_paths, 0, kMaxBidirPaths, " (0 = --vpl-paths)"))
-    return e;
-  const bool vpl_method = s.method == MethodKind::InstantRadiosity || s.method == MethodKind::Igi;
-  if (!vpl_method && s.importance_paths > 0) return std::string("--importance: only for --method ir or igi");
-  if (!vpl_method && s.bidir_vpls > 0) return std::string("--bidir: only for --method ir or igi");
-  if (s.bidir_vpls == 0) return std::nullopt;
-  if (s.paths_per_set > kMaxBidirPaths)
-    return "--bidir needs --vpl-paths <= " + std::to_string(kMaxBidirPaths) +
-           " (every candidate is tested against every camera path), got " + std::to_string(s.paths_per_set);
-  if (s.bidir_vpls < s.aa_samples)
-    return "--bidir " + std::to_string(s.bidir_vpls) + " with --aa " + std::to_string(s.aa_samples) +
-           ": each sub-sample's group needs a VPL of its own, so keep at least " + std::to_string(s.aa_samples);
+std::optional<SettingsError> check_settings(const RenderSettings& s) {
+  for (auto group : {check_paths, check_filters, check_lightcuts, check_caustics, check_importance})
+    if (auto error = group(s)) return error;
   return std::nullopt;
 }
 
 std::optional<std::string> settings_error(const RenderSettings& s) {
-  const char* unbounded = " (0 = unbounded)";
-  if (auto e = out_of_range("--path-depth", s.path_depth, 0, kMaxDepth, unbounded)) return e;
-  if (auto e = out_of_range("--light-depth", s.light_depth, 0, kMaxDepth, unbounded)) return e;
-  if (auto e = out_of_range("--specular-depth", s.specular_depth, 0, kMaxDepth, unbounded)) return e;
-  if (auto e = out_of_range("--vpl-sets", s.interleave, 1, kMaxInterleave)) return e;
-  if (auto e = out_of_range("--vpl-paths", s.paths_per_set, 1, kMaxPathsPerSet)) return e;
-  if (auto e = out_of_range("--compensate", s.compensation_samples, 0, kMaxCompensationSamples)) return e;
-  if (auto e = out_of_range("--glossy-rays", s.glossy_rays, 1, kMaxGlossyRays)) return e;
-  if (subpixel_side(s.aa_samples) == 0 || s.aa_samples > kMaxAntialiasSamples)
-    return "--aa: expected a square number of sub-samples per pixel (1, 4, 9, ..., " +
-           std::to_string(kMaxAntialiasSamples) + "), got " + std::to_string(s.aa_samples);
-  if (s.paths_per_set < s.aa_samples)
-    return "--aa " + std::to_string(s.aa_samples) + " needs --vpl-paths >= " + std::to_string(s.aa_samples) +
-           " (each sub-sample takes its own group of the set's light paths), got " + std::to_string(s.paths_per_set);
-  if (!(s.glossy_threshold >= 0.0f && s.glossy_threshold <= 1.0f))
-    return "--glossy-threshold: expected a GGX alpha in [0, 1] (0 = VPLs shade every glossy surface), got " +
-           std::to_string(s.glossy_threshold);
-  if (!(s.clamp >= 0.0f && s.clamp <= kMaxClamp))
-    return "--clamp: expected a fraction of the scene's mean chord in [0, " + std::to_string(int(kMaxClamp)) +
-           "] (0 = off), got " + std::to_string(s.clamp);
-  if (!(s.filter_normal_cos >= -1.0f && s.filter_normal_cos <= 1.0f))
-    return "--filter-normal: expected a cosine in [-1, 1], got " + std::to_string(s.filter_normal_cos);
-  if (!(s.filter_depth_ratio >= 0.0f) || !std::isfinite(s.filter_depth_ratio))
-    return "--filter-depth: expected a finite number >= 0, got " + std::to_string(s.filter_depth_ratio);
-  if (auto e = out_of_range("--wavelet", s.wavelet_levels, 0, kMaxWaveletLevels)) return e;
-  if (auto e = out_of_range("--glass-branches", s.glass_branches, 1, kMaxGlassBranches)) return e;
-  if (std::string e = lightcuts::settings_error(s); !e.empty()) return e;
-  if (std::string e = photons::settings_error(s); !e.empty()) return e;
-  return importance_settings_error(s);
+  if (auto error = check_settings(s)) return error->message;
+  return std::nullopt;
 }
 
 }  // namespace igi

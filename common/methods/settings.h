@@ -97,11 +97,18 @@ struct RenderSettings {
   int bidir_camera_paths = 0;     // R; 0 = as many as light paths (M)
 };
 
-// What is wrong with the settings, named as igi-render's option (e.g.
-// "--aa: ..."), or nothing when every field is in range and they fit together.
+// The one check of RenderSettings, called by the command lines, the window's
+// panel, the methods and the wire decoder: the first rule broken, or nothing
+// when every field is in range and the fields fit together. `field` is the
+// member's name (the wire's "settings.aa_samples"), `message` names
+// igi-render's option ("--aa: expected ..., got 8").
+struct SettingsError {
+  std::string field;
+  std::string message;
+};
+std::optional<SettingsError> check_settings(const RenderSettings& settings);
+// check_settings()'s message.
 std::optional<std::string> settings_error(const RenderSettings& settings);
-// The part of settings_error() about --importance and --bidir (the wire format checks it too).
-std::optional<std::string> importance_settings_error(const RenderSettings& settings);
 
 }  // namespace igi
 

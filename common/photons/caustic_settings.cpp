@@ -3,25 +3,6 @@
 #include <cstdio>
 
 namespace igi::photons {
-namespace {
-
-std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
-
-}  // namespace
-
-std::string settings_error(const RenderSettings& s) {
-  if (s.caustic_photons < 1 || s.caustic_photons > kMaxCausticPhotons)
-    return "--caustic-photons: " + std::to_string(s.caustic_photons) + ", expected 1 to " +
-           std::to_string(kMaxCausticPhotons) + " photon paths per frame (leave out --caustics to turn caustics off)";
-  if (!(s.caustic_radius >= kMinCausticRadius && s.caustic_radius <= kMaxCausticRadius))
-    return "--caustic-radius: " + number(s.caustic_radius) + ", expected a fraction of the scene diagonal in [" +
-           number(kMinCausticRadius) + ", " + number(kMaxCausticRadius) + "]";
-  return "";
-}
 
 std::string memory_error(const RenderSettings& s, uint64_t memory_bytes) {
   if (!s.caustics || memory_bytes == 0) return "";

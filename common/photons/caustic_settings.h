@@ -24,8 +24,6 @@ inline constexpr int kMaxPhotonsPerPath = 4;
 // A photon, its copy in the grid's order and the grid's per-photon share.
 inline constexpr uint64_t kBytesPerPhoton = 2 * 52 + 16;
 
-// "" when the caustic options are usable, else what is wrong, naming the option.
-std::string settings_error(const RenderSettings& s);
 // "" when the largest possible map fits in half of `memory_bytes` (or caustics
 // are off, or the memory is unknown: 0), else why not, naming the option.
 std::string memory_error(const RenderSettings& s, uint64_t memory_bytes);

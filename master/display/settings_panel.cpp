@@ -66,13 +66,6 @@ RenderSettings bounded(RenderSettings s) {
 
 std::optional<std::string> panel_settings_error(const RenderSettings& s) {
   if (auto error = settings_error(s)) return error;
-  if (s.method == MethodKind::Lightcuts)
-    if (std::string e = lightcuts::settings_error(s); !e.empty()) return e;
-  if (s.caustics) {
-    if (s.method != MethodKind::InstantRadiosity && s.method != MethodKind::Igi)
-      return "caustics: only the ir and igi methods add caustic photons";
-    if (std::string e = photons::settings_error(s); !e.empty()) return e;
-  }
   if (std::string e = memory_error(s, machine_memory_bytes()); !e.empty()) return e;
   return std::nullopt;
 }
