@@ -19,38 +19,23 @@ void trace_path(const SceneContext& ctx, const RenderSettings& settings, uint32_
                 float inv_paths, std::vector<Photon>& out, RayCounts& rays) {
   SampleStream start_stream(path, seed, 0);
   const LightPathStart start = start_light_path(ctx.lights, ctx.scene, start_stream);
-  Ray ray = start.ray;
-  glm::vec3 flux = start.flux;
   bool after_specular = false, bounced = false;
   int stored = 0;
-  const int max_depth = depth_limit(settings.light_depth);
-  for (int depth = 0; depth < max_depth; ++depth) {
-    Hit hit;
-    ++rays.secondary;
-    if (!ctx.accel.intersect(ray, hit)) return;
-    const SurfacePoint sp = surface_at(ctx.scene, hit, ray.direction);
-    const glm::vec3 wo = -ray.direction;
-    if (!sp.material->is_specular()) {
-      if (after_specular && receives_vpls(*sp.material, settings.glossy_threshold)) {
-        out.push_back(Photon{sp.position, wo, sp.geometric_normal_facing(wo), flux * inv_paths, bounced ? 1u : 0u});
-        if (++stored == photons::kMaxPhotonsPerPath) return;
-      }
-      bounced = true;
-    }
-    after_specular = sp.material->is_specular();
-    // The lobe and roulette numbers share one 2D point (each 1D draw would
-    // cost a whole 2D Sobol point: a third of the pass's sampling).
-    SampleStream u(path, seed, kStartDims + kDimsPerBounce * uint32_t(depth));
-    const glm::vec2 u_dir = u.next_2d();
-    const glm::vec2 u_lobe_roulette = u.next_2d();
-    auto bs = bsdf_sample(sp, wo, u_dir, u_lobe_roulette.x);
-    if (!bs) return;
-    // Russian roulette by albedo, as VPL paths: survivors carry the lost share.
-    const float q = std::min(1.0f, max_component(bs->weight));
-    if (!(u_lobe_roulette.y < q)) return;
-    flux *= bs->weight / q;
-    ray = Ray{offset_origin(sp, bs->wi), bs->wi};
-  }
+  rays.secondary += uint64_t(walk_light_path(
+      ctx.accel, ctx.scene, start, settings.light_depth, path, seed, BounceDraws::OnePair,
+      [&](const LightPathVertex& v) {
+        const bool specular = v.sp.material->is_specular();
+        if (!specular) {
+          if (after_specular && receives_vpls(*v.sp.material, settings.glossy_threshold)) {
+            out.push_back(Photon{v.sp.position, v.wo, v.sp.geometric_normal_facing(v.wo), v.flux * inv_paths,
+                                 bounced ? 1u : 0u});
+            if (++stored == photons::kMaxPhotonsPerPath) return false;
+          }
+          bounced = true;
+        }
+        after_specular = specular;
+        return true;
+      }));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "material/bsdf.h"
 #include "sampling/warp.h"
 
 namespace igi {
@@ -58,6 +59,25 @@ LightPathStart start_light_path(const LightSet& lights, const Scene& scene, Samp
     }
   }
   return start;
+}
+
+std::optional<Ray> bounce_light_path(const SurfacePoint& sp, glm::vec3 wo, glm::vec3& flux, SampleStream u,
+                                     BounceDraws draws) {
+  const glm::vec2 u_dir = u.next_2d();
+  glm::vec2 u_lobe_roulette;
+  if (draws == BounceDraws::OnePair) {
+    u_lobe_roulette = u.next_2d();
+  } else {
+    u_lobe_roulette.x = u.next_1d();
+    u_lobe_roulette.y = u.next_1d();
+  }
+  const auto bs = bsdf_sample(sp, wo, u_dir, u_lobe_roulette.x);
+  if (!bs) return std::nullopt;
+  // Russian roulette by albedo: survivors carry the lost share.
+  const float q = std::min(1.0f, max_component(bs->weight));
+  if (!(u_lobe_roulette.y < q)) return std::nullopt;
+  flux *= bs->weight / q;
+  return Ray{offset_origin(sp, bs->wi), bs->wi};
 }
 
 }  // namespace igi

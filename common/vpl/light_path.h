@@ -1,6 +1,7 @@
 #pragma once
-// The start of a light path, shared by the VPL generator and the photon
-// tracer (photons/photon_paths.h) so both carry light alike.
+// A light path, walked alike by the VPL generator and the photon tracer
+// (photons/photon_paths.h): its start at a light, then its bounces, each
+// BSDF-sampled with Russian roulette by albedo.
 //
 // Random numbers: a path is SampleStream(path index, seed) over its
 // dimensions; its start takes the first kStartDims, bounce d the next
@@ -11,8 +12,10 @@
 #include <glm/glm.hpp>
 
 #include "lighting/lights.h"
+#include "methods/settings.h"
 #include "sampling/sobol.h"
 #include "scene/accel.h"
+#include "scene/surface.h"
 
 namespace igi {
 
@@ -41,5 +44,50 @@ struct LightPathStart {
 // lights and the environment, inside a spot's cone), from the stream's next kStartDims dimensions.
 LightPathStart start_light_path(const LightSet& lights, const Scene& scene, SampleStream& u,
                                 const Distribution1D* selection = nullptr);
+
+// How a bounce draws its lobe and roulette numbers from its dimensions after
+// the direction's pair: VPL paths as two single draws, photon paths as one
+// pair (a single draw costs a whole Sobol pair; the photons were written
+// later). Each layout is kept, so that neither set of paths changes.
+enum class BounceDraws { TwoSingles, OnePair };
+
+// What a walk shows its caller at each surface the path reaches.
+struct LightPathVertex {
+  const Hit& hit;
+  const SurfacePoint& sp;
+  glm::vec3 wo;    // towards where the light came from
+  glm::vec3 flux;  // power the path carries to this surface (W, per path)
+  int depth;       // surfaces before this one
+};
+
+// The path's next ray from `sp`, BSDF-sampled, with `flux` scaled by the
+// sample's weight and Russian roulette; nothing where the path ends.
+std::optional<Ray> bounce_light_path(const SurfacePoint& sp, glm::vec3 wo, glm::vec3& flux, SampleStream u,
+                                     BounceDraws draws);
+
+// Walks path `path` of stream `seed` from `start` through at most
+// depth_limit(light_depth) surfaces, calling visit(const LightPathVertex&) at
+// each; visit returns false to end the path there. Returns the rays traced.
+template <class Visit>
+int walk_light_path(const Accel& accel, const Scene& scene, const LightPathStart& start, int light_depth,
+                    uint32_t path, uint32_t seed, BounceDraws draws, Visit&& visit) {
+  Ray ray = start.ray;
+  glm::vec3 flux = start.flux;
+  const int max_depth = depth_limit(light_depth);
+  int rays = 0;
+  for (int depth = 0; depth < max_depth; ++depth) {
+    Hit hit;
+    ++rays;
+    if (!accel.intersect(ray, hit)) return rays;
+    const SurfacePoint sp = surface_at(scene, hit, ray.direction);
+    const glm::vec3 wo = -ray.direction;
+    if (!visit(LightPathVertex{hit, sp, wo, flux, depth})) return rays;
+    const SampleStream u(path, seed, kStartDims + kDimsPerBounce * uint32_t(depth));
+    const std::optional<Ray> next = bounce_light_path(sp, wo, flux, u, draws);
+    if (!next) return rays;
+    ray = *next;
+  }
+  return rays;
+}
 
 }  // namespace igi

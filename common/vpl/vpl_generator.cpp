@@ -2,12 +2,9 @@
 
 #include <cmath>
 
-#include "material/bsdf.h"
 #include "sampling/content_hash.h"
 #include "sampling/hash.h"
 #include "sampling/sobol.h"
-#include "sampling/warp.h"
-#include "scene/surface.h"
 #include "vpl/light_path.h"
 
 namespace igi {
@@ -36,38 +33,22 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
     if (options.vertices) options.vertices->push_back(LightVertex{});
     previous = {LightVertex::From::Vpl, uint32_t(first)};
   }
-  Ray ray = start.ray;
-  glm::vec3 flux = start.flux;
-  const int max_depth = depth_limit(settings.light_depth);
-  for (int depth = 0; depth < max_depth; ++depth) {
-    Hit hit;
-    if (!ctx.accel.intersect(ray, hit)) return;
-    SurfacePoint sp = surface_at(ctx.scene, hit, ray.direction);
-    const glm::vec3 wo = -ray.direction;
-    // Mirrors and glass get no VPL; the path carries their light on. VPLs on
-    // sharp GGX surfaces radiate through a widened lobe (VplShading::vpl_bsdf).
-    if (!sp.material->is_specular()) {
-      // The VPL reflects towards the side the light arrived from.
-      out.push_back(Vpl{sp.position, sp.shading_normal_facing(wo),
-                        flux * inv_paths, wo, sp.albedo,
-                        ctx.scene.triangle_material[hit.triangle], 0, VplKind::Surface});
-      if (options.vertices) options.vertices->push_back({previous.from, previous.index, depth});
-      previous = {LightVertex::From::Vpl, uint32_t(out.size() - 1)};
-    } else {
-      previous = {LightVertex::From::Specular, 0};
-    }
-    SampleStream u(path, seed, kStartDims + kDimsPerBounce * uint32_t(depth));
-    const glm::vec2 u_dir = u.next_2d();
-    const float u_lobe = u.next_1d();
-    const float u_roulette = u.next_1d();
-    auto bs = bsdf_sample(sp, wo, u_dir, u_lobe);
-    if (!bs) return;
-    // Russian roulette by albedo: survivors carry the lost share.
-    float q = std::min(1.0f, max_component(bs->weight));
-    if (!(u_roulette < q)) return;
-    flux *= bs->weight / q;
-    ray = Ray{offset_origin(sp, bs->wi), bs->wi};
-  }
+  walk_light_path(ctx.accel, ctx.scene, start, settings.light_depth, path, seed, BounceDraws::TwoSingles,
+                  [&](const LightPathVertex& v) {
+                    // Mirrors and glass get no VPL; the path carries their light on. VPLs on sharp GGX
+                    // surfaces radiate through a widened lobe (VplShading::vpl_bsdf).
+                    if (v.sp.material->is_specular()) {
+                      previous = {LightVertex::From::Specular, 0};
+                      return true;
+                    }
+                    // The VPL reflects towards the side the light arrived from.
+                    out.push_back(Vpl{v.sp.position, v.sp.shading_normal_facing(v.wo), v.flux * inv_paths, v.wo,
+                                      v.sp.albedo, ctx.scene.triangle_material[v.hit.triangle], 0,
+                                      VplKind::Surface});
+                    if (options.vertices) options.vertices->push_back({previous.from, previous.index, v.depth});
+                    previous = {LightVertex::From::Vpl, uint32_t(out.size() - 1)};
+                    return true;
+                  });
 }
 
 }  // namespace
