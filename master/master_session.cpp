@@ -58,7 +58,11 @@ SchedulerConfig session_scheduler_config(const MasterOptions& options) {
 }  // namespace
 
 SceneSource make_scene_source(const std::string& scene) {
-  if (is_builtin_scene(scene)) return {scene, 0, 0, nullptr};
+  if (is_builtin_scene(scene)) {
+    SceneSource builtin;
+    builtin.name = scene;
+    return builtin;
+  }
   SceneFile file = scene_file_for_workers(scene);  // a .gltf with files beside it: packed into one .glb
   if (file.packed)
     std::fprintf(stderr, "igi-master: %s goes to workers as %s, its buffers and images packed in\n", scene.c_str(),

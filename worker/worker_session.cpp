@@ -239,7 +239,8 @@ WorkerSession::LoadResult WorkerSession::find_and_load(const SceneCache& cache, 
     if (!path) return {nullptr, w.scene_hash, {}, false};
     scene = *path;
   }
-  SkyChoice sky{w.environment};  // the master's sky, whatever the file says
+  SkyChoice sky;
+  sky.radiance = w.environment;  // the master's sky, whatever the file says
   if (!w.environment_map.empty()) {
     const std::optional<std::string> map = cache.find(w.environment_map, w.environment_map_hash);
     if (!map) return {nullptr, w.environment_map_hash, {}, false};

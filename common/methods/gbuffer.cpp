@@ -45,6 +45,26 @@ void end_at_surface(GSample& g, const SurfacePoint& sp, glm::vec3 wo, float dept
   g.has_surface = true;
 }
 
+// Where branch b leaves the specular surface sp, its throughput updated; a
+// glass surface may split, its reflection pushed on `pending` as a branch of
+// its own (while fewer than `branches` are used). Nothing: the path ends.
+std::optional<glm::vec3> specular_direction(const SurfacePoint& sp, const Branch& b, glm::vec3& throughput,
+                                            uint32_t seed, int branches, Branch* pending, int& pending_count,
+                                            int& used) {
+  const glm::vec3 wo = -b.ray.direction;
+  if (sp.material->type == MaterialType::Glass && used < branches && dielectric_branches(sp, wo).reflectance < 1.0f) {
+    const DielectricBranches split = dielectric_branches(sp, wo);
+    pending[pending_count++] = Branch{Ray{offset_origin(sp, split.reflected), split.reflected, 0.0f, 1e30f, b.ray.mask},
+                                      Hit{}, false, throughput * split.reflectance, b.travelled, b.depth + 1, used++};
+    throughput *= split.transmittance;
+    return split.refracted;
+  }
+  auto bs = bsdf_sample(sp, wo, glm::vec2(0.5f), lobe_number(seed, b.index, b.depth));
+  if (!bs) return std::nullopt;
+  throughput *= bs->weight;
+  return bs->wi;
+}
+
 }  // namespace
 
 int follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, int specular_depth, int branches,
@@ -86,24 +106,9 @@ int follow_specular_tree(const Accel& accel, Ray ray, Hit hit, uint32_t seed, in
         break;
       }
       if (b.depth + 1 >= specular_depth) break;
-      const glm::vec3 wo = -b.ray.direction;
-      glm::vec3 wi;
-      if (sp.material->type == MaterialType::Glass && used < branches &&
-          dielectric_branches(sp, wo).reflectance < 1.0f) {
-        // Split: the reflection waits as a branch of its own.
-        const DielectricBranches split = dielectric_branches(sp, wo);
-        Branch reflected{Ray{offset_origin(sp, split.reflected), split.reflected, 0.0f, 1e30f, b.ray.mask}, Hit{}, false,
-                         g.throughput * split.reflectance, b.travelled, b.depth + 1, used++};
-        pending[pending_count++] = reflected;
-        g.throughput *= split.transmittance;
-        wi = split.refracted;
-      } else {
-        auto bs = bsdf_sample(sp, wo, glm::vec2(0.5f), lobe_number(seed, b.index, b.depth));
-        if (!bs) break;
-        g.throughput *= bs->weight;
-        wi = bs->wi;
-      }
-      b.ray = Ray{offset_origin(sp, wi), wi, 0.0f, 1e30f, b.ray.mask};
+      const std::optional<glm::vec3> wi = specular_direction(sp, b, g.throughput, seed, branches, pending, pending_count, used);
+      if (!wi) break;
+      b.ray = Ray{offset_origin(sp, *wi), *wi, 0.0f, 1e30f, b.ray.mask};
       ++rays.secondary;
       if (!accel.intersect(b.ray, b.hit)) {
         g.emitted += g.throughput * scene.sky(b.ray.direction);

@@ -10,15 +10,11 @@
 #include "photons/caustic_settings.h"
 
 namespace igi {
-namespace {
-
 std::string gib(double bytes) {
   char text[32];
   std::snprintf(text, sizeof text, "%.1f GiB", bytes / double(1ull << 30));
   return text;
 }
-
-}  // namespace
 
 std::string memory_error(const RenderSettings& s, uint64_t memory_bytes) {
   if (s.method == MethodKind::Lightcuts)

@@ -24,6 +24,9 @@ uint64_t tile_bytes(const RenderSettings& settings, int width, int height);
 // "" when `threads` render threads' tiles fit in half of `memory_bytes` (0: unknown), else why not.
 std::string tile_memory_error(const RenderSettings& settings, int width, int height, int threads, uint64_t memory_bytes);
 
+// "1.5 GiB": bytes for a memory message.
+std::string gib(double bytes);
+
 // This machine's physical memory; 0 when unknown.
 uint64_t machine_memory_bytes();
 
