@@ -20,6 +20,7 @@
 #include "support/process.h"
 #include "support/render_fixture.h"
 #include "support/stats_file.h"
+#include "support/xvfb.h"
 
 namespace igi {
 namespace {
@@ -293,7 +294,7 @@ TEST(Distributed, SceneTimesAndMovedLightsReachTheWorkers) {
 // dropped, and the animation's clock runs on), so the screenshot is looked
 // up among the headless frames: it is one of them, and at least frame 2.
 TEST(Window, AnAnimatedSceneIsShownFrameByFrameAsAHeadlessRunWritesIt) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run not installed";
+  IGI_NEED_XVFB();
   const std::string file = test::output_path("window-animated.gltf");
   std::ofstream(file) << test::animated_document(true).dump();  // the window follows the flying camera
   const std::string common = " --workers 2 --worker-threads 1 --scene " + file +

@@ -12,8 +12,9 @@
 // Images are tiny (48 x 36) so the whole file runs in well under a minute on
 // two cores. Unclamped VPL estimates have infinite variance (E[1/r^4]
 // diverges), so every VPL figure uses fixed seeds: the figures are
-// deterministic for a given build, and the bounds carry margin for the
-// seed-to-seed spread measured when they were set.
+// deterministic for a given build. Each bound sits about 1.5x beyond the
+// figure measured when it was set (2026-12-03, named beside it), so a change
+// that makes a method half again worse fails here.
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -93,7 +94,7 @@ TEST(Stability, CornerEnergyLossPerClamp) {
   const double noise = loss_in(unclamped, ref, 0.5f);
   std::printf("[corner] unclamped ir M=8 x 8 frames against pt: corner (0.5 m) %+.1f %%, image %+.1f %%\n",
               -100 * noise, -100 * loss_in(unclamped, ref, 100.0f));
-  EXPECT_LT(std::abs(noise), 0.10) << "bound: unclamped ir within 10 % of pt in the corner";
+  EXPECT_LT(std::abs(noise), 0.06) << "bound: unclamped ir within 6 % of pt in the corner (measured 3.9 %)";
   double previous = 0.0;
   for (float fraction : {0.01f, 0.03f, 0.1f}) {  // of the room's diagonal
     const float clamp = p.clamp_at(fraction * p.scene.bounds().diagonal());
@@ -108,7 +109,7 @@ TEST(Stability, CornerEnergyLossPerClamp) {
     }
     previous = loss;
   }
-  EXPECT_LT(previous, 0.40) << "bound: clamp 0.1 loses under 40 % in the corner";
+  EXPECT_LT(previous, 0.18) << "bound: clamp 0.1 loses under 18 % in the corner (measured 11.8 %)";
 }
 
 // b. VPLs seen through a glossy lobe are spikes; the clamp trades them for bias.
@@ -131,8 +132,8 @@ TEST(Stability, GlossyLargestErrorPerClamp) {
   // Measured: the floor's largest error does not move with the clamp: the
   // spikes come from the GGX lobe, not from 1/r^2, so G-clamping leaves them.
   EXPECT_LE(peak[0.1f], peak[0.0f]) << "clamping never raises the spikes";
-  EXPECT_LT(peak[0.02f], 2.0) << "bound: largest floor error at clamp 0.02";
-  EXPECT_LT(error[0.02f], 0.05) << "bound: relMSE at clamp 0.02";
+  EXPECT_LT(peak[0.02f], 0.55) << "bound: largest floor error at clamp 0.02 (measured 0.364)";
+  EXPECT_LT(error[0.02f], 0.025) << "bound: relMSE at clamp 0.02 (measured 0.0164)";
 }
 
 // c. The same VPL budget spread over 16 rooms, most of them hidden.
@@ -145,8 +146,8 @@ TEST(Stability, OcclusionErrorAtFixedVplBudget) {
     std::printf("[occlusion] %-8s igi M=16 x 4 passes, clamp 0.02: relMSE %.4f\n", name, error[name]);
   }
   std::printf("[occlusion] rooms / cornell: %.1fx\n", error["rooms"] / error["cornell"]);
-  EXPECT_LT(error["cornell"], 0.05) << "bound: the open box";
-  EXPECT_LT(error["rooms"], 0.5) << "bound: many rooms";
+  EXPECT_LT(error["cornell"], 0.008) << "bound: the open box (measured 0.0053)";
+  EXPECT_LT(error["rooms"], 0.28) << "bound: many rooms (measured 0.186)";
 }
 
 // d. Mean absolute luminance difference of consecutive frames over the back
@@ -178,7 +179,7 @@ TEST(Stability, TemporalFlickerSameSeedAgainstFreshSeed) {
   const double same = flicker(false), fresh = flicker(true);
   std::printf("[temporal] %d frames: flicker same seed %.5f, fresh seed %.5f (%.1fx)\n", frames, same, fresh,
               fresh / same);
-  EXPECT_LT(same, 0.5 * fresh) << "bound: a fixed seed at least halves the flicker";
+  EXPECT_LT(same, 0.22 * fresh) << "bound: a fixed seed cuts the flicker to under 0.22 of it (measured 0.15)";
 }
 
 // d2. The same measure where light importance and bidirectional IR act
@@ -257,8 +258,8 @@ TEST(Stability, FewVplsInterleavingPatternWithFilterOnAndOff) {
     std::printf("[few vpls] igi M=2, filter %s: peak at 1/3 cycle/pixel %.4f of the mean\n", filter ? "on " : "off",
                 peak[filter]);
   }
-  EXPECT_GT(peak[0], 0.05) << "without the filter the 3x3 pattern shows";
-  EXPECT_LT(peak[1], 0.25 * peak[0]) << "bound: the filter removes at least 75 % of it";
+  EXPECT_GT(peak[0], 0.15) << "without the filter the 3x3 pattern shows (measured 0.229)";
+  EXPECT_LT(peak[1], 0.27 * peak[0]) << "bound: the filter removes at least 73 % of it (measured 82 %)";
 }
 
 }  // namespace

@@ -14,25 +14,12 @@
 #include "image/metrics.h"
 #include "support/image_compare.h"
 #include "support/stats_file.h"
+#include "support/xvfb.h"
 #include "display/tile_overlay.h"
 
 namespace igi {
 namespace {
 
-// Without xvfb-run a window test skips on a developer's machine, but fails
-// under CI (CI=true), which scripts/setup.sh provides with Xvfb: a missing
-// install step must not pass as five skipped tests.
-bool have_xvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
-bool under_ci() {
-  const char* ci = std::getenv("CI");
-  return ci && std::string(ci) == "true";
-}
-#define IGI_NEED_XVFB()                                                        \
-  do {                                                                         \
-    if (have_xvfb()) break;                                                    \
-    if (under_ci()) FAIL() << "xvfb-run not installed (scripts/setup.sh installs xvfb)"; \
-    GTEST_SKIP() << "xvfb-run not installed";                                  \
-  } while (0)
 
 TEST(Window, ScreenshotUnderXvfbMatchesTheWrittenImage) {
   IGI_NEED_XVFB();
