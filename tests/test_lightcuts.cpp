@@ -28,7 +28,6 @@ const test::Prepared& cornell() {
 
 RenderSettings lightcuts_settings(int paths, int spacing = 0, int samples = 1, float error = 0.02f) {
   RenderSettings s = test::vpl_settings(MethodKind::Lightcuts, paths);  // unclamped, no anti-aliasing
-  s.paths_per_set = paths;
   s.lightcuts_spacing = spacing;
   s.lightcuts_samples = samples;
   s.lightcuts_error = error;

@@ -51,6 +51,15 @@ nlohmann::json stats(const LoadgenOptions& o) {
   return ::testing::AssertionFailure() << problems.size() << " frames wrong, the first: " << problems[0];
 }
 
+// Runs `o` with `b`, some of whose workers misbehave: the run must end well
+// with every frame exact (no hole, no bad tile, no tile in the wrong place).
+LoadgenReport run_exactly(const LoadgenOptions& o, const std::vector<SimBehaviour>& b) {
+  LoadgenReport r = run_loadgen(o, b);
+  EXPECT_EQ(r.exit_code, 0) << r.master_log;
+  EXPECT_TRUE(frames_exact(o)) << "no hole, no bad tile, no tile in the wrong place";
+  return r;
+}
+
 TEST(Scale, SixtyFourWorkersRenderEveryFrameExactlyAndNoTileTwice) {
   LoadgenOptions o = options("64", 64, 30);
   o.width = 320;
@@ -74,9 +83,7 @@ TEST(Scale, ANanTileIsRenderedAgainAndItsWorkerQuarantined) {
   LoadgenOptions o = options("nan", 4, 12);
   std::vector<SimBehaviour> b = paced(o);
   b[0].nan_every = 3;  // every third answer of worker 0 has a NaN pixel
-  const LoadgenReport r = run_loadgen(o, b);
-  ASSERT_EQ(r.exit_code, 0) << r.master_log;
-  EXPECT_TRUE(frames_exact(o)) << "no NaN tile reached a frame";
+  const LoadgenReport r = run_exactly(o, b);
   const nlohmann::json s = stats(o);
   EXPECT_GE(s["frames"].back()["failed_results_total"].get<int>(), 1);
   EXPECT_TRUE(r.workers[0].quarantined) << "three failed results: quarantined";
@@ -100,9 +107,7 @@ TEST(Scale, AWrongFirstHashQuarantinesOnlyTheDivergingWorker) {
   std::vector<SimBehaviour> b = paced(o);
   b[0].hash_offset = 1;    // other VPL sets...
   b[0].tile_seconds = 0;   // ...and always the first to answer
-  const LoadgenReport r = run_loadgen(o, b);
-  ASSERT_EQ(r.exit_code, 0) << r.master_log;
-  EXPECT_TRUE(frames_exact(o));
+  const LoadgenReport r = run_exactly(o, b);
   EXPECT_TRUE(r.workers[0].quarantined);
   EXPECT_NE(r.workers[0].last_bye.find("VPL-set hash differs"), std::string::npos) << r.workers[0].last_bye;
   for (size_t i = 1; i < r.workers.size(); ++i) {
@@ -122,9 +127,7 @@ TEST(Scale, TwoFakesThatAgreeAndAnswerFirstAreQuarantinedNotBelieved) {
     b[size_t(i)].hash_offset = 7;    // the same made-up VPL sets...
     b[size_t(i)].tile_seconds = 0;   // ...and always first
   }
-  const LoadgenReport r = run_loadgen(o, b);
-  ASSERT_EQ(r.exit_code, 0) << r.master_log;
-  EXPECT_TRUE(frames_exact(o));
+  const LoadgenReport r = run_exactly(o, b);
   for (size_t i = 0; i < r.workers.size(); ++i) EXPECT_EQ(r.workers[i].quarantined, i < 2) << i;
   EXPECT_NE(r.workers[0].last_bye.find("differs from the master's own"), std::string::npos) << r.workers[0].last_bye;
 }
@@ -135,9 +138,7 @@ TEST(Scale, OfTwoWorkersThatDisagreeTheWrongOneIsQuarantinedWithoutAThird) {
   LoadgenOptions o = options("tie", 2, 6);
   std::vector<SimBehaviour> b = paced(o);
   b[0].hash_offset = 1;
-  const LoadgenReport r = run_loadgen(o, b);
-  ASSERT_EQ(r.exit_code, 0) << r.master_log;
-  EXPECT_TRUE(frames_exact(o));
+  const LoadgenReport r = run_exactly(o, b);
   EXPECT_EQ(r.master_log.find("its workers disagree on the VPL sets"), std::string::npos) << r.master_log;
   EXPECT_TRUE(r.workers[0].quarantined);
   EXPECT_FALSE(r.workers[1].quarantined);
@@ -147,9 +148,7 @@ TEST(Scale, AResultWithTheWrongRectangleIsRenderedAgain) {
   LoadgenOptions o = options("wrong-tile", 4, 10);
   std::vector<SimBehaviour> b = paced(o);
   b[1].wrong_tile_every = 4;
-  const LoadgenReport r = run_loadgen(o, b);
-  ASSERT_EQ(r.exit_code, 0) << r.master_log;
-  EXPECT_TRUE(frames_exact(o)) << "no hole, no tile in the wrong place";
+  const LoadgenReport r = run_exactly(o, b);
   EXPECT_GE(stats(o)["frames"].back()["failed_results_total"].get<int>(), 1);
   EXPECT_NE(r.master_log.find("is not what job"), std::string::npos) << r.master_log;
 }
@@ -158,9 +157,7 @@ TEST(Scale, AResultThatDoesNotDecodeIsRenderedAgainAndItsWorkerQuarantined) {
   LoadgenOptions o = options("truncated", 4, 10);
   std::vector<SimBehaviour> b = paced(o);
   b[2].truncate_every = 3;
-  const LoadgenReport r = run_loadgen(o, b);
-  ASSERT_EQ(r.exit_code, 0) << r.master_log;
-  EXPECT_TRUE(frames_exact(o));
+  const LoadgenReport r = run_exactly(o, b);
   EXPECT_TRUE(r.workers[2].quarantined) << "three results that do not decode";
   EXPECT_GE(stats(o)["frames"].back()["failed_results_total"].get<int>(), 1) << "its jobs went to others at once";
   EXPECT_NE(r.master_log.find("truncated"), std::string::npos) << r.master_log;

@@ -61,6 +61,16 @@ protocol::CurveKeyPair make_keys(const fs::path& dir, const std::string& name) {
   return keys;
 }
 
+// A fresh folder with the master's keys (DIR/master.*) and one authorised
+// worker's (DIR/workers/render01.*).
+fs::path keyed_folder(const std::string& name) {
+  const fs::path dir = folder(name);
+  fs::create_directories(dir / "workers");
+  make_keys(dir, "master");
+  make_keys(dir / "workers", "render01");
+  return dir;
+}
+
 template <typename F>
 std::string error_of(F&& f) {
   try {
@@ -252,10 +262,7 @@ TEST(Security, LocalWorkersOfACurveMasterMatchTheSingleProcessRender) {
 }
 
 TEST(Security, AuthorisedWorkerOverCurveMatchesTheSingleProcessRender) {
-  const fs::path dir = folder("authorised");
-  fs::create_directories(dir / "workers");
-  make_keys(dir, "master");
-  make_keys(dir / "workers", "render01");
+  const fs::path dir = keyed_folder("authorised");
   const std::string endpoint = loopback();
   pid_t m = test::start(master("--workers 0 --frames 3 --quiet --key " + (dir / "master.key").string() +
                                " --authorized-keys " + (dir / "workers").string() + " --listen " + endpoint + " -o " +
@@ -268,10 +275,7 @@ TEST(Security, AuthorisedWorkerOverCurveMatchesTheSingleProcessRender) {
 }
 
 TEST(Security, WorkerWithAnUnknownKeyIsRefusedAndTheFramesStillComplete) {
-  const fs::path dir = folder("unknown");
-  fs::create_directories(dir / "workers");
-  make_keys(dir, "master");
-  make_keys(dir / "workers", "render01");
+  const fs::path dir = keyed_folder("unknown");
   const protocol::CurveKeyPair stranger = make_keys(dir, "stranger");
   const std::string endpoint = loopback(), log = (dir / "master.log").string();
   pid_t m = test::start(master("--workers 0 --frames 3 --key " + (dir / "master.key").string() + " --authorized-keys " +
@@ -293,11 +297,8 @@ TEST(Security, WorkerWithAnUnknownKeyIsRefusedAndTheFramesStillComplete) {
 }
 
 TEST(Security, PlainWorkersAndWrongMasterKeysCannotConnect) {
-  const fs::path dir = folder("plain");
-  fs::create_directories(dir / "workers");
-  make_keys(dir, "master");
+  const fs::path dir = keyed_folder("plain");
   make_keys(dir, "impostor");
-  make_keys(dir / "workers", "render01");
   const std::string endpoint = loopback();
   pid_t m = test::start(master("--workers 0 --frames 1 --quiet --key " + (dir / "master.key").string() +
                                " --authorized-keys " + (dir / "workers").string() + " --listen " + endpoint + " -o " +
@@ -416,10 +417,7 @@ std::string recorded_session(const fs::path& dir, bool curve) {
 }
 
 TEST(Security, CurveTrafficCarriesNoPlaintext) {
-  const fs::path dir = folder("wire");
-  fs::create_directories(dir / "workers");
-  make_keys(dir, "master");
-  make_keys(dir / "workers", "render01");
+  const fs::path dir = keyed_folder("wire");
   // The worker's hello names its build and the master's welcome the scene: in the clear without CURVE ...
   const std::string plain = recorded_session(dir, false);
   EXPECT_NE(plain.find(igi::build_id()), std::string::npos) << "the recorder saw the plain session";
