@@ -20,6 +20,7 @@ nlohmann::ordered_json frame_json(const FrameRecord& f) {
 nlohmann::ordered_json totals_json(const RunTotals& t, uint64_t tiles) {
   return {{"complete", t.complete}, {"bad_messages", t.bad_messages}, {"refused_keys", t.refused_keys},
           {"failed_handshakes", t.failed_handshakes}, {"nonfinite_pixels", t.nonfinite_pixels},
+          {"declared_dead", t.declared_dead},
           {"quarantined", t.quarantined}, {"pixel_format", t.pixel_format}, {"io_threads", t.io_threads},
           {"master_cpu_seconds", t.master_cpu_seconds}, {"session_cpu_seconds", t.session_cpu_seconds},
           {"wall_seconds", t.wall_seconds}, {"tiles", tiles},
@@ -37,6 +38,7 @@ RunTotals run_totals(const MasterSession& session, int io_threads, double cpu_st
   t.bad_messages = session.bad_messages();
   t.refused_keys = session.refused_keys();
   t.failed_handshakes = session.failed_handshakes();
+  t.declared_dead = session.declared_dead();
   t.nonfinite_pixels = session.nonfinite_pixels();
   t.quarantined = session.quarantined();
   t.master_cpu_seconds = process_cpu_seconds() - cpu_start;

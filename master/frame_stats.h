@@ -20,6 +20,7 @@ struct RunTotals {
   uint64_t refused_keys = 0;       // CURVE: worker keys the ZAP handler refused
   uint64_t failed_handshakes = 0;  // CURVE: peers without CURVE or the right master key
   uint64_t nonfinite_pixels = 0;   // pixels workers rendered NaN or infinite and sent as black
+  uint64_t declared_dead = 0;      // workers silent past --timeout-ms (or not reading), their jobs given to others
   std::vector<std::string> quarantined;  // "worker-N: why"
   double master_cpu_seconds = 0.0;   // process CPU (every thread) during the session loop
   double session_cpu_seconds = 0.0;  // the session thread's own CPU

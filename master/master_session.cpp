@@ -151,8 +151,12 @@ size_t MasterSession::send_frame(const std::string& identity, zmq::message_t&& p
       return 0;
     }
     router_.send(payload, zmq::send_flags::dontwait);  // the rest of a message is never refused
-  } catch (const zmq::error_t&) {
-    return 0;  // the peer is gone; liveness will notice
+  } catch (const zmq::error_t& e) {
+    // ROUTER_MANDATORY: its connection has closed (it exited, or its TCP
+    // connection was re-established under a new routing id, as a loaded
+    // machine's can be while it joins). Its jobs go back now, not after the timeout.
+    if (e.num() == EHOSTUNREACH) vanished_.push_back(identity);
+    return 0;
   }
   auto it = peers_.find(identity);
   if (it != peers_.end()) it->second.last_sent = Clock::now();
@@ -219,7 +223,12 @@ void MasterSession::step(Clock::time_point now, std::vector<CompletedFrame>& don
   dispatch(scheduler_.assign(now));
   take_quarantined();
   for (const std::string& identity : std::exchange(congested_, {}))
-    drop_peer(identity, "stopped reading (its queue is full): declared dead, its jobs go to others");
+    if (peers_.count(identity)) {
+      ++declared_dead_;
+      drop_peer(identity, "stopped reading (its queue is full): declared dead, its jobs go to others");
+    }
+  for (const std::string& identity : std::exchange(vanished_, {}))
+    drop_peer(identity, "lost its connection: its jobs go to others");
   for (CompletedFrame& f : take_completed()) done.push_back(std::move(f));
   report_stall();
 }
@@ -336,6 +345,13 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
     send(identity, protocol::Refuse{reason});
     return;
   }
+  auto known = peers_.find(identity);
+  if (known != peers_.end() && known->second.threads == hello.threads) {
+    // The same connection asking again: a worker repeats its Hello until it is
+    // welcomed, so its first Welcome is late or was lost. Nothing to reset.
+    send(identity, welcome(known->second.credits));
+    return;
+  }
   Peer& peer = peers_[identity];
   peer.number = uint32_t(next_peer_);
   peer.threads = hello.threads;
@@ -345,12 +361,16 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
   peer.last_heard = peer.last_sent = Clock::now();
   peer.frames_sent.clear();
   peer.failed_results = 0;
-  scheduler_.remove_worker(identity);  // a reconnect: its old jobs go back first
+  scheduler_.remove_worker(identity);  // another Hello on this connection (other threads): its old jobs go back first
   // Enough jobs to keep every thread busy while results travel.
   const int wanted = std::max<int>(options_.credits, 2 * int(std::min<uint32_t>(hello.threads, 32)));
-  const int credits = std::min<int>(wanted, protocol::kMaxCredits);  // --credits is within it already
-  scheduler_.add_worker(identity, credits);
+  peer.credits = uint32_t(std::min<int>(wanted, protocol::kMaxCredits));  // --credits is within it already
+  scheduler_.add_worker(identity, int(peer.credits));
   log_peer(peer.name + " joined (" + std::to_string(hello.threads) + " threads)");
+  send(identity, welcome(peer.credits));
+}
+
+protocol::Welcome MasterSession::welcome(uint32_t credits) const {
   protocol::Welcome w;
   w.session = session_id_;
   w.scene_name = scene_.name;
@@ -358,7 +378,7 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
   w.scene_size = scene_.size;
   w.environment = scene_.environment;
   w.settings = options_.render.settings;
-  w.credits = uint32_t(credits);
+  w.credits = credits;
   w.heartbeat_ms = uint32_t(options_.heartbeat_ms);
   w.timeout_ms = uint32_t(options_.timeout_ms);
   w.pixel_format = pixel_format_;
@@ -366,7 +386,7 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
   w.environment_map_hash = scene_.map_hash;
   w.environment_map_size = scene_.map_size;
   w.environment_rotation = scene_.map_rotation;
-  send(identity, w);
+  return w;
 }
 
 void MasterSession::on_result(const std::string& identity, std::span<const uint8_t> bytes) {
@@ -527,6 +547,7 @@ void MasterSession::sweep(Clock::time_point now) {
     if (now - peer.last_heard > timeout) dead.push_back(identity);
     else if (now - peer.last_sent > heartbeat) send(identity, protocol::Heartbeat{});
   }
+  declared_dead_ += dead.size();
   for (const std::string& identity : dead)
     drop_peer(identity, "silent for " + std::to_string(options_.timeout_ms) + " ms: declared dead, its jobs go to others");
   next_sweep_ = now + std::clamp(heartbeat / 4, std::chrono::milliseconds(5), std::chrono::milliseconds(100));

@@ -149,6 +149,7 @@ class MasterSession {
   uint64_t stale_messages() const { return stale_messages_; }
   uint64_t refused_keys() const { return refused_keys_; }              // CURVE keys the ZAP handler refused
   uint64_t failed_handshakes() const { return failed_handshakes_; }    // peers without CURVE or the right master key
+  uint64_t declared_dead() const { return declared_dead_; }            // workers silent past the timeout, or not reading
   uint64_t nonfinite_pixels() const { return nonfinite_pixels_; }
   const SchedulerStats& scheduler_stats() const { return scheduler_.stats(); }
   const std::vector<std::string>& quarantined() const { return quarantined_names_; }  // "worker-3: why"
@@ -166,7 +167,7 @@ class MasterSession {
     Clock::time_point last_heard, last_sent;
     std::set<uint64_t> frames_sent;  // open frames whose setup it has
     int failed_results = 0;
-    uint32_t number = 0, threads = 0;
+    uint32_t number = 0, threads = 0, credits = 0;
     std::map<uint64_t, Clock::time_point> sent;  // job id -> when (detailed statistics only)
     double round_trip_ms = 0.0;
   };
@@ -186,6 +187,7 @@ class MasterSession {
   void on_zap_decision(const protocol::ZapDecision& decision);
   void handle(const std::string& identity, const protocol::Message& message);
   void on_hello(const std::string& identity, const protocol::Hello& hello);
+  protocol::Welcome welcome(uint32_t credits) const;  // what a joining peer is told
   void on_result(const std::string& identity, std::span<const uint8_t> bytes);
   void note_round_trip(Peer& peer, uint64_t job_id);
   void use_result(const std::string& identity, Peer& peer, const protocol::TileResultView& view, size_t bytes);
@@ -239,10 +241,11 @@ class MasterSession {
   std::vector<TileJob> tiles_;             // the tiles of a frame as tiles_cut_ says
   std::tuple<int, int, int> tiles_cut_{0, 0, 0};  // width, height, border of tiles_
   std::vector<std::string> congested_;           // peers whose send queue was full: dropped after the batch
+  std::vector<std::string> vanished_;            // peers whose connection had closed when sent to: dropped after the batch
   Clock::time_point next_sweep_;
   uint64_t accepted_ = 0;
   uint64_t bad_messages_ = 0;
-  uint64_t refused_keys_ = 0, failed_handshakes_ = 0;
+  uint64_t refused_keys_ = 0, failed_handshakes_ = 0, declared_dead_ = 0;
   uint64_t nonfinite_pixels_ = 0, nonfinite_logged_ = 0, failures_logged_ = 0, referee_errors_ = 0;
   std::optional<uint64_t> stall_reported_;  // the frame whose split was logged
   std::string fatal_;

@@ -77,6 +77,10 @@ void bind(zmq::socket_t& socket, const std::string& endpoint) {
   std::string address = endpoint;
   if (tcp_host(endpoint) == "localhost") address = "tcp://127.0.0.1" + endpoint.substr(endpoint.rfind(':'));
   allow_ipv6(socket, address);
+  // Connections the kernel queues before zmq accepts them. libzmq's default
+  // is 100, fewer than a cluster of 128 workers connecting at once. (Not the
+  // cause of lost joins on its own: see the repeated Hello in worker_session.)
+  socket.set(zmq::sockopt::backlog, kListenBacklog);
   try {
     socket.bind(address);
   } catch (const zmq::error_t& e) {

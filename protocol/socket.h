@@ -30,6 +30,9 @@ void configure(zmq::socket_t& socket, size_t max_bytes = kMaxMessageBytes);
 // interface names and addresses, and would fail with "No such device"), and
 // an IPv6 address (tcp://[::1]:P) turns on ZMQ_IPV6 for the socket first.
 // Throws std::runtime_error naming the endpoint when it cannot.
+// A bound socket queues up to kListenBacklog connections not yet accepted
+// (the kernel caps it at net.core.somaxconn, 4096 on current Linux).
+inline constexpr int kListenBacklog = 1024;
 void bind(zmq::socket_t& socket, const std::string& endpoint);
 void connect(zmq::socket_t& socket, const std::string& endpoint);
 

@@ -97,7 +97,8 @@ WorkerSession::Outcome WorkerSession::serve(zmq::context_t& context) {
                                       ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL | ZMQ_EVENT_HANDSHAKE_FAILED_AUTH |
                                       ZMQ_EVENT_DISCONNECTED);
   protocol::connect(socket, options_.endpoint);
-  send(socket, protocol::Hello{options_.build_id, "native", uint32_t(options_.threads)});
+  const protocol::Hello hello{options_.build_id, "native", uint32_t(options_.threads)};
+  send(socket, hello);
   auto last_heard = Clock::now();
   for (;;) {
     wait_for_work(socket);
@@ -119,7 +120,13 @@ WorkerSession::Outcome WorkerSession::serve(zmq::context_t& context) {
     if (auto outcome = check_failure(socket)) return *outcome;
     send_results(socket);
     const auto heartbeat = std::chrono::milliseconds(welcome_ ? welcome_->heartbeat_ms : 500);
-    if (Clock::now() - last_sent_ > heartbeat) send(socket, protocol::Heartbeat{});
+    // Until welcomed, the Hello again instead: a master accepting many
+    // connections at once can lose the first one's with its connection, and
+    // answers a repeat on a connection it knows with the same Welcome.
+    if (Clock::now() - last_sent_ > heartbeat) {
+      if (welcome_) send(socket, protocol::Heartbeat{});
+      else send(socket, hello);
+    }
     // Longer than the master waits for us: it declares us dead (and reissues our jobs) first.
     const auto patience = welcome_ ? std::chrono::milliseconds(welcome_->timeout_ms) + 2 * heartbeat
                                    : 4 * heartbeat + std::chrono::seconds(2);
@@ -265,6 +272,7 @@ WorkerSession::LoadResult WorkerSession::load(const std::string& scene, const Sk
 // and all. Otherwise find it by content hash on the loading thread (reading
 // and hashing a large file takes seconds); the master sends the bytes if not found.
 void WorkerSession::on_welcome(const protocol::Welcome& welcome) {
+  if (welcome_ && welcome_->session == welcome.session) return;  // the answer to a repeated Hello
   welcome_ = welcome;
   waiting_.clear();
   const std::string key = scene_key(welcome);
