@@ -68,7 +68,9 @@ for scene in ${scenes//,/ }; do
   ref="$out/$scene-pt-$size-$ref_spp.exr"
   for p in ${passes//,/ }; do
     rows=()
-    for seed in $(seq 1 "$seeds"); do
+    for k in $(seq 1 "$seeds"); do
+      # Pass q of a render uses seed + q (master/offline_render.cpp): seeds 1000 apart share no pass.
+      seed=$(( (k - 1) * 1000 + 1 ))
       img="$out/$scene-igi-$p-$seed.exr"
       s=$("$render" --scene "$scene" --spp "$p" --seed "$seed" --size "$size" -o "$img" --quiet | seconds)
       rows+=("$(metrics "$ref" "$img") $s")
