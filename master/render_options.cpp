@@ -101,6 +101,10 @@ void add_vpl_options(CLI::App& app, RenderSettings& s) {
       ->check(integer<int>())->type_name("N");
   app.add_option("--vpl-paths", s.paths_per_set, "ir/igi: light paths per VPL set" + shown_default(kDefaults.settings.paths_per_set))
       ->check(integer<int>())->type_name("M");
+  app.add_option("--vpl-draws", s.vpl_draws, "ir/igi: each shading point draws K VPLs of all N x N sets from a "
+                 "light tree by their bound, one shadow ray each (stochastic lightcuts), instead of its set's; 0 = sets" +
+                 shown_default(kDefaults.settings.vpl_draws))
+      ->check(integer<int>())->type_name("K");
   app.add_option("--aa", s.aa_samples, "ir/igi: S sub-samples per pixel (1, 4, 9, ...), each shaded by 1/S of the "
                  "pixel's light paths (anti-aliasing by VPL groups); needs --vpl-paths >= S" + shown_default(kDefaults.settings.aa_samples))
       ->check(integer<int>())->type_name("S");

@@ -91,6 +91,7 @@ void write(Writer& w, const RenderSettings& s) {
   w.i32(s.specular_depth);
   w.i32(s.interleave);
   w.i32(s.paths_per_set);
+  w.i32(s.vpl_draws);
   w.i32(s.aa_samples);
   w.f32(s.glossy_threshold);
   w.i32(s.glossy_rays);
@@ -123,6 +124,7 @@ void read(Reader& r, RenderSettings& s) {
   s.specular_depth = r.i32("settings.specular_depth");
   s.interleave = r.i32("settings.interleave");
   s.paths_per_set = r.i32("settings.paths_per_set");
+  s.vpl_draws = r.i32("settings.vpl_draws");
   s.aa_samples = r.i32("settings.aa_samples");
   s.glossy_threshold = r.f32("settings.glossy_threshold");
   s.glossy_rays = r.i32("settings.glossy_rays");

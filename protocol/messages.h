@@ -39,8 +39,8 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // scene's mean chord, at most kMaxClamp; FrameSetup.sample_begin is the ir/igi/lightcuts
 // pass the clamp relaxes with (methods/clamp.h). 10: settings carry the wavelet
 // filter's levels. 11: Welcome carries the scene's environment (a constant sky, or a map
-// that workers ask for by hash as they ask for the scene).
-inline constexpr uint16_t kVersion = 11;
+// that workers ask for by hash as they ask for the scene). 12: settings carry vpl_draws.
+inline constexpr uint16_t kVersion = 12;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;

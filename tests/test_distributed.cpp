@@ -148,6 +148,16 @@ TEST(Distributed, LightcutsWithReconstructionCutsMatchTheSingleProcessRenderBitF
                                    });
 }
 
+// VPLs drawn from the light tree (--vpl-draws) under the wavelet filter:
+// the tree is built on every worker from the same VPLs, the draws follow
+// the pixel, never the worker.
+TEST(Distributed, VplDrawsMatchTheSingleProcessRenderBitForBit) {
+  expect_workers_match_one_process("dist-vpl-draws", "--vpl-draws 2 --wavelet 2", "cornell", [](RenderSettings& s) {
+    s.vpl_draws = 2;
+    s.wavelet_levels = 2;
+  });
+}
+
 // Forced copies go to the other worker as each job goes out. The run waits
 // for both workers (--min-workers): under load the second one could join
 // after a short run had ended, and no copy would go out (seen in CI).

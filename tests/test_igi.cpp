@@ -33,7 +33,8 @@ struct TileCase {
 // anti-aliasing, the glossy gather (glossy), exact spot light (corner),
 // bias compensation, glass branches and the caustic photon map (glass), light
 // importance (rooms), bidirectional IR (corridor) and the sky's directional
-// VPLs and misses (courtyard, with the glossy gather on its metal ball).
+// VPLs and misses (courtyard, with the glossy gather on its metal ball), and
+// VPLs drawn from a light tree (--vpl-draws) with all of them.
 std::vector<TileCase> tile_cases() {
   RenderSettings all = vpl_settings(MethodKind::Igi, 4, 0.05f, true, 2);
   all.aa_samples = 4;
@@ -54,6 +55,13 @@ std::vector<TileCase> tile_cases() {
   ir_both.method = MethodKind::InstantRadiosity;
   ir_both.bidir_vpls = 8;
   ir_both.aa_samples = 1;
+  // Stochastic VPL selection: each point's draws come from its global pixel, layer and gather rank.
+  RenderSettings draws = all;
+  draws.vpl_draws = 3;
+  RenderSettings draws_wavelet = draws;
+  draws_wavelet.wavelet_levels = 2;
+  RenderSettings ir_draws = vpl_settings(MethodKind::InstantRadiosity, 4, 0.05f);
+  ir_draws.vpl_draws = 2;
   return {{"ir", "cornell", vpl_settings(MethodKind::InstantRadiosity, 4, 0.05f)},
           {"igi", "cornell", vpl_settings(MethodKind::Igi, 4, 0.05f)},
           {"igi_aa_glossy_compensation", "glossy", all},
@@ -65,7 +73,10 @@ std::vector<TileCase> tile_cases() {
           {"igi_bidir", "corridor", bidir},
           {"ir_importance_bidir", "rooms-3", ir_both},
           {"igi_aa_sky", "courtyard", all},
-          {"lightcuts_sky", "courtyard", vpl_settings(MethodKind::Lightcuts, 4, 0.05f)}};
+          {"lightcuts_sky", "courtyard", vpl_settings(MethodKind::Lightcuts, 4, 0.05f)},
+          {"igi_draws_aa_glossy_compensation", "glossy", draws},
+          {"igi_draws_wavelet_sky", "courtyard", draws_wavelet},
+          {"ir_draws", "corner", ir_draws}};
 }
 
 class TileInvariance : public ::testing::TestWithParam<TileCase> {};

@@ -40,6 +40,7 @@ bool same(const RenderSettings& a, const RenderSettings& b) {
          a.wavelet_levels == b.wavelet_levels &&
          same(a.lightcuts_error, b.lightcuts_error) && a.lightcuts_max_cut == b.lightcuts_max_cut &&
          a.lightcuts_spacing == b.lightcuts_spacing && a.lightcuts_samples == b.lightcuts_samples &&
+         a.vpl_draws == b.vpl_draws &&
          a.glass_branches == b.glass_branches && a.caustics == b.caustics && a.caustic_photons == b.caustic_photons &&
          same(a.caustic_radius, b.caustic_radius) && a.importance_paths == b.importance_paths &&
          same(a.importance_floor, b.importance_floor) && a.bidir_vpls == b.bidir_vpls &&
@@ -104,12 +105,12 @@ TileResult sample_half_tile_result() {
 
 // Another set than Welcome's, every field away from its default: a frame's own settings.
 RenderSettings frame_settings() {
-  return RenderSettings{MethodKind::Igi, 9, 6, 2, 5, 25, 25, 0.25f, 3, 0.2f, 4, true, 0.7f, 0.2f, 1, 0.04f, 400, 5, 9,
+  return RenderSettings{MethodKind::Igi, 9, 6, 2, 5, 25, 16, 25, 0.25f, 3, 0.2f, 4, true, 0.7f, 0.2f, 1, 0.04f, 400, 5, 9,
                         2, true, 2345, 0.03f};
 }
 
 std::vector<Message> samples() {
-  RenderSettings settings{MethodKind::InstantRadiosity, 7, 5, 3, 4, 64, 9, 0.3f, 2, 0.05f, 3, false, 0.8f, 0.1f, 3, 0.03f, 500, 6, 4,
+  RenderSettings settings{MethodKind::InstantRadiosity, 7, 5, 3, 4, 64, 8, 9, 0.3f, 2, 0.05f, 3, false, 0.8f, 0.1f, 3, 0.03f, 500, 6, 4,
                           5, true, 12345, 0.02f, 512, 0.3f, 64, 8};
   Camera camera{{1, 2, 3}, {0, -0.2f, -1}, {0.1f, 1, 0}, 0.9f};
   std::vector<uint8_t> scene(300);
@@ -404,6 +405,8 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {settings_edited([](auto& s) { s.filter_normal_cos = NAN; }), "Welcome.settings.filter_normal_cos"},
       {settings_edited([](auto& s) { s.filter_depth_ratio = -1e-6f; }), "Welcome.settings.filter_depth_ratio"},
       {settings_edited([](auto& s) { s.wavelet_levels = kMaxWaveletLevels + 1; }), "Welcome.settings.wavelet_levels"},
+      {settings_edited([](auto& s) { s.vpl_draws = -1; }), "Welcome.settings.vpl_draws: --vpl-draws: expected 0..1024"},
+      {frame_settings_edited([](auto& s) { s.vpl_draws = kMaxVplDraws + 1; }), "FrameSetup.settings.vpl_draws"},
       {settings_edited([](auto& s) { s.method = MethodKind(4); }), "Welcome.settings.method: --method: expected pt, ir, igi or lightcuts (0..3), got 4"},
       {settings_edited([](auto& s) { s.lightcuts_error = 0; }), "Welcome.settings.lightcuts_error: --lightcuts-error: expected a number in (0, 1), got 0"},
       {settings_edited([](auto& s) { s.lightcuts_error = 1; }), "Welcome.settings.lightcuts_error"},
@@ -539,9 +542,9 @@ TEST(Protocol, HugeLengthsAndBadBytesAreRejectedBeforeUse) {
   const size_t rotation_at = encode(Message{welcome}).size() - 4;
   EXPECT_EQ(patched(welcome, rotation_at, {0, 0, 0xc8, 0x43}),  // 400.0f
             "Welcome.environment_rotation: 400, expected degrees within +-360");
-  // method u8; path, light and specular depth, interleave, paths_per_set, aa_samples i32; glossy_threshold
-  // f32; glossy_rays i32; clamp f32; compensation_samples i32; then filter.
-  EXPECT_EQ(patched(welcome, method_at + 1 + 24 + 4 + 4 + 4 + 4, {2}), "Welcome.settings.filter: boolean byte 2, expected 0 or 1");
+  // method u8; path, light and specular depth, interleave, paths_per_set, vpl_draws, aa_samples i32;
+  // glossy_threshold f32; glossy_rays i32; clamp f32; compensation_samples i32; then filter.
+  EXPECT_EQ(patched(welcome, method_at + 1 + 28 + 4 + 4 + 4 + 4, {2}), "Welcome.settings.filter: boolean byte 2, expected 0 or 1");
 }
 
 // ---- Socket helpers, over loopback with bounded waits.

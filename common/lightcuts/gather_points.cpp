@@ -27,6 +27,11 @@ GatherPoint GatherPointTracer::trace(int x, int y, int k, RayCounts& rays) const
   GSample chain;
   follow_specular_chain(accel_, ray, hit, hash(hash(uint32_t(x), uint32_t(y), frame_.seed), uint32_t(k)),
                         specular_depth_, chain, rays);
+  return gather_point(chain);
+}
+
+GatherPoint gather_point(const GSample& chain) {
+  GatherPoint g;
   g.emitted = chain.emitted;
   g.throughput = chain.throughput;
   if (!chain.valid()) return g;

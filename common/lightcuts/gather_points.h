@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include "methods/gbuffer.h"
 #include "render/frame.h"
 #include "scene/accel.h"
 #include "scene/camera_rays.h"
@@ -38,6 +39,10 @@ struct GatherPoint {
   float tilt_sin = 0.0f;        // sin of the angle between shading and geometric normal
   bool valid() const { return depth < INFINITY; }
 };
+
+// The gather point at the end of a specular chain (methods/gbuffer.h):
+// its surface, direction, emission and throughput, and the frames.
+GatherPoint gather_point(const GSample& chain);
 
 class GatherPointTracer {
  public:

@@ -62,7 +62,7 @@ LightLeaf punctual_leaf(const PunctualLight& light, uint32_t index) {
 
 }  // namespace
 
-std::vector<LightLeaf> make_light_leaves(const Scene& scene, const VplSets& vpls) {
+std::vector<LightLeaf> make_light_leaves(const Scene& scene, const VplSets& vpls, bool scene_lights) {
   std::vector<LightLeaf> leaves;
   leaves.reserve(vpls.vpls.size() + scene.lights.size());
   const float inv_sets = 1.0f / float(std::max(1, vpls.set_count()));
@@ -81,7 +81,7 @@ std::vector<LightLeaf> make_light_leaves(const Scene& scene, const VplSets& vpls
     if (v.kind != VplKind::Surface && v.kind != VplKind::Area) continue;  // punctual: from the scene
     if (vpl_leaf(scene, v, i, inv_sets, leaf)) leaves.push_back(leaf);
   }
-  for (uint32_t i = 0; i < scene.lights.size(); ++i) {
+  for (uint32_t i = 0; scene_lights && i < scene.lights.size(); ++i) {
     LightLeaf leaf = punctual_leaf(scene.lights[i], i);
     if (leaf.weight > 0.0f) leaves.push_back(leaf);
   }

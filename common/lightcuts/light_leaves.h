@@ -41,11 +41,13 @@ struct LightLeaf {
   glm::vec3 intensity{0.0f};  // I (or E), see above; already divided by S for VPLs
   float weight = 0.0f;        // w > 0, see above
   float spread = 0.0f;        // Glossy: pi/2; spot: outer cone; point: pi (emission around `normal`)
-  uint32_t source = 0;        // VplSets::vpls index (Glossy), Scene::lights index (Punctual)
+  uint32_t source = 0;        // VplSets::vpls index (every VPL leaf), Scene::lights index (the scene's lights)
   LightClass light_class = LightClass::Cosine;
 };
 
-// Leaves with zero weight (black VPLs, black lights) are left out: they add nothing.
-std::vector<LightLeaf> make_light_leaves(const Scene& scene, const VplSets& vpls);
+// Leaves with zero weight (black VPLs, black lights) are left out: they add
+// nothing. Without `scene_lights`, the VPLs' leaves alone (igi's VPL draws,
+// which add the scene's lights exactly elsewhere).
+std::vector<LightLeaf> make_light_leaves(const Scene& scene, const VplSets& vpls, bool scene_lights = true);
 
 }  // namespace igi::lightcuts

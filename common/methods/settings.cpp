@@ -63,6 +63,8 @@ Check check_paths(const RenderSettings& s) {
   if (auto e = integer("specular_depth", "--specular-depth", s.specular_depth, 0, kMaxDepth, unbounded)) return e;
   if (auto e = integer("interleave", "--vpl-sets", s.interleave, 1, kMaxInterleave)) return e;
   if (auto e = integer("paths_per_set", "--vpl-paths", s.paths_per_set, 1, kMaxPathsPerSet)) return e;
+  if (auto e = integer("vpl_draws", "--vpl-draws", s.vpl_draws, 0, kMaxVplDraws, " VPLs drawn per shading point (0 = sets)"))
+    return e;
   if (subpixel_side(s.aa_samples) == 0 || s.aa_samples > kMaxAntialiasSamples)
     return wrong("aa_samples", "--aa: expected a square number of sub-samples per pixel (1, 4, 9, ..., " +
                                    std::to_string(kMaxAntialiasSamples) + "), got " + std::to_string(s.aa_samples));

@@ -22,6 +22,7 @@ inline int depth_limit(int depth) { return depth > 0 ? depth : kDepthSafetyCap; 
 inline constexpr int kMaxDepth = 1024;
 inline constexpr int kMaxInterleave = 16;
 inline constexpr int kMaxPathsPerSet = 1 << 20;
+inline constexpr int kMaxVplDraws = 1024;
 inline constexpr int kMaxCompensationSamples = 256;
 inline constexpr int kMaxAntialiasSamples = 64;  // 8 x 8 sub-samples
 inline constexpr int kMaxGlossyRays = 64;
@@ -41,6 +42,10 @@ struct RenderSettings {
   // Instant radiosity / IGI.
   int interleave = 3;          // N: N x N VPL sets, pixel set = (x mod N) + N (y mod N)
   int paths_per_set = 16;      // M: light paths started per VPL set
+  // Stochastic VPL selection (stochastic lightcuts, Yuksel 2019): each shading
+  // point draws K VPLs of all S sets from a light tree by their bound, one
+  // shadow ray each, instead of its set's group (methods/vpl_draws.h). 0 = sets.
+  int vpl_draws = 0;
   // Anti-aliasing by VPL groups: S = s x s stratified sub-samples per pixel,
   // each shaded by 1/S of the pixel's light paths (methods/subpixel.h). 1 = off.
   int aa_samples = 4;

@@ -12,6 +12,7 @@
 #include "methods/subpixel.h"
 #include "methods/vpl_contribution.h"
 #include "sampling/content_hash.h"
+#include "sampling/hash.h"
 #include "vpl/vpl_generator.h"
 #include "wavelet/wavelet_filter.h"
 
@@ -50,6 +51,8 @@ void VplMethod::begin_frame(const FrameSetup& frame) {
   setup_rays_ = RayCounts{};
   vpls_ = importance::generate_view_vpls(context_, settings_, frame, setup_rays_);
   if (caustics_) caustics_->build(frame.seed);
+  draws_.reset();
+  if (settings_.vpl_draws > 0) draws_.emplace(context_.scene, vpls_, frame.seed);
   // A typical demodulated irradiance: one set's flux spread over the scene.
   double flux = 0.0;
   for (const Vpl& v : vpls_.vpls) flux += (v.flux.x + v.flux.y + v.flux.z) / 3.0;
@@ -58,8 +61,10 @@ void VplMethod::begin_frame(const FrameSetup& frame) {
 }
 
 uint64_t VplMethod::frame_state_hash() const {
-  if (!caustics_) return vpls_.hash;
-  return combine_content_hashes(vpls_.hash, caustics_->hash());
+  uint64_t h = vpls_.hash;
+  if (draws_) h = combine_content_hashes(h, draws_->hash());
+  if (caustics_) h = combine_content_hashes(h, caustics_->hash());
+  return h;
 }
 
 // The valid sub-samples of set s (all pixels for ir) that connect to `group`,
@@ -107,6 +112,7 @@ void VplMethod::collect_set_samples(const GBuffer& gbuffer, std::span<const uint
 // VPL sums at every shading point that takes VPL light: the sub-samples of
 // each (set, group), then the gather hits traced from them.
 void VplMethod::shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch, RayCounts& rays) const {
+  if (draws_) return shade_drawn(gbuffer, hits, scratch, rays);
   const Region& region = gbuffer.region;
   const size_t camera_points = gbuffer.points();
   const int sets = interleaved() ? vpls_.set_count() : 1;
@@ -151,6 +157,36 @@ void VplMethod::shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scrat
     }
 }
 
+// The same with --vpl-draws: each shading point draws its own VPLs of all
+// sets (methods/vpl_draws.h), one at a time.
+void VplMethod::shade_drawn(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch, RayCounts& rays) const {
+  const Region& region = gbuffer.region;
+  const size_t camera_points = gbuffer.points();
+  scratch.sums.assign(camera_points + hits.points.size(), glm::vec3(0.0f));
+  const VplShading shading{context_.scene, clamp_bound_, settings_.glossy_threshold};
+  const uint32_t frame_seed = hash(frame_.seed, 0x76647277u /* "vdrw" */);
+  // Shading point `id` = l P + p of the region, or rank r + 1 of its gather hits.
+  auto stream = [&](size_t id, uint32_t rank) {
+    const size_t pixel = id % region.pixels();
+    const int x = region.x0 + int(pixel % region.width), y = region.y0 + int(pixel / region.width);
+    return hash(hash(hash(frame_seed, uint32_t(x), uint32_t(y)), uint32_t(id / region.pixels())), rank);
+  };
+  const int k = settings_.vpl_draws;
+  for (size_t id = 0; id < camera_points; ++id) {
+    const GSample& g = gbuffer.layers[id];
+    if (g.valid() && receives_vpls(*g.surface.material, settings_.glossy_threshold))
+      scratch.sums[id] = draws_->shade(g, k, stream(id, 0), vpls_.vpls, shading, context_.accel, rays);
+  }
+  uint32_t rank = 0;
+  for (size_t h = 0; h < hits.points.size(); ++h) {
+    rank = h > 0 && hits.owner[h] == hits.owner[h - 1] ? rank + 1 : 0;  // an owner's hits are consecutive
+    const GSample& y = hits.points[h];
+    if (y.valid() && receives_vpls(*y.surface.material, settings_.glossy_threshold))
+      scratch.sums[camera_points + h] =
+          draws_->shade(y, k, stream(hits.owner[h], rank + 1), vpls_.vpls, shading, context_.accel, rays);
+  }
+}
+
 // Exact lights at every layer sample of the tile's own pixels (never
 // filtered, so the border needs none) and at every gather hit.
 void VplMethod::shade_exact(const GBuffer& gbuffer, const TileJob& job, const GlossyHits& hits, Scratch& scratch,
@@ -184,7 +220,8 @@ void VplMethod::shade_exact(const GBuffer& gbuffer, const TileJob& job, const Gl
 void VplMethod::combine(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch) const {
   const size_t camera_points = gbuffer.points();
   // Each set alone estimates the full light (ir averages all of them); each group 1 / G of it.
-  const float scale = float(vpls_.groups) / (interleaved() ? 1.0f : float(vpls_.set_count()));
+  // Drawn VPLs (--vpl-draws) estimate the whole light already.
+  const float scale = draws_ ? 1.0f : float(vpls_.groups) / (interleaved() ? 1.0f : float(vpls_.set_count()));
   scratch.value.resize(camera_points);
   for (size_t i = 0; i < camera_points; ++i) scratch.value[i] = scale * scratch.sums[i];
   for (size_t h = 0; h < hits.points.size(); ++h) {

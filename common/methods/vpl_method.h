@@ -17,6 +17,8 @@
 //    layers (methods/gbuffer.h), each filtered on its own;
 //  - with --wavelet, the edge-avoiding wavelet filter after the
 //    discontinuity buffer, once per pixel (wavelet/wavelet_filter.h);
+//  - with --vpl-draws K, each shading point draws K VPLs of all sets from
+//    a light tree instead of its set's group (methods/vpl_draws.h);
 //  - with --caustics, the caustic photon map (photons/caustic_map.h): light
 //    that reached a diffuse surface through mirrors or glass, which no
 //    shadow ray can carry, added after the filter like the exact lights.
@@ -28,6 +30,7 @@
 #include "methods/shadow_batch.h"
 #include "methods/gbuffer.h"
 #include "methods/glossy_gather.h"
+#include "methods/vpl_draws.h"
 #include "filter/discontinuity_buffer.h"
 #include "photons/caustic_map.h"
 #include "vpl/vpl.h"
@@ -55,6 +58,7 @@ class VplMethod final : public Method {
   void collect_set_samples(const GBuffer& gbuffer, std::span<const uint8_t> rotation, int set, int group,
                            PixelBatch& batch) const;
   void shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch, RayCounts& rays) const;
+  void shade_drawn(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch, RayCounts& rays) const;
   void shade_exact(const GBuffer& gbuffer, const TileJob& job, const GlossyHits& hits, Scratch& scratch,
                    RayCounts& rays) const;
   void combine(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch) const;
@@ -71,6 +75,7 @@ class VplMethod final : public Method {
   RayCounts setup_rays_;
   std::vector<Vpl> exact_;  // point, spot and directional lights (methods/direct_lights.h)
   std::optional<CausticMap> caustics_;
+  std::optional<VplDraws> draws_;  // --vpl-draws: the light tree over this frame's VPLs
   float clamp_bound_ = INFINITY;
   int wavelet_levels_ = 0;  // this pass's (wavelet_levels_at_pass)
   double fixed_scale_ = 0x1p32;

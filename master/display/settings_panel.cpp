@@ -41,6 +41,7 @@ RenderSettings bounded(RenderSettings s) {
   s.specular_depth = std::clamp(s.specular_depth, 0, kMaxDepth);
   s.interleave = std::clamp(s.interleave, 1, kMaxInterleave);
   s.paths_per_set = std::clamp(s.paths_per_set, 1, kPanelMaxPaths);
+  s.vpl_draws = std::clamp(s.vpl_draws, 0, kMaxVplDraws);
   s.aa_samples = bounded_aa(s.aa_samples, s.paths_per_set);
   s.glossy_threshold = std::clamp(s.glossy_threshold, 0.0f, 1.0f);
   s.glossy_rays = std::clamp(s.glossy_rays, 1, kMaxGlossyRays);
@@ -139,6 +140,8 @@ void SettingsPanel::draw_method(RenderSettings& s) {
   ImGui::SliderInt("VPL sets (NxN)", &s.interleave, 1, kMaxInterleave, "%d", kBound);
   tip("--vpl-sets", "N x N interleaved VPL sets: each pixel of an N x N block takes its own");
   if (s.method == MethodKind::Lightcuts) return draw_lightcuts(s);
+  ImGui::SliderInt("VPL draws", &s.vpl_draws, 0, kMaxVplDraws, "%d", kBound | ImGuiSliderFlags_Logarithmic);
+  tip("--vpl-draws", "VPLs of all sets each point draws from a light tree (stochastic lightcuts); 0 = its set's");
   square_count("anti-aliasing", s.aa_samples, "--aa", "sub-samples per pixel, each shaded by its share of the light paths");
   ImGui::SliderFloat("clamp", &s.clamp, 0.0f, kMaxClamp, "%.3f", kBound | ImGuiSliderFlags_Logarithmic);
   tip("--clamp", "clamps VPL light closer than this share of the scene's mean chord; 0 = off");
