@@ -28,8 +28,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 METHOD_COLOURS = {"pt": "black", "ir": "tab:blue", "igi": "tab:red", "lightcuts": "tab:green",
                   "igi+caustics": "tab:pink", "igi-importance": "tab:orange", "igi-bidir": "tab:purple",
-                  "igi-both": "tab:brown"}
-METHODS = ("pt", "ir", "igi", "lightcuts", "igi+caustics", "igi-importance", "igi-bidir", "igi-both")
+                  "igi-both": "tab:brown", "igi-draws": "tab:olive"}
+METHODS = ("pt", "ir", "igi", "lightcuts", "igi+caustics", "igi-importance", "igi-bidir", "igi-both", "igi-draws")
 VIEW_METHODS = ("igi-importance", "igi-bidir", "igi-both")
 
 

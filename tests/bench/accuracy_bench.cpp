@@ -9,7 +9,7 @@
 // nothing; scripts/charts/plot_accuracy.py turns the CSV into charts and headline.md.
 //
 //   igi-accuracy [--scenes a,b] [--size WxH] [--ref-spp N] [--refs DIR] [--out F.csv] [--quick]
-//                [--series pt,igi,ir,caustics,view,lightcuts]
+//                [--series pt,igi,ir,caustics,view,draws,lightcuts]
 //
 // References: pt with --ref-spp samples, cached as
 // DIR/<scene>-<w>x<h>-<spp>-<hash of settings>.exr so reruns reuse them.
@@ -22,7 +22,9 @@
 // glass branches, filtered, unclamped and at clamp 0.02) over igi's budgets;
 // "view": igi with light importance (method igi-importance), bidirectional IR
 // (igi-bidir, K = 2 M VPLs kept per set) and both (igi-both), with
-// anti-aliasing 4, per clamp, with and without compensation. --series picks
+// anti-aliasing 4, per clamp, with and without compensation; "draws": igi
+// with --vpl-draws 1 and 4 (igi-draws), unclamped and at the default clamp
+// and compensation. --series picks
 // which of these families run (all by default).
 // Unclamped VPL errors have infinite variance: a single seed is one draw of
 // a heavy-tailed figure, so each VPL point is the median over three seeds,
@@ -62,7 +64,7 @@ struct Options {
   std::string refs = "results/refs";
   std::string out = "results/accuracy/accuracy.csv";
   bool quick = false;  // fewer points, for a smoke run
-  std::vector<std::string> series = {"pt", "igi", "ir", "caustics", "view", "lightcuts"};
+  std::vector<std::string> series = {"pt", "igi", "ir", "caustics", "view", "draws", "lightcuts"};
   bool runs(const std::string& family) const { return std::find(series.begin(), series.end(), family) != series.end(); }
 };
 
@@ -73,8 +75,8 @@ void declare(CLI::App& app, Options& o) {
   app.add_option("--refs", o.refs, "folder of cached references [results/refs]");
   app.add_option("--out", o.out, "CSV file [results/accuracy/accuracy.csv]");
   app.add_flag("--quick", o.quick, "fewer points, for a smoke run");
-  app.add_option("--series", o.series, "of pt,igi,ir,caustics,view,lightcuts [all]")->delimiter(',')
-      ->check(cli::one_of({"pt", "igi", "ir", "caustics", "view", "lightcuts"}));
+  app.add_option("--series", o.series, "of pt,igi,ir,caustics,view,draws,lightcuts [all]")->delimiter(',')
+      ->check(cli::one_of({"pt", "igi", "ir", "caustics", "view", "draws", "lightcuts"}));
 }
 
 Options parse(int argc, char** argv) {
@@ -200,6 +202,7 @@ Point median_point(const Prepared& p, const RenderSettings& s, const Options& o,
 
 // The method column: igi, ir, or igi with the view's options.
 std::string method_label(const RenderSettings& s) {
+  if (s.vpl_draws > 0) return "igi-draws";
   if (s.importance_paths > 0 && s.bidir_vpls > 0) return "igi-both";
   if (s.importance_paths > 0) return "igi-importance";
   if (s.bidir_vpls > 0) return "igi-bidir";
@@ -227,6 +230,8 @@ void sweep_budgets(const Prepared& p, const std::string& name, const Options& o,
     if (s.caustics)
       std::snprintf(params + std::strlen(params), sizeof params - std::strlen(params), ";photons=%d",
                     s.caustic_photons);
+    if (s.vpl_draws > 0)
+      std::snprintf(params + std::strlen(params), sizeof params - std::strlen(params), ";draws=%d", s.vpl_draws);
     write_row(csv, name, method_label(s).c_str(), params, median_point(p, s, o, passes, ref));
   }
 }
@@ -249,6 +254,21 @@ void sweep_view(const Prepared& p, const std::string& name, const Options& o, co
         s.bidir_vpls = bidir;  // sweep_budgets sets K = 2 M
         sweep_budgets(p, name, o, ref, s, csv);
       }
+    }
+}
+
+// VPLs drawn from a light tree (--vpl-draws K), at the default clamp,
+// compensation and anti-aliasing, unclamped too.
+void sweep_draws(const Prepared& p, const std::string& name, const Options& o, const Image& ref, std::ofstream& csv) {
+  const RenderSettings defaults;
+  for (float clamp : o.quick ? std::vector<float>{defaults.clamp} : std::vector<float>{0.0f, defaults.clamp})
+    for (int k : o.quick ? std::vector<int>{1} : std::vector<int>{1, 4}) {
+      RenderSettings s;
+      s.method = MethodKind::Igi;
+      s.clamp = clamp;
+      s.compensation_samples = clamp > 0.0f ? defaults.compensation_samples : 0;
+      s.vpl_draws = k;
+      sweep_budgets(p, name, o, ref, s, csv);
     }
 }
 
@@ -322,6 +342,7 @@ int run(const Options& o) {
     if (o.runs("pt")) sweep_pt(p, name, o, ref, csv);
     sweep_vpl(p, name, o, ref, csv);
     if (o.runs("view")) sweep_view(p, name, o, ref, csv);
+    if (o.runs("draws")) sweep_draws(p, name, o, ref, csv);
     if (o.runs("lightcuts")) sweep_lightcuts(p, name, o, ref, csv);
   }
   std::fprintf(stderr, "wrote %s\n", o.out.c_str());
