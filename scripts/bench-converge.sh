@@ -38,8 +38,7 @@ compare=build/tests/igi-compare
 # Columns of igi-compare's row for IMAGE against REF: relMSE RMSE FLIP mean.
 metrics() { "$compare" "$1" "$2" | awk 'NR == 2 { print $2, $4, $5 }'; }
 median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
-# Seconds igi-render reports on its summary line ("..., 1.234 s, ...").
-seconds() { sed -n 's/.*, \([0-9.]*\) s, .*/\1/p'; }
+source scripts/lib/bench-common.sh  # seconds, pt_reference
 
 echo "== pt against Mitsuba 3 ($size, $ref_spp spp each; mean = pt / Mitsuba)"
 printf "%-14s %8s %9s %8s %9s\n" scene mean relMSE pt_s mitsuba_s
@@ -52,7 +51,7 @@ for scene in ${scenes//,/ }; do
     mts_s=$("$python" scripts/mitsuba/render.py "$gltf" -o "$mts" --size "$size" --spp "$ref_spp" |
             sed -n 's/.* \([0-9.]*\) s$/\1/p' | tail -1)
   fi
-  ref="$out/$scene-pt-$size-$ref_spp.exr"
+  ref=$(pt_reference "$scene" "$size" "$ref_spp")
   pt_s=cached
   if [ ! -f "$ref" ]; then
     pt_s=$("$render" --scene "$scene" --method pt --spp "$ref_spp" --size "$size" -o "$ref" --quiet | seconds)
@@ -65,7 +64,7 @@ echo
 echo "== igi at the defaults against pt ($size, medians over $seeds seeds; mean = igi / pt)"
 printf "%-14s %6s %8s %9s %7s %7s\n" scene passes mean relMSE FLIP s
 for scene in ${scenes//,/ }; do
-  ref="$out/$scene-pt-$size-$ref_spp.exr"
+  ref=$(pt_reference "$scene" "$size" "$ref_spp")
   for p in ${passes//,/ }; do
     rows=()
     for k in $(seq 1 "$seeds"); do

@@ -7,8 +7,8 @@
 # its time, and a time interpolated between the last two counts (log time
 # against log FLIP). Per scene: the best setting and defaults / best
 # (target: within 2x). One run each; asserts nothing. Images, references and
-# the table go to results/time-to-flip/ (references shared with
-# bench-converge.sh's names in results/converge/).
+# the table go to results/time-to-flip/ (references: shared with
+# bench-converge.sh, scripts/lib/bench-common.sh).
 #
 #   scripts/bench-time-to-flip.sh [--size WxH] [--ref-spp N] [--scenes a,b] [--target F] [--cap SECONDS]
 set -euo pipefail
@@ -30,8 +30,7 @@ while [ $# -gt 0 ]; do
 done
 scripts/build.sh >/dev/null
 out=results/time-to-flip
-refs=results/converge
-mkdir -p "$out" "$refs"
+mkdir -p "$out" results/converge
 render=build/master/igi-render
 compare=build/tests/igi-compare
 
@@ -46,7 +45,7 @@ settings=(
 )
 
 flip() { "$compare" "$1" "$2" | awk 'NR == 2 { print $4 }'; }
-seconds() { sed -n 's/.*, \([0-9.]*\) s, .*/\1/p'; }
+source scripts/lib/bench-common.sh  # seconds, pt_reference
 # Time at FLIP = target between (t0, f0) and (t1, f1), in log-log.
 interpolate() {
   awk -v t0="$1" -v f0="$2" -v t1="$3" -v f1="$4" -v f="$target" 'BEGIN {
@@ -58,7 +57,7 @@ interpolate() {
 echo "== time to FLIP $target against pt ($size, $ref_spp spp), --threads 2, one run each"
 printf "%-13s %-16s %6s %8s %8s %7s\n" scene setting passes seconds interp FLIP
 for scene in ${scenes//,/ }; do
-  ref="$refs/$scene-pt-$size-$ref_spp.exr"
+  ref=$(pt_reference "$scene" "$size" "$ref_spp")
   [ -f "$ref" ] || "$render" --scene "$scene" --method pt --spp "$ref_spp" --size "$size" -o "$ref" --quiet >/dev/null
   best=""; best_name=""; default_time=""
   for entry in "${settings[@]}"; do
