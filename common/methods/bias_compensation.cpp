@@ -56,7 +56,11 @@ glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int l, int
     if (!accel_.intersect(ray, hit)) continue;
     GSample hit_sample;
     hit_sample.surface = surface_at(accel_.scene(), hit, wi);
-    if (hit_sample.surface.material->is_specular()) continue;
+    // A surface that takes no VPL light (a mirror, glass, a sharp glossy
+    // lobe: methods/glossy_gather.h) holds no VPL the clamp cut. Shading one
+    // here with VPLs would put them in its sharp lobe: on `glossy` that drew
+    // a row of specks along every crease between a wall and the floor.
+    if (!receives_vpls(*hit_sample.surface.material, shading_.min_emitter_alpha)) continue;
     hit_sample.wo = -wi;
     hit_sample.has_surface = true;  // no camera path leads here: depth stays unset
     const float d2 = glm::dot(hit_sample.surface.position - sp.position, hit_sample.surface.position - sp.position);
