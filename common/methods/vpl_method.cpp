@@ -110,7 +110,13 @@ void VplMethod::collect_set_samples(const GBuffer& gbuffer, std::span<const uint
 }
 
 // VPL sums at every shading point that takes VPL light: the sub-samples of
-// each (set, group), then the gather hits traced from them.
+// each (set, group), then the gather hits traced from them. A gather hit
+// takes every group of its set, not its sub-sample's group alone: the
+// discontinuity buffer averages a camera point's group with its neighbours'
+// on the same surface, but a hit lies somewhere else in the scene, alone, and
+// with a quarter of a set's VPLs (at --aa 4) one close VPL made a speck that
+// the filter spread into a square on a glossy floor. Hits are few (the
+// sharp glossy sub-samples' rays), so this costs little.
 void VplMethod::shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch, RayCounts& rays) const {
   if (draws_) return shade_drawn(gbuffer, hits, scratch, rays);
   const Region& region = gbuffer.region;
@@ -123,11 +129,10 @@ void VplMethod::shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scrat
   for (uint32_t h = 0; h < hits.points.size(); ++h) {
     const GSample& y = hits.points[h];
     if (!y.valid() || !receives_vpls(*y.surface.material, settings_.glossy_threshold)) continue;
-    const int k = gbuffer.subsample_of_layer(int(hits.owner[h] / region.pixels()));
     const size_t pixel = hits.owner[h] % region.pixels();
     const int x = region.x0 + int(pixel % region.width), yy = region.y0 + int(pixel / region.width);
     const int set = interleaved() ? vpls_.set_of_pixel(x, yy) : 0;
-    scratch.hits_by_group[size_t(set) * groups + group_of_subsample(x, yy, k, groups)].push_back(h);
+    for (int g = 0; g < groups; ++g) scratch.hits_by_group[size_t(set) * groups + g].push_back(h);
   }
   // Each pixel's group rotation, once per tile (not once per group).
   static_assert(kMaxAntialiasSamples <= 256, "rotations are kept in bytes");
@@ -221,7 +226,9 @@ void VplMethod::combine(const GBuffer& gbuffer, const GlossyHits& hits, Scratch&
   const size_t camera_points = gbuffer.points();
   // Each set alone estimates the full light (ir averages all of them); each group 1 / G of it.
   // Drawn VPLs (--vpl-draws) estimate the whole light already.
-  const float scale = draws_ ? 1.0f : float(vpls_.groups) / (interleaved() ? 1.0f : float(vpls_.set_count()));
+  // Gather hits take every group (shade_vpls).
+  const float set_scale = draws_ || interleaved() ? 1.0f : 1.0f / float(vpls_.set_count());
+  const float scale = draws_ ? 1.0f : float(vpls_.groups) * set_scale;
   scratch.value.resize(camera_points);
   for (size_t i = 0; i < camera_points; ++i) scratch.value[i] = scale * scratch.sums[i];
   for (size_t h = 0; h < hits.points.size(); ++h) {
@@ -229,9 +236,10 @@ void VplMethod::combine(const GBuffer& gbuffer, const GlossyHits& hits, Scratch&
     glm::vec3 radiance = y.emitted;
     if (y.valid())
       radiance += y.throughput * y.surface.albedo *
-                  (scale * scratch.sums[camera_points + h] + scratch.direct[camera_points + h] + caustic(y));
+                  (set_scale * scratch.sums[camera_points + h] + scratch.direct[camera_points + h] + caustic(y));
     scratch.value[hits.owner[h]] += hits.weight[h] * radiance;
   }
+  for (size_t i = 0; i < hits.light_owner.size(); ++i) scratch.value[hits.light_owner[i]] += hits.light_value[i];
 }
 
 // Layer l's demodulated irradiance of the tile's own pixels: through the
@@ -362,7 +370,7 @@ void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCou
   GBuffer& gbuffer = scratch.gbuffer;
   build_gbuffer(context_.accel, frame_, tile_region(job, frame_.width, frame_.height), settings_.aa_samples,
                 settings_.glass_branches, depth_limit(settings_.specular_depth), gbuffer, rays, log_);
-  trace_glossy_gather(context_.accel, gbuffer, settings_, frame_.seed, scratch.hits, rays);
+  trace_glossy_gather(context_.accel, context_.lights, gbuffer, settings_, frame_.seed, scratch.hits, rays);
   shade_vpls(gbuffer, scratch.hits, scratch, rays);
   shade_exact(gbuffer, job, scratch.hits, scratch, rays);
   // The glossy gather joins the demodulated irradiance before the filter, so
