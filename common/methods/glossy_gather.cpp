@@ -5,12 +5,11 @@
 #include "material/bsdf.h"
 #include "sampling/hash.h"
 #include "sampling/sobol.h"
+#include "sampling/warp.h"
 #include "scene/surface.h"
 
 namespace igi {
 namespace {
-
-float power_heuristic(float a, float b) { return a * a / (a * a + b * b); }
 
 // One light sample of the area lights and the sky at g, weighted against the
 // BSDF's samples; nothing for punctual lights (exact already).

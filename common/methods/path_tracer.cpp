@@ -12,8 +12,6 @@
 namespace igi {
 namespace {
 
-float power_heuristic(float a, float b) { return a * a / (a * a + b * b); }
-
 // Dimensions per path vertex: light choice, light point (2), BSDF lobe, BSDF direction (2), roulette.
 constexpr uint32_t kDimsPerBounce = 10;  // SampleStream gives every 1D draw a pair of its own
 
