@@ -31,8 +31,9 @@ uint64_t tile_bytes(const RenderSettings& s, int width, int height) {
       return pixels * uint64_t(s.lightcuts_samples) * (2 * sizeof(lightcuts::GatherPoint) + 4);
     case MethodKind::InstantRadiosity:
     case MethodKind::Igi: {
-      // A G-buffer sample; VPL sums, exact light, filter input and output; each glossy gather ray's hit.
-      const uint64_t point = sizeof(GSample) + 4 * sizeof(glm::vec3) +
+      // A G-buffer sample; VPL sums, exact light, filter input and output; each glossy gather ray's hit;
+      // the gather's light samples (one entry a sample).
+      const uint64_t point = sizeof(GSample) + 4 * sizeof(glm::vec3) + sizeof(uint32_t) + sizeof(glm::vec3) +
                              uint64_t(s.glossy_rays) * (sizeof(GSample) + sizeof(uint32_t) + sizeof(glm::vec3));
       return pixels * uint64_t(s.aa_samples) * uint64_t(s.glass_branches) * point;
     }
