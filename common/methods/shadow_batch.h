@@ -1,10 +1,11 @@
 #pragma once
-// The inner loop of VPL shading: one VPL against 16 pixels of one set, as one
-// coherent shadow packet. Pixels are kept structure-of-arrays so the common
+// The inner loop of VPL shading: one VPL against 16 pixels of one set, set up
+// as one 16-lane shadow packet. Pixels are kept structure-of-arrays so the common
 // case (diffuse receiver, diffuse or area-light VPL) runs as plain 16-lane
 // arithmetic the compiler vectorises; other lanes take the general path in
 // vpl_contribution.h. Each lane's arithmetic is independent of its
-// neighbours, so a pixel's result does not depend on the packet it is in.
+// neighbours, and each lane's shadow ray is traced alone (shadow_batch.cpp
+// says why), so a pixel's result does not depend on the packet it is in.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -49,8 +50,11 @@ void fill_shadow_packet(const PixelBatch& batch, size_t first, const Vpl& vpl, c
 // Returns the number of rays the packet traced.
 int accumulate_shadow_packet(const ShadowPacket& packet, size_t first, PixelBatch& batch);
 
-// Every VPL of `vpls` against every point of the padded batch, one coherent
-// packet per VPL and 16 points, added to the batch's sums. `log`, if given,
+// Traces each valid lane's shadow ray on its own; an occluded lane's tfar becomes -inf.
+void trace_shadow_lanes(const Accel& accel, RTCIntersectContext& context, ShadowPacket& packet);
+
+// Every VPL of `vpls` against every point of the padded batch, one packet
+// per VPL and 16 points, added to the batch's sums. `log`, if given,
 // records each packet (benchmarks; one thread only).
 void shade_batch(PixelBatch& batch, std::span<const Vpl> vpls, const VplShading& shading, const Accel& accel,
                  RayCounts& rays, RayLog* log = nullptr);
