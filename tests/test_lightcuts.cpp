@@ -11,6 +11,7 @@
 #include "image/flip.h"
 #include "lightcuts/lightcuts_method.h"
 #include "lightcuts/lightcuts_settings.h"
+#include "scene/load_scene.h"
 #include "render/frame_renderer.h"
 #include "scene/builtin_scenes.h"
 #include "support/image_compare.h"
@@ -152,6 +153,24 @@ TEST(LightcutsAccuracy, OnTiltedShadingNormalsAnExhaustiveCutIsStillIr) {
   const Rendered a = render(tilted, exhaustive, 40, 30), b = render(tilted, ir, 40, 30);
   const Difference d = relative_difference(a.image, b.image);
   std::printf("tilted normals, exhaustive cut against ir: mean %.2e, within 2 %%: %.4f\n", d.mean, d.within_2);
+  EXPECT_LT(d.mean, 1e-4);
+  EXPECT_GE(d.within_2, 0.999);
+}
+
+// And on a rough metal floor under the clamp: a glossy receiver's clamp
+// (methods/clamp.h, on its BSDF times G) is one rule in igi's general lanes
+// and in lightcuts, so the exhaustive cut is still ir.
+TEST(LightcutsAccuracy, OnAGlossyFloorUnderTheClampAnExhaustiveCutIsStillIr) {
+  static const test::Prepared glossy(load_scene("glossy-rough"));
+  RenderSettings ir = lightcuts_settings(8);
+  ir.method = MethodKind::InstantRadiosity;
+  ir.clamp = 0.3f;
+  RenderSettings exhaustive = lightcuts_settings(8, 0, 1, 1e-7f);
+  exhaustive.lightcuts_max_cut = lightcuts::kMaxCut;
+  exhaustive.clamp = 0.3f;
+  const Rendered a = render(glossy, exhaustive, 40, 30), b = render(glossy, ir, 40, 30);
+  const Difference d = relative_difference(a.image, b.image);
+  std::printf("glossy floor, clamped, exhaustive cut against ir: mean %.2e, within 2 %%: %.4f\n", d.mean, d.within_2);
   EXPECT_LT(d.mean, 1e-4);
   EXPECT_GE(d.within_2, 0.999);
 }

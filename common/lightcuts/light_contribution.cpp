@@ -4,6 +4,7 @@
 
 #include "lighting/lights.h"
 #include "material/bsdf.h"
+#include "methods/clamp.h"
 #include "sampling/warp.h"
 
 namespace igi::lightcuts {
@@ -54,7 +55,15 @@ glm::vec3 light_contribution(const LightingContext& context, const GatherPoint& 
                     : leaf.intensity;
     }
   }
-  const glm::vec3 c = receiver_bsdf(g, wi) * emitted * g_term;
+  glm::vec3 f = receiver_bsdf(g, wi);
+  // A glossy receiver's clamp (methods/clamp.h), on its BSDF with albedo 1, as ir and igi take it.
+  if (leaf.light_class != LightClass::Punctual && leaf.light_class != LightClass::Directional &&
+      sp.material->type == MaterialType::Conductor && context.clamp_bound < INFINITY) {
+    SurfacePoint white = sp;
+    white.albedo = glm::vec3(1.0f);
+    f *= glossy_receiver_clamp(max_component(bsdf_eval(white, g.wo, wi)), g_term, context.clamp_bound);
+  }
+  const glm::vec3 c = f * emitted * g_term;
   // Nothing, or a light on the point itself (unclamped: infinite or NaN).
   if (!(c.x + c.y + c.z > 0.0f) || !std::isfinite(c.x + c.y + c.z)) return glm::vec3(0.0f);
   shadow = shadow_ray(sp, wi, leaf.position, distance);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "material/bsdf.h"
+#include "methods/clamp.h"
 #include "methods/gbuffer.h"
 #include "sampling/warp.h"
 #include "vpl/vpl.h"
@@ -73,6 +74,9 @@ struct VplShading {
       }
     }
     glm::vec3 f = demodulated_bsdf(g, wi);
+    const bool clamped = v.kind == VplKind::Surface || v.kind == VplKind::Area;
+    if (clamped && sp.material->type == MaterialType::Conductor)
+      f *= glossy_receiver_clamp(max_component(f), g_term, clamp_bound);
     glm::vec3 c = f * emitted * g_term;
     // Nothing, or a VPL on the point itself (unclamped: infinite or NaN).
     if (!(c.x + c.y + c.z > 0.0f) || !std::isfinite(c.x + c.y + c.z)) return glm::vec3(0.0f);
