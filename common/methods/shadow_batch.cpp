@@ -156,12 +156,13 @@ int accumulate_shadow_packet(const ShadowPacket& packet, size_t first, PixelBatc
 
 // Each valid lane as a ray of its own (rtcOccluded1), not the packet as one
 // rtcOccluded16: Embree's packet traversal can answer a ray that grazes an
-// edge differently depending on the other rays of its packet (it finishes a
-// thinned packet ray by ray, with other arithmetic), and which points share a
-// packet depends on how the frame is cut into tiles. Measured: at 64x48, 4
-// passes, 8 paths a set, 4 sub-samples, ir rendered in 16-pixel tiles
-// differed from the whole frame in 4 of 36 runs (a few pixels each, by about
-// 1e-5), never with single rays. The cost is about 1.25x an igi frame
+// edge differently depending on the other rays of its packet (why inside
+// Embree is not verified; its hybrid traversal finishes a thinned packet ray
+// by ray), and which points share a packet depends on how the frame is cut
+// into tiles. Measured: at 64x48, 4 passes, 8 paths a set, 4 sub-samples,
+// 16-pixel tiles differed from the whole frame in 4 of 36 runs (a few pixels
+// each, by about 1e-5), never with single rays; RTC_SCENE_FLAG_ROBUST did not
+// help. The cost is 1.1-1.3x an igi frame, 0.9x on cornell-blob
 // (tests/bench/RESULTS.md, "Shadow rays one at a time").
 void trace_shadow_lanes(const Accel& accel, RTCIntersectContext& context, ShadowPacket& packet) {
   RTCRay ray;
