@@ -17,6 +17,8 @@
 // shrinks its radius pass by pass. Pass 0 is the clamp one frame shows.
 #include <cstdint>
 
+#include "sampling/warp.h"
+
 namespace igi {
 
 // Above this the clamp distance would exceed several rooms: nothing is left
@@ -35,7 +37,7 @@ float clamp_bound(float clamp, float mean_chord, uint32_t pass);
 // factor (at most 1) that scales the contribution. A Lambertian receiver
 // (f_white = 1 / pi) is never scaled: for it this is the bound on G itself.
 inline float glossy_receiver_clamp(float f_white, float g_term, float bound) {
-  const float limit = bound * 0.318309886f;  // 1 / pi
+  const float limit = bound * kInvPi;
   const float fg = f_white * g_term;
   return fg > limit ? limit / fg : 1.0f;
 }

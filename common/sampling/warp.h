@@ -25,11 +25,11 @@ struct Onb {
   glm::vec3 to_local(glm::vec3 v) const { return {glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)}; }
 };
 
-// Cosine-weighted hemisphere around +z; density cos(theta)/pi.
 // Multiple importance sampling's power heuristic (beta 2): the weight of a
 // sample drawn with density a against another technique's density b.
 inline float power_heuristic(float a, float b) { return a * a / (a * a + b * b); }
 
+// Cosine-weighted hemisphere around +z; density cos(theta)/pi.
 inline glm::vec3 cosine_hemisphere(glm::vec2 u) {
   float r = std::sqrt(u.x), phi = 2.0f * kPi * u.y;
   return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u.x))};
