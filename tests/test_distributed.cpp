@@ -74,10 +74,11 @@ TEST(Distributed, TwoWorkersMatchTheSingleProcessRenderBitForBit) {
   EXPECT_TRUE(test::images_identical("dist-two", read_image(out), single_process()));
 }
 
-// Anti-aliasing by VPL groups, the glossy gather (glossy) and exact spot
-// light (corner), with compensation: workers give the one-process image.
+// Anti-aliasing by VPL groups, the glossy gather and its light samples
+// (glossy), the glossy receiver's clamp (glossy-rough) and exact spot light
+// (corner), with compensation: workers give the one-process image.
 TEST(Distributed, AntialiasingGlossyGatherAndExactLightsMatchOneProcess) {
-  for (const std::string scene : {"glossy", "corner"}) {
+  for (const std::string scene : {"glossy", "glossy-rough", "corner"}) {
     const std::string out = test::output_path("dist-quality-" + scene + ".exr");
     auto r = test::run(master("--workers 2 --frames 1 --aa 4 --clamp 0.05 --compensate 2 -o " + out, scene));
     ASSERT_EQ(r.exit_code, 0) << r.output;
