@@ -100,12 +100,12 @@ struct Tile {
 };
 
 // Filters `tile` of an image_w x image_h image: the region is the tile
-// grown by r on every side, clipped to the image, as the renderer cuts it.
+// grown by window / 2 on every side, clipped to the image, as the renderer cuts it.
 using Filter = std::function<void(const FilterInput&, const FilterSettings&, Rect, std::span<glm::vec3>)>;
 
 std::vector<glm::vec3> filter_tile(const Filter& filter, const Scene& scene, int image_w, int image_h, Tile tile,
                                    const FilterSettings& s) {
-  const int r = s.radius;
+  const int r = s.window / 2;
   const int x0 = std::max(tile.x - r, 0), y0 = std::max(tile.y - r, 0);
   const int x1 = std::min(tile.x + tile.w + r, image_w), y1 = std::min(tile.y + tile.h + r, image_h);
   const FilterInput in = cut(scene, x0, y0, x1 - x0, y1 - y0);
@@ -121,9 +121,9 @@ Filter fast(FilterStats* stats = nullptr) {
 }
 const Filter brute = filter_brute_force;
 
-FilterSettings with_radius(int r) {
+FilterSettings with_window(int n) {
   FilterSettings s;
-  s.radius = r;
+  s.window = n;
   return s;
 }
 
@@ -152,10 +152,10 @@ TEST(DiscontinuityBuffer, FastMatchesBruteForceOnScenesWithEdges) {
   // (clipped on two sides) and one inside.
   const Tile tiles[] = {{0, 0, 48, 40}, {0, 0, 16, 16}, {13, 9, 20, 17}, {30, 25, 18, 15}, {0, 20, 9, 20}};
   for (const auto& [name, scene] : scenes)
-    for (int r = 1; r <= 4; ++r)
+    for (int n = 1; n <= 9; ++n)
       for (const Tile& tile : tiles) {
-        SCOPED_TRACE(::testing::Message() << name << ", r " << r << ", tile at " << tile.x << "," << tile.y);
-        const FilterSettings s = with_radius(r);
+        SCOPED_TRACE(::testing::Message() << name << ", window " << n << ", tile at " << tile.x << "," << tile.y);
+        const FilterSettings s = with_window(n);
         FilterStats stats;
         const auto out = filter_tile(fast(&stats), scene, 48, 40, tile, s);
         EXPECT_TRUE(agree(out, filter_tile(brute, scene, 48, 40, tile, s), s.fixed_scale));
@@ -170,12 +170,12 @@ TEST(DiscontinuityBuffer, FastMatchesBruteForceWithAFrameScale) {
     s.value *= 3.0e6f;
     return s;
   };
-  for (int r = 1; r <= 4; ++r) {
-    FilterSettings s = with_radius(r);
+  for (int n = 2; n <= 9; ++n) {
+    FilterSettings s = with_window(n);
     s.fixed_scale = filter_fixed_scale(3.0e6);
     const Tile all{0, 0, 70, 52};
     const auto out = filter_tile(fast(), bright, 70, 52, all, s);
-    EXPECT_TRUE(agree(out, filter_tile(brute, bright, 70, 52, all, s), s.fixed_scale)) << "r " << r;
+    EXPECT_TRUE(agree(out, filter_tile(brute, bright, 70, 52, all, s), s.fixed_scale)) << "window " << n;
   }
 }
 
@@ -184,66 +184,74 @@ TEST(DiscontinuityBuffer, FastPathIsTakenOnAPlaneAndExactPathAtEdges) {
     return Sample{5.0f + 0.01f * float(x) + 0.02f * float(y), kUp, noisy_value(x, y)};
   };
   const Scene step = [](int x, int y) { return Sample{x < 32 ? 4.0f : 8.0f, kUp, noisy_value(x, y)}; };
-  for (int r = 1; r <= 4; ++r) {
+  for (int n = 2; n <= 9; ++n) {
+    const int a = n / 2, b = n - 1 - a;  // the window's reach before and after a pixel
     FilterStats stats;
-    filter_tile(fast(&stats), plane, 64, 48, {0, 0, 64, 48}, with_radius(r));
-    EXPECT_GT(double(stats.fast_pixels), 0.9 * 64 * 48) << "r " << r;
-    // Exactly the 2r columns whose windows straddle the step need the exact
-    // path, and there the result is the brute force's, bit for bit.
-    const auto out = filter_tile(fast(&stats), step, 64, 48, {0, 0, 64, 48}, with_radius(r));
-    EXPECT_EQ(stats.exact_pixels, uint64_t(2 * r * 48)) << "r " << r;
-    EXPECT_EQ(stats.fast_pixels, uint64_t((64 - 2 * r) * 48)) << "r " << r;
-    const auto reference = filter_tile(brute, step, 64, 48, {0, 0, 64, 48}, with_radius(r));
+    filter_tile(fast(&stats), plane, 64, 48, {0, 0, 64, 48}, with_window(n));
+    EXPECT_GT(double(stats.fast_pixels), 0.9 * 64 * 48) << "window " << n;
+    // Exactly the n - 1 columns whose windows straddle the step need the
+    // exact path, and there the result is the brute force's, bit for bit.
+    const auto out = filter_tile(fast(&stats), step, 64, 48, {0, 0, 64, 48}, with_window(n));
+    EXPECT_EQ(stats.exact_pixels, uint64_t((n - 1) * 48)) << "window " << n;
+    EXPECT_EQ(stats.fast_pixels, uint64_t((64 - (n - 1)) * 48)) << "window " << n;
+    const auto reference = filter_tile(brute, step, 64, 48, {0, 0, 64, 48}, with_window(n));
     for (int y = 0; y < 48; ++y)
-      for (int x = 32 - r; x < 32 + r; ++x) ASSERT_EQ(out[size_t(y) * 64 + x], reference[size_t(y) * 64 + x]);
+      for (int x = 32 - b; x < 32 + a; ++x) ASSERT_EQ(out[size_t(y) * 64 + x], reference[size_t(y) * 64 + x]);
   }
 }
 
 TEST(DiscontinuityBuffer, StepBetweenPlanesStaysSharp) {
-  // Interleaved noise of the N x N VPL sets (N = 2r + 1) whose every column
-  // sums to zero, so any window spanning N rows averages it away, however
-  // many of its columns lie on this side of the step.
-  for (int r = 1; r <= 2; ++r) {
-    const int n = 2 * r + 1;
-    const Scene step = [n, r](int x, int y) {
-      const float noise = 0.1f * float(y % n - r) * float(1 + x % n);
+  // Interleaved noise of the N x N VPL sets whose every column sums to
+  // zero, so any window spanning N rows averages it away, however many of
+  // its columns lie on this side of the step.
+  for (int n = 2; n <= 6; ++n) {
+    const int a = n / 2, b = n - 1 - a;
+    const Scene step = [n](int x, int y) {
+      const float noise = 0.1f * (float(y % n) - 0.5f * float(n - 1)) * float(1 + x % n);
       return Sample{x < 20 ? 4.0f : 8.0f, kUp, glm::vec3((x < 20 ? 1.0f : 5.0f) + noise)};
     };
     for (const Filter& filter : {fast(), brute}) {
-      const auto out = filter_tile(filter, step, 40, 30, {0, 0, 40, 30}, with_radius(r));
-      for (int y = r; y < 30 - r; ++y)
+      const auto out = filter_tile(filter, step, 40, 30, {0, 0, 40, 30}, with_window(n));
+      for (int y = a; y < 30 - b; ++y)
         for (int x = 0; x < 40; ++x) {
           const float side_mean = x < 20 ? 1.0f : 5.0f;
           const glm::vec3 v = out[size_t(y) * 40 + x];
           for (int c = 0; c < 3; ++c)
-            ASSERT_NEAR(v[c], side_mean, 1e-5 * side_mean) << "r " << r << " at " << x << "," << y;
+            ASSERT_NEAR(v[c], side_mean, 1e-5 * side_mean) << "window " << n << " at " << x << "," << y;
         }
     }
   }
 }
 
 TEST(DiscontinuityBuffer, InterleavedNoiseOnAPlaneBecomesFlat) {
-  // value = base + noise(x mod 3, y mod 3), the 9 noise values summing to 0.
-  float noise[9];
-  float total = 0.0f;
-  for (int i = 0; i < 8; ++i) total += noise[i] = 0.8f * (uniform(i, 0, 7) - 0.5f);
-  noise[8] = -total;
-  const glm::vec3 base(1.0f, 2.0f, 0.5f);
-  const Scene plane = [&](int x, int y) { return Sample{5.0f, kUp, base + noise[(y % 3) * 3 + x % 3]}; };
-  const FilterSettings s = with_radius(1);
-  FilterStats stats;
-  const auto out = filter_tile(fast(&stats), plane, 30, 30, {0, 0, 30, 30}, s);
-  EXPECT_EQ(stats.exact_pixels, 0u);
-  for (int y = 1; y < 29; ++y)  // windows not clipped by the image
-    for (int x = 1; x < 29; ++x)
-      for (int c = 0; c < 3; ++c)
-        ASSERT_NEAR(out[size_t(y) * 30 + x][c], base[c], 1e-6 * base[c] + 1.0 / s.fixed_scale) << x << "," << y;
+  // value = base + noise(x mod N, y mod N), the N^2 noise values summing to
+  // 0: every whole window holds each set once, even N included (a window of
+  // 2 floor(N/2) + 1 held a row and a column of sets twice, a grid of
+  // period N).
+  for (int n : {2, 3, 4, 5, 6, 8}) {
+    std::vector<float> noise(size_t(n) * n);
+    float total = 0.0f;
+    for (int i = 0; i + 1 < n * n; ++i) total += noise[i] = 0.8f * (uniform(i, 0, 7) - 0.5f);
+    noise.back() = -total;
+    const glm::vec3 base(1.0f, 2.0f, 0.5f);
+    const Scene plane = [&](int x, int y) { return Sample{5.0f, kUp, base + noise[(y % n) * n + x % n]}; };
+    const FilterSettings s = with_window(n);
+    FilterStats stats;
+    const auto out = filter_tile(fast(&stats), plane, 30, 30, {0, 0, 30, 30}, s);
+    EXPECT_EQ(stats.exact_pixels, 0u);
+    const int a = n / 2, b = n - 1 - a;
+    for (int y = a; y < 30 - b; ++y)  // windows not clipped by the image
+      for (int x = a; x < 30 - b; ++x)
+        for (int c = 0; c < 3; ++c)
+          ASSERT_NEAR(out[size_t(y) * 30 + x][c], base[c], 1e-6 * base[c] + 1.0 / s.fixed_scale)
+              << "window " << n << " at " << x << "," << y;
+  }
 }
 
 TEST(DiscontinuityBuffer, TilesOfAnySizeGiveBitIdenticalPixels) {
   const int w = 70, h = 52;
-  for (int r = 1; r <= 3; ++r) {
-    const FilterSettings s = with_radius(r);
+  for (int n = 2; n <= 7; ++n) {
+    const FilterSettings s = with_window(n);
     FilterStats stats;
     const std::vector<glm::vec3> whole = filter_tile(fast(&stats), combined, w, h, {0, 0, w, h}, s);
     ASSERT_GT(stats.fast_pixels, 0u);
@@ -261,7 +269,7 @@ TEST(DiscontinuityBuffer, TilesOfAnySizeGiveBitIdenticalPixels) {
             std::copy_n(&out[size_t(y) * tile.w], tile.w, &assembled[size_t(tile.y + y) * w + tile.x]);
         }
       EXPECT_EQ(std::memcmp(assembled.data(), whole.data(), whole.size() * sizeof(glm::vec3)), 0)
-          << "r " << r << ", tiles " << t.w << "x" << t.h;
+          << "window " << n << ", tiles " << t.w << "x" << t.h;
     }
   }
 }
@@ -269,7 +277,7 @@ TEST(DiscontinuityBuffer, TilesOfAnySizeGiveBitIdenticalPixels) {
 TEST(DiscontinuityBuffer, PixelsWithoutSurfaceAreCopied) {
   const Tile all{0, 0, 48, 40};
   for (const Filter& filter : {fast(), brute}) {
-    const auto out = filter_tile(filter, disc, 48, 40, all, with_radius(2));
+    const auto out = filter_tile(filter, disc, 48, 40, all, with_window(5));
     for (int y = 0; y < 40; ++y)
       for (int x = 0; x < 48; ++x)
         if (disc(x, y).depth == kNoSurface) {
@@ -281,7 +289,7 @@ TEST(DiscontinuityBuffer, PixelsWithoutSurfaceAreCopied) {
 TEST(DiscontinuityBuffer, PixelAlwaysCountsItselfUnderStrictThresholds) {
   // With normal_cos = 1 no two distinct random normals agree, and rounding
   // puts dot(n_p, n_p) below 1 for many; p must still average over itself.
-  FilterSettings s = with_radius(2);
+  FilterSettings s = with_window(5);
   s.normal_cos = 1.0f;
   s.depth_ratio = 0.0f;
   int self_dot_below_one = 0;
@@ -307,7 +315,7 @@ TEST(DiscontinuityBuffer, FastPathRoundsValuesToTheNearestQuantum) {
   for (const auto& c : cases) {
     const float value = c.value, quantised = c.quantised;
     const Scene plane = [value](int, int) { return Sample{5.0f, kUp, glm::vec3(value)}; };
-    FilterSettings s = with_radius(1);
+    FilterSettings s = with_window(3);
     s.fixed_scale = 4.0;
     FilterStats stats;
     const auto out = filter_tile(fast(&stats), plane, 8, 8, {0, 0, 8, 8}, s);

@@ -2,7 +2,7 @@
 // version. Coordinates below are region coordinates (0..width, 0..height)
 // unless named image coordinates.
 //
-// Constant-time version, per inner pixel p, independent of r:
+// Constant-time version, per inner pixel p, independent of the window size:
 //   1. the extrema of depth and of each normal component over p's window,
 //      separably (rows, then columns) by van Herk / Gil-Werman;
 //   2. if the extrema prove every window pixel on p's surface, S_p is the
@@ -67,8 +67,8 @@ Box check_arguments(const FilterInput& in, const FilterSettings& s, Rect inner, 
     throw std::invalid_argument("FilterInput: depth, normal and value must each hold width * height = " +
                                 std::to_string(n) + " entries, got " + std::to_string(in.depth.size()) + ", " +
                                 std::to_string(in.normal.size()) + ", " + std::to_string(in.value.size()));
-  if (s.radius < 0 || s.radius > 1024)
-    throw std::invalid_argument("FilterSettings.radius: expected 0..1024, got " + std::to_string(s.radius));
+  if (s.window < 1 || s.window > 2049)
+    throw std::invalid_argument("FilterSettings.window: expected 1..2049, got " + std::to_string(s.window));
   if (!(s.fixed_scale > 0.0) || !std::isfinite(s.fixed_scale))
     throw std::invalid_argument("FilterSettings.fixed_scale: expected a finite positive scale");
   const Box box{inner.x - in.x0, inner.y - in.y0, inner.x - in.x0 + inner.w, inner.y - in.y0 + inner.h};
@@ -81,19 +81,23 @@ Box check_arguments(const FilterInput& in, const FilterSettings& s, Rect inner, 
   return box;
 }
 
+// The window's reach before and after p, each way.
+int reach_before(int window) { return window / 2; }
+int reach_after(int window) { return window - 1 - window / 2; }
+
 // out_p by the definition. The window is summed row-major in double, so the
 // result depends only on the window's data; p always counts, even where
 // rounding puts dot(n_p, n_p) a hair below normal_cos.
 glm::vec3 exact_pixel(const FilterInput& in, const FilterSettings& s, int px, int py) {
-  const int r = s.radius, w = in.width;
+  const int a = reach_before(s.window), b = reach_after(s.window), w = in.width;
   const size_t p = size_t(py) * w + px;
   const float d_p = in.depth[p];
   if (!is_valid(d_p)) return in.value[p];
   const glm::vec3 n_p = in.normal[p];
   glm::dvec3 sum(0.0);
   int count = 0;
-  for (int y = std::max(py - r, 0); y <= std::min(py + r, in.height - 1); ++y)
-    for (int x = std::max(px - r, 0); x <= std::min(px + r, w - 1); ++x) {
+  for (int y = std::max(py - a, 0); y <= std::min(py + b, in.height - 1); ++y)
+    for (int x = std::max(px - a, 0); x <= std::min(px + b, w - 1); ++x) {
       const size_t q = size_t(y) * w + x;
       if (q != p && !same_surface(s, d_p, n_p, in.depth[q], in.normal[q])) continue;
       sum += glm::dvec3(in.value[q]);
@@ -140,21 +144,21 @@ struct Lanes<T, 0> {
   std::vector<T> values;
 };
 
-// out entry i, for i in [o0, o1), = op over entries [i - r, i + r] (clipped).
-// Pad the sequence with r identity entries at each end and cut it into
-// blocks of w = 2r + 1; padded window [i, i + w - 1] then spans at most two
+// out entry i, for i in [o0, o1), = op over entries [i - a, i + b] (clipped).
+// Pad the sequence with a identity entries before and b after and cut it into
+// blocks of w = a + b + 1; padded window [i, i + w - 1] then spans at most two
 // blocks, and its extremum is op(suffix of i's block from i, prefix of the
-// next block up to i + w - 1): three op per entry whatever r. kLanes > 0
+// next block up to i + w - 1): three op per entry whatever w. kLanes > 0
 // fixes in.lanes at compile time.
 template <int kLanes, class Op>
-void sliding_extremum(Op op, int r, Sequence<Float4> in, int o0, int o1, Float4* out, size_t out_stride,
+void sliding_extremum(Op op, int a, int b, Sequence<Float4> in, int o0, int o1, Float4* out, size_t out_stride,
                       std::vector<Float4>& suffixes) {
   if (o0 >= o1) return;
-  const int w = 2 * r + 1, lanes = kLanes > 0 ? kLanes : in.lanes;
+  const int w = a + b + 1, lanes = kLanes > 0 ? kLanes : in.lanes;
   Lanes<Float4, kLanes> identity(lanes), prefix(lanes);
   std::fill_n(identity.data(), lanes, Float4{} + Op::identity);
   auto entry = [&](int k) {  // padded index k
-    const int j = k - r;
+    const int j = k - a;
     return j >= 0 && j < in.n ? in.entry(j) : identity.data();
   };
   auto combine = [&](Float4* dst, const Float4* a, const Float4* b) {  // dst may be a or b
@@ -181,7 +185,7 @@ void sliding_extremum(Op op, int r, Sequence<Float4> in, int o0, int o1, Float4*
 }
 
 // Inner rows are filtered in bands so that the intermediate planes stay in
-// cache; a band reads the r rows above and below it again.
+// cache; a band reads the rows its windows reach above and below it again.
 constexpr int kBandRows = 32;
 
 // Working memory of one call, reused from band to band.
@@ -192,37 +196,37 @@ struct BandScratch {
 };
 
 // Rows of the region that windows of a band's rows reach.
-int rows_begin(const Box& band, int r) { return std::max(band.y0 - r, 0); }
-int rows_end(const Box& band, int r, int height) { return std::min(band.y1 + r, height); }
+int rows_begin(const Box& band, int a) { return std::max(band.y0 - a, 0); }
+int rows_end(const Box& band, int b, int height) { return std::min(band.y1 + b, height); }
 
 // Per band pixel, row-major: lo (Min) or hi (Max) of the geometry over its
 // window. Rows first, then columns.
 template <class Op>
-void window_extremum(Op op, int r, const Box& band, int region_width, int rows, BandScratch& scratch,
+void window_extremum(Op op, int a, int b, const Box& band, int region_width, int rows, BandScratch& scratch,
                      std::vector<Float4>& result) {
-  const int bw = band.width(), ry0 = rows_begin(band, r);
+  const int bw = band.width(), ry0 = rows_begin(band, a);
   scratch.along_rows.resize(size_t(rows) * bw);
   for (int y = 0; y < rows; ++y) {
     const Sequence<Float4> row{scratch.geometry.data() + size_t(y) * region_width, 1, region_width, 1};
     Float4* along_row = scratch.along_rows.data() + size_t(y) * bw;
-    sliding_extremum<1>(op, r, row, band.x0, band.x1, along_row, 1, scratch.suffixes);
+    sliding_extremum<1>(op, a, b, row, band.x0, band.x1, along_row, 1, scratch.suffixes);
   }
   result.resize(size_t(band.height()) * bw);
   const Sequence<Float4> columns{scratch.along_rows.data(), size_t(bw), rows, bw};
-  sliding_extremum<0>(op, r, columns, band.y0 - ry0, band.y1 - ry0, result.data(), bw, scratch.suffixes);
+  sliding_extremum<0>(op, a, b, columns, band.y0 - ry0, band.y1 - ry0, result.data(), bw, scratch.suffixes);
 }
 
 // Fills scratch.lo and scratch.hi for the band.
-void window_extrema(const FilterInput& in, int r, const Box& band, BandScratch& scratch) {
-  const int ry0 = rows_begin(band, r), rows = rows_end(band, r, in.height) - ry0;
+void window_extrema(const FilterInput& in, int a, int b, const Box& band, BandScratch& scratch) {
+  const int ry0 = rows_begin(band, a), rows = rows_end(band, b, in.height) - ry0;
   scratch.geometry.resize(size_t(rows) * in.width);
   const size_t first = size_t(ry0) * in.width;
   for (size_t i = 0; i < scratch.geometry.size(); ++i) {
     const glm::vec3& n = in.normal[first + i];
     scratch.geometry[i] = Float4{in.depth[first + i], n.x, n.y, n.z};
   }
-  window_extremum(Min{}, r, band, in.width, rows, scratch, scratch.lo);
-  window_extremum(Max{}, r, band, in.width, rows, scratch, scratch.hi);
+  window_extremum(Min{}, a, b, band, in.width, rows, scratch, scratch.lo);
+  window_extremum(Max{}, a, b, band, in.width, rows, scratch, scratch.hi);
 }
 
 // True when every pixel of p's window (band pixel i) passes same_surface,
@@ -245,7 +249,7 @@ bool window_on_one_surface(const FilterSettings& s, float d_p, const glm::vec3& 
 
 // Each value is clamped to +-cap before rounding, cap = 2^55 / window area,
 // so no window sum (nor a running sum mid-update) can overflow.
-double fixed_cap(int r) { return 0x1p55 / (double(2 * r + 1) * double(2 * r + 1)); }
+double fixed_cap(int window) { return 0x1p55 / (double(window) * double(window)); }
 
 // llround(clamp(v * scale, -cap, cap)) for the three channels at once, bit
 // for bit: truncate, then round the remainder half away from zero. The
@@ -260,20 +264,20 @@ Fixed4 to_fixed(const glm::vec3& v, double scale, double cap) {
   return truncated - (rest >= 0.5) + (rest <= -0.5);
 }
 
-// out entry i, for i in [o0, o1), = sum of entries [i - r, i + r] (clipped).
+// out entry i, for i in [o0, o1), = sum of entries [i - a, i + b] (clipped).
 // Starting from the window of o0 - 1, each step adds the entering entry
-// i + r and subtracts the leaving one i - r - 1. kLanes as in sliding_extremum.
+// i + b and subtracts the leaving one i - a - 1. kLanes as in sliding_extremum.
 template <int kLanes>
-void running_box_sum(int r, Sequence<Fixed4> in, int o0, int o1, Fixed4* out, size_t out_stride) {
+void running_box_sum(int a, int b, Sequence<Fixed4> in, int o0, int o1, Fixed4* out, size_t out_stride) {
   const int lanes = kLanes > 0 ? kLanes : in.lanes;
   Lanes<Fixed4, kLanes> sum(lanes);
   Fixed4* s = sum.data();
   auto add = [&](int k) { for (int l = 0; l < lanes; ++l) s[l] += in.entry(k)[l]; };
   auto subtract = [&](int k) { for (int l = 0; l < lanes; ++l) s[l] -= in.entry(k)[l]; };
-  for (int k = std::max(o0 - 1 - r, 0); k <= std::min(o0 - 1 + r, in.n - 1); ++k) add(k);
+  for (int k = std::max(o0 - 1 - a, 0); k <= std::min(o0 - 1 + b, in.n - 1); ++k) add(k);
   for (int i = o0; i < o1; ++i) {
-    if (i + r < in.n) add(i + r);
-    if (i - r - 1 >= 0) subtract(i - r - 1);
+    if (i + b < in.n) add(i + b);
+    if (i - a - 1 >= 0) subtract(i - a - 1);
     std::copy_n(s, lanes, out + size_t(i - o0) * out_stride);
   }
 }
@@ -281,26 +285,27 @@ void running_box_sum(int r, Sequence<Fixed4> in, int o0, int o1, Fixed4* out, si
 // Fills scratch.sums: per band pixel, row-major, the channel sums of fixed
 // values over its whole clipped window. Rows first, then columns.
 void window_sums(const FilterInput& in, const FilterSettings& s, const Box& band, BandScratch& scratch) {
-  const int r = s.radius, ry0 = rows_begin(band, r), rows = rows_end(band, r, in.height) - ry0;
+  const int a = reach_before(s.window), b = reach_after(s.window);
+  const int ry0 = rows_begin(band, a), rows = rows_end(band, b, in.height) - ry0;
   const int bw = band.width();
-  const double cap = fixed_cap(r);
+  const double cap = fixed_cap(s.window);
   scratch.fixed.resize(size_t(in.width));
   scratch.row_sums.resize(size_t(rows) * bw);
   for (int y = 0; y < rows; ++y) {
     const glm::vec3* value = in.value.data() + size_t(ry0 + y) * in.width;
     for (int x = 0; x < in.width; ++x) scratch.fixed[x] = to_fixed(value[x], s.fixed_scale, cap);
     const Sequence<Fixed4> row{scratch.fixed.data(), 1, in.width, 1};
-    running_box_sum<1>(r, row, band.x0, band.x1, scratch.row_sums.data() + size_t(y) * bw, 1);
+    running_box_sum<1>(a, b, row, band.x0, band.x1, scratch.row_sums.data() + size_t(y) * bw, 1);
   }
   scratch.sums.resize(size_t(band.height()) * bw);
   const Sequence<Fixed4> columns{scratch.row_sums.data(), size_t(bw), rows, bw};
-  running_box_sum<0>(r, columns, band.y0 - ry0, band.y1 - ry0, scratch.sums.data(), bw);
+  running_box_sum<0>(a, b, columns, band.y0 - ry0, band.y1 - ry0, scratch.sums.data(), bw);
 }
 
 // Pixels of the window of region pixel (x, y), clipped to the region.
-int window_count(const FilterInput& in, int r, int x, int y) {
-  const int w = std::min(x + r, in.width - 1) - std::max(x - r, 0) + 1;
-  const int h = std::min(y + r, in.height - 1) - std::max(y - r, 0) + 1;
+int window_count(const FilterInput& in, int a, int b, int x, int y) {
+  const int w = std::min(x + b, in.width - 1) - std::max(x - a, 0) + 1;
+  const int h = std::min(y + b, in.height - 1) - std::max(y - a, 0) + 1;
   return w * h;
 }
 
@@ -313,11 +318,12 @@ glm::vec3 from_fixed(const Fixed4& sum, double per_quantum) {
 // Filters the band's pixels into `out` (band pixels, row-major).
 void filter_band(const FilterInput& in, const FilterSettings& s, const Box& band, BandScratch& scratch,
                  glm::vec3* out, FilterStats& stats) {
-  window_extrema(in, s.radius, band, scratch);
+  const int a = reach_before(s.window), b = reach_after(s.window);
+  window_extrema(in, a, b, band, scratch);
   window_sums(in, s, band, scratch);
   // Most windows are whole: their reciprocal is computed once (the same
   // expression, so the same bits as computing it per pixel).
-  const int whole = (2 * s.radius + 1) * (2 * s.radius + 1);
+  const int whole = s.window * s.window;
   const double whole_per_quantum = 1.0 / (s.fixed_scale * whole);
   size_t i = 0;
   for (int y = band.y0; y < band.y1; ++y)
@@ -325,7 +331,7 @@ void filter_band(const FilterInput& in, const FilterSettings& s, const Box& band
       const size_t p = size_t(y) * in.width + x;
       const float d_p = in.depth[p];
       if (is_valid(d_p) && window_on_one_surface(s, d_p, in.normal[p], scratch, i)) {
-        const int count = window_count(in, s.radius, x, y);
+        const int count = window_count(in, a, b, x, y);
         out[i] = from_fixed(scratch.sums[i], count == whole ? whole_per_quantum : 1.0 / (s.fixed_scale * count));
         ++stats.fast_pixels;
       } else {

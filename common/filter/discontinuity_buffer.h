@@ -4,16 +4,19 @@
 // IGI shades each pixel with one of N x N interleaved VPL sets, so neighbours
 // see different light samples. The filter averages *demodulated irradiance*
 // (radiance divided by the centre's albedo; the caller remodulates once) over
-// the (2r+1) x (2r+1) window around each pixel, r = N/2, but only over
-// neighbours on the same surface, so geometric edges stay sharp.
+// the N x N window around each pixel, which holds each set once, but only
+// over neighbours on the same surface, so geometric edges stay sharp. (A
+// window of 2 floor(N/2) + 1 would hold some sets twice for even N, and
+// their double weight printed an N-periodic grid on every wall.)
 //
-// Definition, for an inner pixel p of a region:
+// Definition, for an inner pixel p of a region, with a = floor(N/2) and
+// b = N - 1 - a (a = b for odd N):
 //   p invalid (depth = +inf)  ->  out_p = value_p
 //   otherwise                 ->  out_p = sum_{q in S_p} value_q / |S_p|,
-//   S_p = { q in region : |q.x - p.x| <= r, |q.y - p.y| <= r, q valid,
+//   S_p = { q in region : q.x - p.x and q.y - p.y in [-a, b], q valid,
 //           dot(n_p, n_q) >= normal_cos, |d_q - d_p| <= depth_ratio * d_p }.
 // p is always in S_p. Windows are clipped to the region, which the caller
-// clips to the image; so an inner pixel needs r pixels of border on every
+// clips to the image; so an inner pixel needs a pixels of border on every
 // side that is not an image edge, else its window is silently cut short.
 //
 // Determinism: out_p is a pure function of the data in p's window and the
@@ -40,7 +43,10 @@ struct FilterInput {
 };
 
 struct FilterSettings {
-  int radius = 1;            // window is (2r+1) x (2r+1); r = N/2 for N x N VPL sets
+  // The window is n x n pixels, n = N for N x N VPL sets, so it holds each
+  // set once: [p - n/2, p - n/2 + n - 1] each way (centred for odd n; one
+  // pixel more before p than after for even n).
+  int window = 3;
   float normal_cos = 0.9f;   // q counts only if dot(n_p, n_q) >= normal_cos ...
   float depth_ratio = 0.05f; // ... and |d_q - d_p| <= depth_ratio * d_p (scale-free)
   // Fixed-point scale of the running sums: value * fixed_scale is rounded to

@@ -275,7 +275,7 @@ void VplMethod::filter_layer(const GBuffer& gbuffer, int l, const Rect& core, Sc
       in.normal.push_back(g.valid() ? g.surface.shading_normal : glm::vec3(0.0f));
     }
     FilterSettings fs;
-    fs.radius = settings_.interleave / 2;
+    fs.window = settings_.interleave;
     fs.normal_cos = settings_.filter_normal_cos;
     fs.depth_ratio = settings_.filter_depth_ratio;
     fs.fixed_scale = fixed_scale_;
