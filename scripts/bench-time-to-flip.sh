@@ -37,9 +37,9 @@ compare=build/tests/igi-compare
 # name|options: the defaults first.
 settings=(
   "defaults|"
-  "sets-6|--vpl-sets 6"
+  "sets-3|--vpl-sets 3"
+  "sets-8|--vpl-sets 8"
   "paths-64|--vpl-paths 64"
-  "sets-6-paths-64|--vpl-sets 6 --vpl-paths 64"
   "no-clamp|--clamp 0 --compensate 0"
   "pt|--method pt"
 )

@@ -130,6 +130,7 @@ TEST(BiasCompensation, DistributedEqualsSingleProcessBitForBit) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const test::Prepared p(make_cornell_box());
   RenderSettings s = vpl_settings(MethodKind::Igi, 8, 0.1f, true, 2, 4);  // the master's default --aa 4
+  s.interleave = RenderSettings{}.interleave;                             // and --vpl-sets
   EXPECT_TRUE(test::images_identical("bc-dist", read_image(out), p.render(s, w, h, 1, 1)));
 }
 

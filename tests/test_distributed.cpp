@@ -224,6 +224,7 @@ TEST(Distributed, LightImportanceAndBidirectionalMatchOneProcessWithAWorkerKille
       << "its tiles came back from the other";
   test::Prepared p(load_scene("rooms"));
   RenderSettings s = test::vpl_settings(MethodKind::Igi, 8, 0.05f, true, 0, 4);
+  s.interleave = RenderSettings{}.interleave;  // the master's, which `options` leaves at its default
   s.importance_paths = 256;
   s.bidir_vpls = 12;
   const Image one = p.render(s, kWidth, kHeight, 1, 1);

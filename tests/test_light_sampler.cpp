@@ -29,6 +29,7 @@ struct SamplerScene {
   LightTree tree;
   explicit SamplerScene(Scene scene) : prepared(std::move(scene)) {
     RenderSettings s;
+    s.interleave = 3;  // 9 sets of 12 paths: the 400 seeds below were sized for this tree
     s.paths_per_set = 12;
     vpls = generate_vpls(prepared.context(), s, 9);
     tree = build_light_tree(make_light_leaves(prepared.scene, vpls), prepared.scene.bounds().diagonal(), 9);

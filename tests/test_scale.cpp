@@ -205,6 +205,9 @@ TEST(Scale, MasterMemoryIsFlatOver20000Frames) {
   o.stats = true;  // the statistics file grows, not the master (StatsWriter appends by count and time)
   o.warmup_frames = o.frames / 10;
   o.tile_ms = 0;
+  // About 30 s alone on 2 cores; beside ctest -j2's heaviest tests it once
+  // took over 60. Memory is judged here, not speed.
+  o.deadline_seconds = 150 * test::kSlowdown;
   const LoadgenReport r = run_loadgen(o, paced(o));
   ASSERT_EQ(r.exit_code, 0) << r.master_log;
   EXPECT_EQ(r.frames_done, o.frames);

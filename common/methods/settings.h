@@ -40,7 +40,11 @@ struct RenderSettings {
   int light_depth = 0;      // ir/igi: VPL light paths
   int specular_depth = 16;  // ir/igi: mirrors and glass followed from the camera
   // Instant radiosity / IGI.
-  int interleave = 3;          // N: N x N VPL sets, pixel set = (x mod N) + N (y mod N)
+  // N: N x N VPL sets, pixel set = (x mod N) + N (y mod N). Six: 36 sets
+  // of M paths, 4x the VPLs of 3 x 3 for the same shadow rays a pixel, so a
+  // building's rooms are lit in one pass (tests/bench/RESULTS.md, "Six VPL
+  // sets by default"); ir sums all of them at every pixel.
+  int interleave = 6;
   int paths_per_set = 16;      // M: light paths started per VPL set
   // Stochastic VPL selection (stochastic lightcuts, Yuksel 2019): each shading
   // point draws K VPLs of all S sets from a light tree by their bound, one

@@ -12,7 +12,7 @@
 //                       [--samples K] [--frames F] [--clamp C] [--no-ir]
 //
 // VPL counts: for each target the bench traces a pilot frame to learn the
-// scene's VPLs per light path, then picks M (3 x 3 sets) to land near it; the
+// scene's VPLs per light path, then picks M (N x N sets) to land near it; the
 // row gives the count reached. Methods: ir, lightcuts (plain cuts),
 // lightcuts-rc (reconstruction cuts, --spacing), lightcuts-md (K gather
 // points per pixel, --samples; 0 leaves it out). Seconds are medians over F
@@ -154,13 +154,14 @@ std::pair<double, double> relative_difference(const Image& image, const Image& i
   return {count ? sum / double(count) : 0.0, count ? double(within) / double(count) : 1.0};
 }
 
-// M for about `target` VPLs in all 3 x 3 sets, from a pilot frame's VPLs per path.
+// M for about `target` VPLs in all N x N sets (the default N), from a pilot frame's VPLs per path.
 int paths_for(const Prepared& p, int target) {
   RenderSettings s;
   s.paths_per_set = 256;
   const VplSets pilot = generate_vpls(p.context(), s, 1);
-  const double per_path = double(pilot.vpls.size()) / (9.0 * 256.0);
-  return std::max(1, int(std::lround(double(target) / (9.0 * per_path))));
+  const double sets = double(pilot.set_count());
+  const double per_path = double(pilot.vpls.size()) / (sets * 256.0);
+  return std::max(1, int(std::lround(double(target) / (sets * per_path))));
 }
 
 void write_row(std::ofstream& csv, const std::string& scene, size_t vpls, int m, const char* method, const Run& r,

@@ -20,6 +20,7 @@ inline RenderSettings vpl_settings(MethodKind kind, int paths, float clamp = 0.0
                                    int compensation = 0, int aa = 1) {
   RenderSettings s;
   s.method = kind;
+  s.interleave = 3;  // 3 x 3 sets: the tests' images are small (6 x 6, the default, is tested where named)
   s.paths_per_set = paths;
   s.clamp = clamp;
   s.filter = filter;
