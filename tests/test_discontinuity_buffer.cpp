@@ -324,24 +324,6 @@ TEST(DiscontinuityBuffer, FastPathRoundsValuesToTheNearestQuantum) {
   }
 }
 
-TEST(DiscontinuityBuffer, WindowNarrowsWithPassesDownToThreeByThree) {
-  // floor(N / (k + 1)^(1/4)), at least min(N, 3).
-  const int six[] = {6, 5, 4, 4, 4, 3, 3};
-  for (uint32_t k = 0; k < 7; ++k) EXPECT_EQ(discontinuity_window_at_pass(6, k), six[k]) << "pass " << k;
-  EXPECT_EQ(discontinuity_window_at_pass(6, 1000000), 3);
-  for (int n : {1, 2, 3})
-    for (uint32_t k : {0u, 1u, 5u, 100u, 4000000000u}) EXPECT_EQ(discontinuity_window_at_pass(n, k), n);
-  // 16^4 / 2 = 32768 >= 13^4 = 28561 (13 at pass 1); 16^4 / 16 = 4096 = 8^4 (8 at pass 15).
-  EXPECT_EQ(discontinuity_window_at_pass(16, 1), 13);
-  EXPECT_EQ(discontinuity_window_at_pass(16, 15), 8);
-  EXPECT_EQ(discontinuity_window_at_pass(16, 16), 7);
-  for (int n = 1; n <= 16; ++n)
-    for (uint32_t k = 0; k < 300; ++k) {
-      ASSERT_LE(discontinuity_window_at_pass(n, k + 1), discontinuity_window_at_pass(n, k)) << n << " at " << k;
-      ASSERT_GE(discontinuity_window_at_pass(n, k), std::min(n, 3));
-    }
-}
-
 TEST(DiscontinuityBuffer, FixedScaleKeeps24BitsOfATypicalValue) {
   EXPECT_EQ(filter_fixed_scale(1.0), 0x1p24);
   EXPECT_EQ(filter_fixed_scale(3.0), 0x1p22);  // log2 3 = 1.58 rounds to 2

@@ -161,8 +161,8 @@ void sliding_extremum(Op op, int a, int b, Sequence<Float4> in, int o0, int o1, 
     const int j = k - a;
     return j >= 0 && j < in.n ? in.entry(j) : identity.data();
   };
-  auto combine = [&](Float4* dst, const Float4* x, const Float4* y) {  // dst may be x or y
-    for (int l = 0; l < lanes; ++l) dst[l] = op(x[l], y[l]);
+  auto combine = [&](Float4* dst, const Float4* a, const Float4* b) {  // dst may be a or b
+    for (int l = 0; l < lanes; ++l) dst[l] = op(a[l], b[l]);
   };
   // Backward from a block end: suffix[k] = op(entries k .. end of k's block).
   const int top = (o1 - 1) / w * w + w - 1;
@@ -360,14 +360,6 @@ void filter_discontinuity(const FilterInput& in, const FilterSettings& s, Rect i
     filter_band(in, s, band, scratch, out.data() + size_t(y0 - box.y0) * box.width(), counted);
   }
   if (stats) *stats = counted;
-}
-
-int discontinuity_window_at_pass(int interleave, uint32_t pass) {
-  const int narrowest = std::min(interleave, 3);
-  const auto fourth = [](uint64_t w) { return w * w * w * w; };
-  int w = interleave;  // the largest w with w^4 (k + 1) <= N^4, at least `narrowest`
-  while (w > narrowest && fourth(uint64_t(w)) * (uint64_t(pass) + 1) > fourth(uint64_t(interleave))) --w;
-  return w;
 }
 
 double filter_fixed_scale(double typical_value) {

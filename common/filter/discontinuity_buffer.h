@@ -79,18 +79,6 @@ void filter_brute_force(const FilterInput& in, const FilterSettings& s, Rect inn
 void filter_discontinuity(const FilterInput& in, const FilterSettings& s, Rect inner, std::span<glm::vec3> out,
                           FilterStats* stats = nullptr);
 
-// The window pass k (0-based) of a progressive render filters with, for N x
-// N sets: N at pass 0, so one pass averages every set; then floor(N / (k +
-// 1)^(1/4)), the clamp's rate (methods/clamp.h), but never below min(N, 3).
-// A window narrower than N leaves each pass a pattern of period N, but the
-// sets are fresh every pass, so the pattern averages away while the
-// filter's blur, which passes do not average, shrinks. At N = 6: 6, 5, 4 to
-// pass 4, 3 from pass 5. Measured on the Cornell box at 64 passes, a fixed 6
-// x 6 window left relMSE 0.00079 and FLIP 0.039, 3 x 3 0.00046 and 0.028
-// (tests/bench/RESULTS.md, "Six VPL sets by default"). Integer arithmetic,
-// so every worker agrees.
-int discontinuity_window_at_pass(int interleave, uint32_t pass);
-
 // A fixed_scale for a frame whose demodulated irradiance is typically
 // `typical_value`: 2^(24 - round(log2(typical))), so a typical value keeps 24
 // bits (float precision) and values up to ~2^24 x typical fit the sums before

@@ -48,7 +48,6 @@ void VplMethod::begin_frame(const FrameSetup& frame) {
   frame_ = frame;
   clamp_bound_ = clamp_bound(settings_.clamp, context_.accel.mean_chord(), frame.sample_begin);
   wavelet_levels_ = wavelet_levels_at_pass(settings_.wavelet_levels, frame.sample_begin);
-  filter_window_ = discontinuity_window_at_pass(settings_.interleave, frame.sample_begin);
   setup_rays_ = RayCounts{};
   vpls_ = importance::generate_view_vpls(context_, settings_, frame, setup_rays_);
   if (caustics_) caustics_->build(frame.seed);
@@ -276,7 +275,7 @@ void VplMethod::filter_layer(const GBuffer& gbuffer, int l, const Rect& core, Sc
       in.normal.push_back(g.valid() ? g.surface.shading_normal : glm::vec3(0.0f));
     }
     FilterSettings fs;
-    fs.window = filter_window_;
+    fs.window = settings_.interleave;
     fs.normal_cos = settings_.filter_normal_cos;
     fs.depth_ratio = settings_.filter_depth_ratio;
     fs.fixed_scale = fixed_scale_;

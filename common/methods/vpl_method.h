@@ -78,7 +78,6 @@ class VplMethod final : public Method {
   std::optional<VplDraws> draws_;  // --vpl-draws: the light tree over this frame's VPLs
   float clamp_bound_ = INFINITY;
   int wavelet_levels_ = 0;  // this pass's (wavelet_levels_at_pass)
-  int filter_window_ = 3;   // this pass's (discontinuity_window_at_pass)
   double fixed_scale_ = 0x1p32;
   RayLog* log_ = nullptr;
 };
