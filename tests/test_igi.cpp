@@ -116,6 +116,12 @@ TEST(TileInvarianceOverPasses, ProgressivePassesTiledEqualTheWholeFrameBitForBit
         EXPECT_TRUE(test::images_identical(name, p.render(s, 64, 48, 4, seed, 1, 16), p.render(s, 64, 48, 4, seed, 1, 128)));
       }
   }
+  // Six by six sets (the default): a 6 x 6 window, a border of 3.
+  const test::Prepared p(load_scene("cornell"));
+  RenderSettings s = vpl_settings(MethodKind::Igi, 8, 0.3f, true, 0, 4);
+  s.interleave = 6;
+  EXPECT_TRUE(test::images_identical("passes-cornell-igi-6x6", p.render(s, 64, 48, 4, 1, 1, 16),
+                                     p.render(s, 64, 48, 4, 1, 1, 128)));
 }
 
 // Path-traced reference of the Cornell box, computed once per test run.
