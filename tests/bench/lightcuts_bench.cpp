@@ -159,9 +159,8 @@ int paths_for(const Prepared& p, int target) {
   RenderSettings s;
   s.paths_per_set = 256;
   const VplSets pilot = generate_vpls(p.context(), s, 1);
-  const double sets = double(pilot.set_count());
-  const double per_path = double(pilot.vpls.size()) / (sets * 256.0);
-  return std::max(1, int(std::lround(double(target) / (sets * per_path))));
+  const double per_m = double(pilot.vpls.size()) / 256.0;  // VPLs of all sets per path a set
+  return std::max(1, int(std::lround(double(target) / per_m)));
 }
 
 void write_row(std::ofstream& csv, const std::string& scene, size_t vpls, int m, const char* method, const Run& r,
