@@ -26,6 +26,7 @@
 #include "importance/view_vpls.h"
 #include "methods/vpl_method.h"
 #include "scene/builtin_scenes.h"
+#include "scene/load_scene.h"
 #include "scene/suite_scenes.h"
 #include "support/image_compare.h"
 #include "support/render_fixture.h"
@@ -102,6 +103,26 @@ TEST(LightImportance, LightsOfTheRoomsTheCameraSeesGetMostPaths) {
               rooms_seen, 100 * view, 100 * power_view / total_power, (unsigned long)rays.total());
   EXPECT_GT(view, 0.75) << "most light paths start in rooms the camera sees";
   EXPECT_GT(view, 2.0 * power_view / total_power);
+}
+
+// The sky is a light of the estimate like any other (a scene with one once
+// read a punctual light that was not there): it is credited where the
+// camera's surfaces see it, and every probability is finite.
+TEST(LightImportance, TheSkyIsCreditedLikeAnyLight) {
+  const test::Prepared p(load_scene("cornell", nullptr, SkyChoice{glm::vec3(0.2f, 0.3f, 0.4f)}));
+  const auto& lights = p.lights->lights();
+  ASSERT_EQ(lights.back().kind, LightKind::Environment);
+  RenderSettings s = vpl_settings(MethodKind::Igi, 16);
+  s.importance_paths = 1024;
+  RayCounts rays;
+  const importance::LightSelection selection =
+      importance::estimate_light_importance(p.context(), s, p.frame(48, 36), rays);
+  ASSERT_EQ(selection.contribution.size(), lights.size());
+  EXPECT_GT(selection.contribution.back(), 0.0f) << "the sky lights what the camera sees through the open side";
+  for (uint32_t l = 0; l < lights.size(); ++l) {
+    EXPECT_TRUE(std::isfinite(selection.contribution[l])) << "light " << l;
+    EXPECT_GT(selection.distribution.probability(l), 0.0f) << "light " << l;
+  }
 }
 
 // ---- c. furnace

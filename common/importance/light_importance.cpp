@@ -30,18 +30,25 @@ struct LightProxy {
   LightKind kind;
   glm::vec3 position{0.0f};  // centroid; directional: unused
   glm::vec3 normal{0.0f};    // area: front normal; spot: axis; directional: travel direction
-  float scale = 0.0f;        // area: Le A / pi (luminance); point, spot: intensity; directional: irradiance
+  float scale = 0.0f;        // area: Le A / pi (luminance); point, spot: intensity; directional, environment: irradiance
   float extent2 = 0.0f;      // area: the light's area, a floor on r^2 near it
   const PunctualLight* punctual = nullptr;
 };
 
 std::vector<LightProxy> light_proxies(const LightSet& lights) {
   const Scene& scene = lights.scene();
+  const float radius = lights.scene_radius();
   std::vector<LightProxy> out;
-  for (const Light& l : lights.lights()) {
+  for (uint32_t i = 0; i < lights.lights().size(); ++i) {
+    const Light& l = lights.lights()[i];
     LightProxy p;
     p.kind = l.kind;
-    if (l.kind == LightKind::Area) {
+    if (l.kind == LightKind::Environment) {
+      // The irradiance of an open plane under a sky of the same flux: its
+      // power is pi R^2 x the radiance over the sphere, and a constant sky L
+      // gives pi L, i.e. power / (4 pi R^2). No position: the same everywhere.
+      p.scale = lights.light_power(i) / (4.0f * kPi * radius * radius);
+    } else if (l.kind == LightKind::Area) {
       const glm::uvec3& t = scene.triangles[l.index];
       const glm::vec3 a = scene.positions[t[0]], b = scene.positions[t[1]], c = scene.positions[t[2]];
       p.position = (a + b + c) / 3.0f;
@@ -61,6 +68,7 @@ std::vector<LightProxy> light_proxies(const LightSet& lights) {
 
 // Unoccluded irradiance a light gives at x (normal n facing the viewer), roughly.
 float local_weight(const LightProxy& l, glm::vec3 x, glm::vec3 n) {
+  if (l.kind == LightKind::Environment) return l.scale;
   if (l.kind == LightKind::Directional) return l.scale * std::max(0.0f, -glm::dot(n, l.normal));
   const glm::vec3 d = l.position - x;
   const float dist2 = std::max(glm::dot(d, d), 1e-12f);
@@ -147,8 +155,10 @@ class Estimator {
                   glm::vec2 u_point, std::vector<double>& credit, RayCounts& rays) {
     float select = 0.0f;
     const uint32_t l = choose_light(sp, wo, u_light, select);
-    // Punctual lights' direct light is exact: only what bounces counts for their VPLs.
-    if (select <= 0.0f || (vertex == 0 && proxies_[l].kind != LightKind::Area)) return;
+    // Punctual lights' direct light is exact: only what bounces counts for
+    // their VPLs. Area lights and the sky reach the image through VPLs of their own.
+    const bool has_vpls = proxies_[l].kind == LightKind::Area || proxies_[l].kind == LightKind::Environment;
+    if (select <= 0.0f || (vertex == 0 && !has_vpls)) return;
     const LightSample ls = context_.lights.sample_light(l, select, sp.position, u_point);
     if (!(ls.pdf > 0.0f)) return;
     const glm::vec3 f = bsdf_eval(sp, wo, ls.direction);

@@ -24,10 +24,11 @@
 // to one point of one light, chosen by its unoccluded irradiance there (so a
 // vertex in a room of a 100-room building asks its own and its neighbours'
 // lights, not the building's), crediting that light with the luminance it
-// adds to the camera. Area lights are credited at every vertex (their direct
-// light reaches the image through Area VPLs); point, spot and directional
-// lights from the second vertex on only, since their direct light is
-// evaluated exactly and their VPLs carry only what bounces.
+// adds to the camera. Area lights and the sky are credited at every vertex
+// (their direct light reaches the image through VPLs on the light, or
+// directional ones from the sky); point, spot and directional lights from
+// the second vertex on only, since their direct light is evaluated exactly
+// and their VPLs carry only what bounces.
 //
 // Determinism and stability: the estimate is a pure function of scene,
 // settings, camera, image size and frame seed, computed by every worker for
