@@ -41,6 +41,8 @@ settings=(
   "sets-8|--vpl-sets 8"
   "paths-64|--vpl-paths 64"
   "no-clamp|--clamp 0 --compensate 0"
+  "power|--importance 0"
+  "bidir|--vpl-paths 32 --bidir 32"
   "pt|--method pt"
 )
 

@@ -131,6 +131,7 @@ TEST(BiasCompensation, DistributedEqualsSingleProcessBitForBit) {
   const test::Prepared p(make_cornell_box());
   RenderSettings s = vpl_settings(MethodKind::Igi, 8, 0.1f, true, 2, 4);  // the master's default --aa 4
   s.interleave = RenderSettings{}.interleave;                             // and --vpl-sets
+  s.importance_paths = RenderSettings{}.importance_paths;                 // and --importance
   EXPECT_TRUE(test::images_identical("bc-dist", read_image(out), p.render(s, w, h, 1, 1)));
 }
 

@@ -184,7 +184,8 @@ TEST(Bidirectional, EachSetKeepsItsDrawsInItsGroups) {
 
 // Share of VPLs in rooms where the camera sees a point.
 double share_in_rooms_seen(const std::string& scene, const std::vector<GSample>& seen, const VplSets& sets) {
-  std::vector<bool> room_seen(3, false);
+  const int side = parse_rooms_name(scene);
+  std::vector<bool> room_seen(size_t(std::max(3, side * side)), false);
   for (const GSample& g : seen)
     if (g.valid()) room_seen[size_t(suite_room(scene, g.surface.position))] = true;
   size_t count = 0;
@@ -220,6 +221,26 @@ TEST(Bidirectional, VplsLandWhereTheCameraLooks) {
   // Measured: 15 % and 60 % (the rest light the bend from the lamp's room).
   EXPECT_GT(both, 0.45);
   EXPECT_GT(both, 2.5 * standard);
+}
+
+// The defaults estimate light importance: in a building of 100 rooms and
+// 100 lights, light paths by power leave the few rooms the camera sees with
+// a few VPLs a set (and a pass of blotches); by importance most VPLs are there.
+TEST(LightImportance, TheDefaultsPutRooms10sVplsWhereTheCameraLooks) {
+  const test::Prepared p(make_rooms_scene(10));
+  const std::vector<GSample> seen = p.visible_points(32, 24);
+  const RenderSettings defaults;
+  RenderSettings power = defaults;
+  power.importance_paths = 0;
+  RayCounts rays;
+  const VplSets by_default = importance::generate_view_vpls(p.context(), defaults, p.frame(64, 48), rays);
+  const VplSets by_power = importance::generate_view_vpls(p.context(), power, p.frame(64, 48), rays);
+  const double view = share_in_rooms_seen("rooms-10", seen, by_default);
+  const double view_by_power = share_in_rooms_seen("rooms-10", seen, by_power);
+  std::printf("[rooms-10] VPLs in the rooms the camera sees: defaults %.0f %% of %zu, by power %.0f %% of %zu\n",
+              100 * view, by_default.vpls.size(), 100 * view_by_power, by_power.vpls.size());
+  EXPECT_GT(view, 0.5);
+  EXPECT_GT(view, 3.0 * view_by_power);
 }
 
 // ---- e. determinism
@@ -263,15 +284,27 @@ const Image& rooms2_reference() {
   return reference;
 }
 
+// relMSE and mean at each M: the median relMSE of three seeds and their mean.
+// One seed is not enough at 32 x 24: bidirectional IR at M = 64 over 4
+// passes gave relMSE 0.016 at seed 1 and 0.002-0.006 at seeds 2-5.
 void expect_convergence(const char* name, RenderSettings s, bool bidir) {
   const Image& ref = rooms2_reference();
   double previous = 1e30;
   for (int m : {4, 16, 64}) {
     s.paths_per_set = m;
     if (bidir) s.bidir_vpls = m;
-    const Image image = rooms2().render(s, 32, 24, 4, 1);
-    const double e = rel_mse(image, ref), mean = luminance(image.mean()) / luminance(ref.mean());
-    std::printf("[rooms-2] %-18s M=%2d x 4 passes: relMSE %.5f, mean / pt %.4f\n", name, m, e, mean);
+    std::vector<double> errors;
+    double mean = 0.0;
+    Image image;
+    for (uint32_t seed : {1u, 2u, 3u}) {
+      image = rooms2().render(s, 32, 24, 4, seed);
+      errors.push_back(rel_mse(image, ref));
+      mean += luminance(image.mean()) / luminance(ref.mean()) / 3.0;
+    }
+    std::sort(errors.begin(), errors.end());
+    const double e = errors[1];
+    std::printf("[rooms-2] %-18s M=%2d x 4 passes, 3 seeds: median relMSE %.5f, mean / pt %.4f\n", name, m, e,
+                mean);
     EXPECT_LT(e, previous) << name << ": relMSE falls as M grows (M=" << m << ")";
     previous = e;
     if (m == 64) {

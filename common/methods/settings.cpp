@@ -132,7 +132,6 @@ Check check_importance(const RenderSettings& s) {
                        " (0 = --vpl-paths)"))
     return e;
   const bool vpl_method = s.method == MethodKind::InstantRadiosity || s.method == MethodKind::Igi;
-  if (!vpl_method && s.importance_paths > 0) return wrong("importance_paths", "--importance: only for --method ir or igi");
   if (!vpl_method && s.bidir_vpls > 0) return wrong("bidir_vpls", "--bidir: only for --method ir or igi");
   if (s.bidir_vpls == 0) return std::nullopt;
   if (s.paths_per_set > kMaxBidirPaths)

@@ -96,8 +96,13 @@ struct RenderSettings {
   float caustic_radius = 0.01f;   // density-estimation radius, a fraction of the scene diagonal
   // Light importance for the current view (ir/igi; common/importance/light_importance.h):
   // VPL light paths start at lights in proportion to an estimate of what each
-  // adds to the image, from this many camera paths. 0 = lights by power.
-  int importance_paths = 0;
+  // adds to the image, from this many camera paths. 0 = lights by power. On
+  // by default: in a building of many rooms it puts the paths in the rooms
+  // the camera sees (rooms-10 at one pass: FLIP 0.09 against 0.18); with one
+  // light it is skipped, and elsewhere it costs a few thousand short paths
+  // a frame. pt and lightcuts ignore it (tests/bench/RESULTS.md, "Light
+  // importance by default").
+  int importance_paths = 4096;
   float importance_floor = 0.2f;  // share of the light paths still started by power (no light starved)
   // Bidirectional instant radiosity (ir/igi; common/importance/bidirectional.h):
   // each set's M light paths and R camera paths give candidate VPLs, of which

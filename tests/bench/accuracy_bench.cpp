@@ -14,18 +14,20 @@
 // References: pt with --ref-spp samples, cached as
 // DIR/<scene>-<w>x<h>-<spp>-<hash of settings>.exr so reruns reuse them.
 // Sweeps: pt over samples per pixel; ir and igi over VPL paths per set M and
-// progressive passes, the clamp, (igi) the discontinuity filter, and, for
-// clamped points, bias compensation with kCompensationSamples ("bc=on");
-// lightcuts (default 2 % error) over M, unclamped and at clamp 0.02; on
-// scenes with mirrors or glass, igi with the caustic photon map
-// ("igi+caustics", kCausticPhotons photon paths a frame, default radius and
-// glass branches, filtered, unclamped and at clamp 0.02) over igi's budgets;
-// "view": igi with light importance (method igi-importance), bidirectional IR
-// (igi-bidir, K = 2 M VPLs kept per set) and both (igi-both), with
-// anti-aliasing 4, per clamp, with and without compensation; "draws": igi
-// with --vpl-draws 1 and 4 (igi-draws), unclamped and at the default clamp
-// and compensation. --series picks
-// which of these families run (all by default).
+// progressive passes, the clamp (kClamps: fractions of the mean chord,
+// relaxing pass by pass; 0.3 the default), (igi) the discontinuity filter,
+// and, for clamped points, bias compensation with kCompensationSamples
+// ("bc=on"); lightcuts (default 2 % error) over M, unclamped and at the
+// default clamp; on scenes with mirrors or glass, igi with the caustic photon
+// map ("igi+caustics", kCausticPhotons photon paths a frame, default radius
+// and glass branches, filtered, unclamped and at the default clamp) over
+// igi's budgets; "view": igi without light importance (igi-power: lights by
+// power, the default before 2026-12-05) and with bidirectional IR on top of
+// it (igi-bidir, K = 2 M VPLs kept per set), with anti-aliasing 4, per clamp,
+// with and without compensation; "draws": igi with --vpl-draws 1 and 4
+// (igi-draws), unclamped and at the default clamp and compensation. Every
+// other option is at its default: ir and igi estimate light importance.
+// --series picks which of these families run (all by default).
 // Unclamped VPL errors have infinite variance: a single seed is one draw of
 // a heavy-tailed figure, so each VPL point is the median over three seeds,
 // with the median seed's time.
@@ -56,6 +58,9 @@ namespace fs = std::filesystem;
 
 constexpr int kCompensationSamples = 4;  // eye samples per pixel when bc=on
 const std::vector<int> kCausticPhotons = {20000, 100000};  // photon paths per frame of the igi+caustics series
+// The clamps of the igi series (--clamp: a fraction of the scene's mean chord); the default's alone with --quick.
+const std::vector<float> kClamps = {0.0f, 0.1f, 0.3f, 1.0f};
+const float kDefaultClamp = RenderSettings{}.clamp;
 
 struct Options {
   std::vector<std::string> scenes = {"cornell", "corner", "rooms", "glossy", "glossy-rough", "large", "glass"};
@@ -203,9 +208,8 @@ Point median_point(const Prepared& p, const RenderSettings& s, const Options& o,
 // The method column: igi, ir, or igi with the view's options.
 std::string method_label(const RenderSettings& s) {
   if (s.vpl_draws > 0) return "igi-draws";
-  if (s.importance_paths > 0 && s.bidir_vpls > 0) return "igi-both";
-  if (s.importance_paths > 0) return "igi-importance";
   if (s.bidir_vpls > 0) return "igi-bidir";
+  if (s.method == MethodKind::Igi && s.importance_paths == 0) return "igi-power";
   return method_name(s.method);
 }
 
@@ -236,21 +240,21 @@ void sweep_budgets(const Prepared& p, const std::string& name, const Options& o,
   }
 }
 
-// The view's options: light importance (4096 estimate paths), bidirectional
-// IR and both, at anti-aliasing 4 (the default), per clamp, compensation on
-// where a clamp cut something.
+// The view's options against igi's default light importance: lights by
+// power, and bidirectional IR on top of importance, at anti-aliasing 4 (the
+// default), per clamp, compensation on where a clamp cut something.
 void sweep_view(const Prepared& p, const std::string& name, const Options& o, const Image& ref, std::ofstream& csv) {
-  const std::vector<float> clamps = o.quick ? std::vector<float>{0.05f} : std::vector<float>{0.02f, 0.05f, 0.1f};
+  const std::vector<float> clamps = o.quick ? std::vector<float>{kDefaultClamp} : std::vector<float>{0.1f, 0.3f, 1.0f};
   for (float clamp : clamps)
     for (int compensation : {0, kCompensationSamples}) {
       if (o.quick && compensation > 0) continue;
-      for (auto [importance, bidir] : {std::pair{4096, 0}, std::pair{0, 1}, std::pair{4096, 1}}) {
+      for (auto [by_power, bidir] : {std::pair{true, 0}, std::pair{false, 1}}) {
         RenderSettings s;
         s.method = MethodKind::Igi;
         s.clamp = clamp;
         s.compensation_samples = compensation;
         s.aa_samples = 4;
-        s.importance_paths = importance;
+        if (by_power) s.importance_paths = 0;
         s.bidir_vpls = bidir;  // sweep_budgets sets K = 2 M
         sweep_budgets(p, name, o, ref, s, csv);
       }
@@ -275,7 +279,7 @@ void sweep_draws(const Prepared& p, const std::string& name, const Options& o, c
 // The series: igi over clamps, compensation and anti-aliasing with the
 // filter, a few without it, and ir (slow: one clamp pair).
 void sweep_vpl(const Prepared& p, const std::string& name, const Options& o, const Image& ref, std::ofstream& csv) {
-  const std::vector<float> clamps = o.quick ? std::vector<float>{0.0f, 0.05f} : std::vector<float>{0.0f, 0.02f, 0.05f, 0.1f};
+  const std::vector<float> clamps = o.quick ? std::vector<float>{0.0f, kDefaultClamp} : kClamps;
   auto series = [&](MethodKind kind, bool filter, float clamp, int compensation, int aa) {
     RenderSettings s;
     s.method = kind;
@@ -293,18 +297,18 @@ void sweep_vpl(const Prepared& p, const std::string& name, const Options& o, con
         if (clamp > 0.0f) series(MethodKind::Igi, true, clamp, kCompensationSamples, aa);
       }
     series(MethodKind::Igi, false, 0.0f, 0, 1);
-    series(MethodKind::Igi, false, 0.05f, 0, 1);
+    series(MethodKind::Igi, false, kDefaultClamp, 0, 1);
   }
   if (o.runs("ir")) {
     series(MethodKind::InstantRadiosity, true, 0.0f, 0, 1);
-    series(MethodKind::InstantRadiosity, true, 0.05f, 0, 1);
+    series(MethodKind::InstantRadiosity, true, kDefaultClamp, 0, 1);
   }
   // The caustic photon map where there are mirrors or glass to make caustics.
   const bool specular = std::any_of(p.scene.materials.begin(), p.scene.materials.end(),
                                     [](const Material& m) { return m.is_specular(); });
   if (!specular || !o.runs("caustics")) return;
   for (int photons : o.quick ? std::vector<int>{kCausticPhotons.front()} : kCausticPhotons)
-    for (float clamp : {0.0f, 0.02f}) {
+    for (float clamp : {0.0f, kDefaultClamp}) {
       RenderSettings s;
       s.method = MethodKind::Igi;
       s.clamp = clamp;
@@ -318,7 +322,7 @@ void sweep_vpl(const Prepared& p, const std::string& name, const Options& o, con
 void sweep_lightcuts(const Prepared& p, const std::string& name, const Options& o, const Image& ref,
                      std::ofstream& csv) {
   const std::vector<int> budgets = o.quick ? std::vector<int>{8, 64} : std::vector<int>{4, 16, 64, 256, 1024};
-  for (float clamp : {0.0f, 0.02f})
+  for (float clamp : {0.0f, kDefaultClamp})
     for (int m : budgets) {
       RenderSettings s;
       s.method = MethodKind::Lightcuts;

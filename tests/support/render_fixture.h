@@ -26,6 +26,7 @@ inline RenderSettings vpl_settings(MethodKind kind, int paths, float clamp = 0.0
   s.filter = filter;
   s.compensation_samples = compensation;
   s.aa_samples = aa;
+  s.importance_paths = 0;  // lights by power (light importance, the default, is tested where named)
   return s;
 }
 
