@@ -4,10 +4,11 @@
 # then charts, Pareto fronts and headline.md under results/accuracy/.
 # Run on an otherwise idle machine: every point is timed in this one run.
 #
-#   scripts/bench-accuracy.sh [--size WxH] [--ref-spp N] [--scenes a,b] [--quick]
+#   scripts/bench-accuracy.sh [--size WxH] [--ref-spp N] [--scenes a,b] [--series a,b] [--quick]
 #
 # Defaults: 160x120, 4096-spp references, all scenes
-# (cornell, corner, rooms, glossy, glossy-rough, large, glass).
+# (cornell, corner, rooms, glossy, glossy-rough, large, glass), every series
+# (pt,igi,ir,caustics,view,draws,lightcuts; see tests/bench/accuracy_bench.cpp).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 size=160x120
@@ -19,6 +20,7 @@ while [ $# -gt 0 ]; do
     --size) size=$2; shift 2 ;;
     --ref-spp) ref_spp=$2; shift 2 ;;
     --scenes) scenes=$2; shift 2 ;;
+    --series) extra+=(--series "$2"); shift 2 ;;
     --quick) extra+=(--quick); shift ;;
     *) echo "bench-accuracy.sh: unknown option '$1'" >&2; exit 2 ;;
   esac

@@ -77,10 +77,14 @@ def pareto(points, key):
 
 
 def plot_scene(scene, rows, out_dir):
-    fig, axes = plt.subplots(1, 2, figsize=(13, 6))
     series = defaultdict(list)
     for r in rows:
         series[variant(r)].append(r)
+    # The legend below the charts: a row of 5 entries per 0.16 inch, so the
+    # charts keep their height however many series there are.
+    legend_rows = math.ceil((len(series) + len(METHODS)) / 5)
+    legend_height = 0.3 + 0.16 * legend_rows
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5.5 + legend_height))
     markers = ["o", "s", "^", "v", "D", "P", "X"]
     for ax, key, label in ((axes[0], "relmse", "relMSE (epsilon 0.01)"), (axes[1], "flip", "mean FLIP (LDR, 67 ppd)")):
         style_index = defaultdict(int)
@@ -107,7 +111,7 @@ def plot_scene(scene, rows, out_dir):
     axes[1].set_title(f"{scene}: FLIP against time")
     handles, labels = axes[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=5, fontsize=7, frameon=False)
-    fig.tight_layout(rect=(0, 0.12, 1, 1))
+    fig.tight_layout(rect=(0, legend_height / (5.5 + legend_height), 1, 1))
     path = os.path.join(out_dir, f"{scene}.png")
     fig.savefig(path, dpi=110)
     plt.close(fig)
