@@ -68,9 +68,10 @@ void arm_test_hooks(const igi::MasterOptions& o, igi::MasterSession& session, ig
   };
 }
 
-int run(const igi::MasterOptions& o) {
+int run(igi::MasterOptions o) {
   const std::optional<CurveSetup> curve = curve_setup(o);  // bad key files stop us before anything is bound
   igi::Scene scene = igi::load_scene(o.render.scene, nullptr, igi::sky_choice(o.render));  // validates it, and gives the camera
+  if (auto note = igi::choose_caustics(o.render, scene)) std::fprintf(stderr, "igi-master: %s\n", note->c_str());
   igi::Scene as_workers_load_it = scene;                 // the master's own VPL sets judge each worker's
   if (!o.render.camera_file.empty()) igi::place_camera(scene, igi::read_camera_file(o.render.camera_file));  // before anything starts
   zmq::context_t context(o.io_threads);

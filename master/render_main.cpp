@@ -17,12 +17,13 @@
 
 namespace {
 
-int run(const igi::RenderOptions& o) {
+int run(igi::RenderOptions o) {
   std::optional<igi::Camera> camera;  // a bad camera file stops us before the scene loads
   if (!o.camera_file.empty()) camera = igi::read_camera_file(o.camera_file);
   std::vector<std::string> warnings;
   igi::Scene scene = igi::load_scene(o.scene, &warnings, igi::sky_choice(o));
   for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  if (auto note = igi::choose_caustics(o, scene); note && !o.quiet) std::fprintf(stderr, "igi-render: %s\n", note->c_str());
   if (camera) igi::place_camera(scene, *camera);
   if (!o.export_gltf.empty()) {
     igi::write_gltf(scene, o.export_gltf);

@@ -10,6 +10,7 @@
 #include "image/image.h"
 #include "methods/clamp.h"
 #include "methods/memory_check.h"
+#include "photons/caustic_settings.h"
 #include "protocol/messages.h"
 #include "scene/builtin_scenes.h"
 
@@ -125,7 +126,8 @@ void add_vpl_options(CLI::App& app, RenderSettings& s) {
                  "Fresnel" + shown_default(kDefaults.settings.glass_branches))->check(integer<int>())->type_name("B");
 }
 
-void add_filter_and_caustic_options(CLI::App& app, RenderSettings& s) {
+void add_filter_and_caustic_options(CLI::App& app, RenderOptions& o) {
+  RenderSettings& s = o.settings;
   app.add_flag_callback("--no-filter", [&s] { s.filter = false; }, "igi: skip the discontinuity buffer");
   app.add_option("--filter-normal", s.filter_normal_cos, "igi: neighbours need normal dot above C" + shown_default(kDefaults.settings.filter_normal_cos))
       ->check(cli::number())->type_name("C");
@@ -137,14 +139,18 @@ void add_filter_and_caustic_options(CLI::App& app, RenderSettings& s) {
                  "pass; a tile's border grows by 2^(L+1), so larger --tile costs less); 0 = off" +
                      shown_default(kDefaults.settings.wavelet_levels))
       ->check(integer<int>())->type_name("L");
-  app.add_flag("--caustics", s.caustics, "ir/igi: add caustics from a photon map (light through mirrors and glass)");
+  app.add_flag_callback("--caustics", [&o] { o.settings.caustics = o.caustics_given = true; },
+                        "ir/igi: add caustics from a photon map (light through mirrors and glass); the default "
+                        "where the scene has mirrors or glass");
+  app.add_flag_callback("--no-caustics", [&o] { o.settings.caustics = false, o.caustics_given = true; },
+                        "ir/igi: no caustics, even where the scene has mirrors or glass");
   app.add_option_function<int>(
-         "--caustic-photons", [&s](int n) { s.caustic_photons = n, s.caustics = true; },
+         "--caustic-photons", [&o](int n) { o.settings.caustic_photons = n, o.settings.caustics = o.caustics_given = true; },
          "ir/igi: photon paths shot per frame, >= 1; implies --caustics" +
              shown_default(kDefaults.settings.caustic_photons))
       ->check(integer<int>())->type_name("N");
   app.add_option_function<float>(
-         "--caustic-radius", [&s](float r) { s.caustic_radius = r, s.caustics = true; },
+         "--caustic-radius", [&o](float r) { o.settings.caustic_radius = r, o.settings.caustics = o.caustics_given = true; },
          "ir/igi: photon gather radius, a fraction of the scene diagonal; implies --caustics" +
              shown_default(kDefaults.settings.caustic_radius))
       ->check(cli::number())->type_name("R");
@@ -180,7 +186,7 @@ void add_lightcuts_and_importance_options(CLI::App& app, RenderSettings& s) {
 void add_render_options(CLI::App& app, RenderOptions& o) {
   add_image_options(app, o);
   add_vpl_options(app, o.settings);
-  add_filter_and_caustic_options(app, o.settings);
+  add_filter_and_caustic_options(app, o);
   add_lightcuts_and_importance_options(app, o.settings);
 }
 
@@ -205,6 +211,15 @@ void check_render_options(const CLI::App& app, const RenderOptions& o) {
   if (o.export_gltf.empty())
     if (auto error = image_path_error(o.output)) throw OptionError("-o " + *error);
   check_memory(o);
+}
+
+std::optional<std::string> choose_caustics(RenderOptions& o, const Scene& scene) {
+  const bool vpl = o.settings.method == MethodKind::InstantRadiosity || o.settings.method == MethodKind::Igi;
+  if (o.caustics_given || !vpl || o.settings.caustics || !photons::has_specular_surfaces(scene)) return std::nullopt;
+  o.settings.caustics = true;
+  check_memory(o);
+  return "caustics on: the scene has mirrors or glass (" + std::to_string(o.settings.caustic_photons) +
+         " photon paths a frame; --no-caustics leaves them out)";
 }
 
 static void declare(CLI::App& app, RenderOptions& o) {

@@ -41,6 +41,9 @@ struct RenderOptions {
   // --environment: a constant sky's radiance or a map, replacing the scene's;
   // --environment-scale multiplies it, --environment-rotation turns a map.
   std::optional<SkyChoice> environment;
+  // --caustics, --no-caustics or a --caustic-* option was given: the scene
+  // does not choose (choose_caustics).
+  bool caustics_given = false;
   float environment_scale = 1.0f, environment_rotation = 0.0f;
 };
 
@@ -53,6 +56,12 @@ void check_render_options(const CLI::App& app, const RenderOptions& options);
 
 // The sky the options ask for (scale and rotation applied), or none.
 std::optional<SkyChoice> sky_choice(const RenderOptions& options);
+
+// Caustics by default where the scene has mirrors or glass: for ir and igi,
+// unless an option chose, turns settings.caustics on when `scene` has such
+// surfaces, and returns a note for the user; nothing otherwise. Throws
+// cli::OptionError when the photon map would not fit in memory.
+std::optional<std::string> choose_caustics(RenderOptions& options, const Scene& scene);
 
 // Parses argv[1] on; throws cli::OptionError with a message naming the option and the value.
 RenderOptions parse_render_options(const std::vector<std::string>& args);

@@ -17,6 +17,7 @@
 #include "methods/memory_check.h"
 #include "protocol/codec.h"
 #include "protocol/messages.h"
+#include "scene/load_scene.h"
 #include "support/image_compare.h"
 #include "support/process.h"
 
@@ -223,6 +224,41 @@ TEST(Options, IgiMasterRefusesTheOptionsItWouldIgnore) {
     expect_refused(r);
   const MasterOptions pt = parse_master_options({"--workers", "0", "--frames", "1", "--method", "pt", "--spp", "4"});
   EXPECT_EQ(pt.render.samples, 4) << "pt's samples per pixel stay";
+}
+
+// Caustics are on by default where the scene has mirrors or glass (for ir
+// and igi), unless an option chose; igi-render and igi-master say so.
+TEST(Options, CausticsAreOnWhereTheSceneHasMirrorsOrGlassUnlessAnOptionChose) {
+  const Scene glass = load_scene("glass"), cornell = load_scene("cornell");
+  struct Case {
+    std::vector<std::string> args;
+    const Scene* scene;
+    bool caustics, note;
+  };
+  for (const Case& c : std::vector<Case>{{{}, &glass, true, true},
+                                         {{"--no-caustics"}, &glass, false, false},
+                                         {{"--caustics", "--no-caustics"}, &glass, false, false},
+                                         {{"--caustic-photons", "4000"}, &glass, true, false},
+                                         {{"--method", "ir"}, &glass, true, true},
+                                         {{"--method", "pt"}, &glass, false, false},
+                                         {{"--method", "lightcuts"}, &glass, false, false},
+                                         {{}, &cornell, false, false},
+                                         {{"--caustics"}, &cornell, true, false}}) {
+    std::string name = c.scene == &glass ? "glass" : "cornell";
+    for (const std::string& a : c.args) name += " " + a;
+    RenderOptions o = parse_render_options(c.args);
+    const std::optional<std::string> note = choose_caustics(o, *c.scene);
+    EXPECT_EQ(o.settings.caustics, c.caustics) << name;
+    ASSERT_EQ(note.has_value(), c.note) << name;
+    if (note) EXPECT_NE(note->find("--no-caustics"), std::string::npos) << *note;
+  }
+  const std::string out = test::output_path("caustics-note.exr");
+  for (const std::string program : {std::string(IGI_RENDER_BINARY) + " --threads 1",
+                                    std::string(IGI_MASTER_BINARY) + " --workers 1 --worker-threads 1 --frames 1"}) {
+    const auto r = test::run(program + " --scene glass --size 16x16 -o " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("caustics on: the scene has mirrors or glass"), std::string::npos) << r.output;
+  }
 }
 
 // --version prints the build id the handshake compares, and exits 0 before any other check.

@@ -16,4 +16,10 @@ std::string memory_error(const RenderSettings& s, uint64_t memory_bytes) {
   return text;
 }
 
+bool has_specular_surfaces(const Scene& scene) {
+  for (uint32_t m : scene.triangle_material)
+    if (scene.materials[m].is_specular()) return true;
+  return false;
+}
+
 }  // namespace igi::photons

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "methods/settings.h"
+#include "scene/scene.h"
 
 namespace igi::photons {
 
@@ -27,5 +28,10 @@ inline constexpr uint64_t kBytesPerPhoton = 2 * 52 + 16;
 // "" when the largest possible map fits in half of `memory_bytes` (or caustics
 // are off, or the memory is unknown: 0), else why not, naming the option.
 std::string memory_error(const RenderSettings& s, uint64_t memory_bytes);
+
+// Whether any triangle of the scene is a mirror or glass: where caustics can
+// form. The command lines turn caustics on for such scenes unless told
+// (--caustics, --no-caustics or a --caustic-* option).
+bool has_specular_surfaces(const Scene& scene);
 
 }  // namespace igi::photons
