@@ -70,6 +70,29 @@ TEST(WindowPanel, CommitSendsValidChangesOnceAndHoldsBackSetsThatDoNotFit) {
   EXPECT_FALSE(panel.take_change()) << "taken once";
 }
 
+// Picking pt or lightcuts in a scene with glass (caustics on by default) or
+// with bidirectional IR drops what they refuse instead of holding the pick
+// back; ir and igi keep them.
+TEST(WindowPanel, PickingAMethodDropsWhatItRefuses) {
+  RenderSettings glass;
+  glass.caustics = true;
+  glass.bidir_vpls = 8;
+  ASSERT_FALSE(panel_settings_error(glass));
+  for (MethodKind m : {MethodKind::PathTracer, MethodKind::Lightcuts}) {
+    RenderSettings s = glass;
+    s.method = m;
+    EXPECT_TRUE(panel_settings_error(s)) << method_name(m) << " refuses caustics and --bidir";
+    const RenderSettings picked = with_method(glass, m);
+    EXPECT_EQ(picked.method, m);
+    EXPECT_FALSE(panel_settings_error(picked)) << *panel_settings_error(picked);
+    SettingsPanel panel(glass, 1.0f);
+    EXPECT_TRUE(panel.commit(picked)) << method_name(m);
+  }
+  const RenderSettings ir = with_method(glass, MethodKind::InstantRadiosity);
+  EXPECT_TRUE(ir.caustics);
+  EXPECT_EQ(ir.bidir_vpls, 8);
+}
+
 // The widgets themselves, in an ImGui context with no window: every method's page draws.
 TEST(WindowPanel, EveryMethodsPageDrawsHeadless) {
   ImGui::CreateContext();

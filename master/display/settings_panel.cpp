@@ -65,6 +65,15 @@ RenderSettings bounded(RenderSettings s) {
   return s;
 }
 
+RenderSettings with_method(RenderSettings s, MethodKind m) {
+  s.method = m;
+  if (m != MethodKind::InstantRadiosity && m != MethodKind::Igi) {
+    s.caustics = false;
+    s.bidir_vpls = 0;
+  }
+  return s;
+}
+
 std::optional<std::string> panel_settings_error(const RenderSettings& s) {
   if (auto error = settings_error(s)) return error;
   if (std::string e = memory_error(s, machine_memory_bytes()); !e.empty()) return e;
@@ -126,7 +135,7 @@ void SettingsPanel::draw() {
 void SettingsPanel::draw_method(RenderSettings& s) {
   if (ImGui::BeginCombo("method", method_name(s.method))) {
     for (MethodKind m : kMethods)
-      if (ImGui::Selectable(method_name(m), m == s.method)) s.method = m;
+      if (ImGui::Selectable(method_name(m), m == s.method)) s = with_method(s, m);
     ImGui::EndCombo();
   }
   tip("--method", "pt: the path-traced reference; ir, igi: virtual point lights; lightcuts: VPL clusters");

@@ -14,6 +14,10 @@ namespace igi {
 
 // Each field held inside the range its widget offers (the wire's own bounds or tighter).
 RenderSettings bounded(RenderSettings settings);
+// The method combo's choice: `settings` with method `m`, less what only ir and
+// igi take (caustics, on by default in scenes with glass, and bidirectional
+// IR), so picking pt or lightcuts is never held back by an option it refuses.
+RenderSettings with_method(RenderSettings settings, MethodKind m);
 // What is wrong with the set as a whole (the command line's and the wire's checks), or nothing.
 std::optional<std::string> panel_settings_error(const RenderSettings& settings);
 
