@@ -45,6 +45,7 @@
 #include "image/flip.h"
 #include "image/metrics.h"
 #include "methods/vpl_method.h"
+#include "photons/caustic_settings.h"
 #include "render/offline_render.h"
 #include "sampling/hash.h"
 #include "scene/camera_rays.h"
@@ -304,9 +305,7 @@ void sweep_vpl(const Prepared& p, const std::string& name, const Options& o, con
     series(MethodKind::InstantRadiosity, true, kDefaultClamp, 0, 1);
   }
   // The caustic photon map where there are mirrors or glass to make caustics.
-  const bool specular = std::any_of(p.scene.materials.begin(), p.scene.materials.end(),
-                                    [](const Material& m) { return m.is_specular(); });
-  if (!specular || !o.runs("caustics")) return;
+  if (!photons::has_specular_surfaces(p.scene) || !o.runs("caustics")) return;
   for (int photons : o.quick ? std::vector<int>{kCausticPhotons.front()} : kCausticPhotons)
     for (float clamp : {0.0f, kDefaultClamp}) {
       RenderSettings s;
