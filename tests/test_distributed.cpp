@@ -96,6 +96,13 @@ TEST(Distributed, AntialiasingGlossyGatherAndExactLightsMatchOneProcess) {
 // The caustic photon map is traced by every worker from the frame seed (its
 // hash joins the VPLs'), and glass branches split the G-buffer: workers give
 // the one-process image.
+// No caustic option: the master turns caustics on for a scene with glass,
+// and its workers render the frame one process renders with them on.
+TEST(Distributed, CausticsTheSceneChoseMatchOneProcess) {
+  expect_workers_match_one_process("dist-caustics-default", "", "glass",
+                                   [](RenderSettings& s) { s.caustics = true; });
+}
+
 TEST(Distributed, CausticsAndGlassBranchesMatchOneProcess) {
   expect_workers_match_one_process("dist-caustics", "--caustic-photons 4000 --glass-branches 3", "glass",
                                    [](RenderSettings& s) {
