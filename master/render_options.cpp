@@ -33,6 +33,8 @@ std::string shown_default(double value) {
   return shown_default(std::string(text));
 }
 
+std::string bidir_text(int k) { return k == kBidirAuto ? "auto" : std::to_string(k); }
+
 constexpr int kMaxSamples = 1 << 20;    // --spp: samples per pixel or passes
 
 // Before any work: VPLs, a light tree or a caustic map that could not fit in this machine's memory,
@@ -173,9 +175,12 @@ void add_lightcuts_and_importance_options(CLI::App& app, RenderSettings& s) {
       ->check(integer<int>())->type_name("N");
   app.add_option("--importance-floor", s.importance_floor, "ir/igi: share of light paths still started by power, "
                  "0..1" + shown_default(kDefaults.settings.importance_floor))->check(cli::number())->type_name("F");
-  app.add_option("--bidir", s.bidir_vpls, "ir/igi: bidirectional instant radiosity: per set, keep K of the VPLs of "
-                 "--vpl-paths light paths and R camera paths, by their estimated contribution" + shown_default(kDefaults.settings.bidir_vpls))
-      ->check(integer<int>())->type_name("K");
+  app.add_option_function<std::string>(
+         "--bidir", [&s](const std::string& k) { s.bidir_vpls = k == "auto" ? kBidirAuto : std::stoi(k); },
+         "ir/igi: bidirectional instant radiosity: per set, keep K of the VPLs of --vpl-paths light paths and R "
+         "camera paths, by their estimated contribution; 0 = off; auto = 2 x --vpl-paths where the view sees "
+         "little direct light, else off" + shown_default(bidir_text(kDefaults.settings.bidir_vpls)))
+      ->check(cli::one_of({"auto"}) | integer<int>())->type_name("K|auto");
   app.add_option("--bidir-camera-paths", s.bidir_camera_paths,
                  "ir/igi with --bidir: camera paths per set, 0 = --vpl-paths" + shown_default(kDefaults.settings.bidir_camera_paths))
       ->check(integer<int>())->type_name("R");

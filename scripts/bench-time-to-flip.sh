@@ -43,6 +43,7 @@ settings=(
   "no-clamp|--clamp 0 --compensate 0"
   "power|--importance 0"
   "bidir|--vpl-paths 32 --bidir 32"
+  "no-bidir|--bidir 0"
   "pt|--method pt"
 )
 

@@ -103,6 +103,16 @@ TEST(Distributed, CausticsTheSceneChoseMatchOneProcess) {
                                    [](RenderSettings& s) { s.caustics = true; });
 }
 
+// No --bidir option: in the corridor the view probe turns bidirectional IR
+// on (2 M light paths, 2 M VPLs kept), on the master's judge and on every
+// worker alike: the one-process frame of --vpl-paths 16 --bidir 16.
+TEST(Distributed, BidirectionalIrTheViewChoseMatchesOneProcess) {
+  expect_workers_match_one_process("dist-bidir-auto", "", "corridor", [](RenderSettings& s) {
+    s.paths_per_set = 16;
+    s.bidir_vpls = 16;
+  });
+}
+
 TEST(Distributed, CausticsAndGlassBranchesMatchOneProcess) {
   expect_workers_match_one_process("dist-caustics", "--caustic-photons 4000 --glass-branches 3", "glass",
                                    [](RenderSettings& s) {

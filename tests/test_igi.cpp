@@ -32,7 +32,7 @@ struct TileCase {
 // Every option that changes how a pixel is shaded, on a scene where it acts:
 // anti-aliasing, the glossy gather (glossy), exact spot light (corner),
 // bias compensation, glass branches and the caustic photon map (glass), light
-// importance (rooms), bidirectional IR (corridor) and the sky's directional
+// importance (rooms), bidirectional IR (corridor, by option and by view) and the sky's directional
 // VPLs and misses (courtyard, with the glossy gather on its metal ball), and
 // VPLs drawn from a light tree (--vpl-draws) with all of them.
 std::vector<TileCase> tile_cases() {
@@ -55,6 +55,8 @@ std::vector<TileCase> tile_cases() {
   ir_both.method = MethodKind::InstantRadiosity;
   ir_both.bidir_vpls = 8;
   ir_both.aa_samples = 1;
+  RenderSettings bidir_by_view = importance;  // the default --bidir auto, which the corridor's view turns on
+  bidir_by_view.bidir_vpls = kBidirAuto;
   // Stochastic VPL selection: each point's draws come from its global pixel, layer and gather rank.
   RenderSettings draws = all;
   draws.vpl_draws = 3;
@@ -71,6 +73,7 @@ std::vector<TileCase> tile_cases() {
           {"lightcuts", "cornell", vpl_settings(MethodKind::Lightcuts, 4, 0.05f)},
           {"igi_importance", "rooms", importance},
           {"igi_bidir", "corridor", bidir},
+          {"igi_bidir_by_view", "corridor", bidir_by_view},
           {"ir_importance_bidir", "rooms-3", ir_both},
           {"igi_aa_sky", "courtyard", all},
           {"lightcuts_sky", "courtyard", vpl_settings(MethodKind::Lightcuts, 4, 0.05f)},

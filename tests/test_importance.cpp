@@ -8,7 +8,8 @@
 //                   and igi: a wrong MIS weight, flux or selection
 //                   probability would move the mean
 //   d. bidir sets   K draws per set in G groups; in the corridor scene the
-//                   VPLs land where the camera looks
+//                   VPLs land where the camera looks, and the defaults
+//                   choose bidirectional IR there only
 //   e. determinism  the same frame gives the same sets; another camera others
 //   f. accuracy     (ImportanceAccuracy, skipped under TSan) relMSE falls as
 //                   paths grow and the mean approaches pt's in rooms-2
@@ -223,6 +224,46 @@ TEST(Bidirectional, VplsLandWhereTheCameraLooks) {
   EXPECT_GT(both, 2.5 * standard);
 }
 
+// --bidir auto, the default: bidirectional IR where the view sees few of
+// the light paths' VPLs. Of the suite only the corridor's camera does; there
+// the frame's sets are those of --vpl-paths 2M --bidir 2M, bit for bit, and
+// every pass of the view decides alike. Elsewhere light paths alone.
+TEST(Bidirectional, TheDefaultsChooseItWhereTheViewSeesFewVpls) {
+  for (const char* name : {"cornell", "corner", "rooms", "rooms-10", "corridor", "tilted-light", "glossy", "glass"}) {
+    const test::Prepared p(load_scene(name));
+    RenderSettings defaults;
+    RayCounts rays;
+    // The frame's choice of lights: light importance, the default, where there is more than one.
+    std::optional<importance::LightSelection> selection;
+    LightPathOptions light_paths;
+    if (p.lights->lights().size() > 1) {
+      selection = importance::estimate_light_importance(p.context(), defaults, p.frame(64, 48), rays);
+      light_paths.selection = &selection->distribution;
+    }
+    const float reach = importance::light_path_reach(p.context(), defaults, p.frame(64, 48), light_paths, rays);
+    const RenderSettings chosen =
+        importance::choose_bidir(p.context(), defaults, p.frame(64, 48), light_paths, rays);
+    std::printf("[%s] share of the probe's VPLs a point of the view sees: %.1f %%; --bidir auto: %d light paths, "
+                "%d kept\n", name, 100.0 * reach, chosen.paths_per_set, chosen.bidir_vpls);
+    const bool corridor = std::string(name) == "corridor";
+    EXPECT_EQ(chosen.bidir_vpls, corridor ? 2 * defaults.paths_per_set : 0) << name;
+    EXPECT_EQ(chosen.paths_per_set, (corridor ? 2 : 1) * defaults.paths_per_set) << name;
+    for (uint32_t pass : {1u, 2u})
+      EXPECT_EQ(importance::generate_view_vpls(p.context(), defaults, p.frame(64, 48, pass), rays).hash,
+                importance::generate_view_vpls(p.context(), chosen, p.frame(64, 48, pass), rays).hash)
+          << name << " pass " << pass;
+  }
+  // Only ir and igi, and not past kMaxAutoBidirPaths light paths.
+  const test::Prepared corridor(make_corridor_scene());
+  RayCounts rays;
+  RenderSettings s;
+  s.method = MethodKind::Lightcuts;
+  EXPECT_EQ(importance::choose_bidir(corridor.context(), s, corridor.frame(64, 48), {}, rays).bidir_vpls, 0);
+  s.method = MethodKind::Igi;
+  s.paths_per_set = importance::kMaxAutoBidirPaths + 1;
+  EXPECT_EQ(importance::choose_bidir(corridor.context(), s, corridor.frame(64, 48), {}, rays).bidir_vpls, 0);
+}
+
 // The defaults estimate light importance: in a building of 100 rooms and
 // 100 lights, light paths by power leave the few rooms the camera sees with
 // a few VPLs a set (and a pass of blotches); by importance most VPLs are there.
@@ -232,6 +273,7 @@ TEST(LightImportance, TheDefaultsPutRooms10sVplsWhereTheCameraLooks) {
   const RenderSettings defaults;
   RenderSettings power = defaults;
   power.importance_paths = 0;
+  power.bidir_vpls = 0;  // by power alone (bidirectional IR by view would turn on here: test d)
   RayCounts rays;
   const VplSets by_default = importance::generate_view_vpls(p.context(), defaults, p.frame(64, 48), rays);
   const VplSets by_power = importance::generate_view_vpls(p.context(), power, p.frame(64, 48), rays);

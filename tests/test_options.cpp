@@ -306,7 +306,7 @@ TEST(Options, HelpShowsTheDefaultsOfTheSettingsStructs) {
       {"--caustic-photons", std::to_string(s.caustic_photons)}, {"--caustic-radius", g(s.caustic_radius)},
       {"--lightcuts-error", g(s.lightcuts_error)}, {"--lightcuts-max-cut", std::to_string(s.lightcuts_max_cut)},
       {"--importance", std::to_string(s.importance_paths)}, {"--importance-floor", g(s.importance_floor)},
-      {"--bidir", std::to_string(s.bidir_vpls)}};
+      {"--bidir", s.bidir_vpls == kBidirAuto ? "auto" : std::to_string(s.bidir_vpls)}};
   for (const std::string binary : {IGI_RENDER_BINARY, IGI_MASTER_BINARY}) {
     const test::RunResult r = test::run(binary + " --help", 30);
     ASSERT_EQ(r.exit_code, 0) << r.output;

@@ -388,7 +388,7 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {settings_edited([](auto& s) { s.importance_paths = (1 << 20) + 1; }), "Welcome.settings.importance_paths"},
       {settings_edited([](auto& s) { s.importance_floor = 1.5f; }), "Welcome.settings.importance_floor"},
       {settings_edited([](auto& s) { s.importance_floor = NAN; }), "Welcome.settings.importance_floor"},
-      {settings_edited([](auto& s) { s.bidir_vpls = -1; }), "Welcome.settings.bidir_vpls"},
+      {settings_edited([](auto& s) { s.bidir_vpls = -2; }), "Welcome.settings.bidir_vpls"},
       {settings_edited([](auto& s) { s.bidir_vpls = (1 << 16) + 1; }), "Welcome.settings.bidir_vpls"},
       {settings_edited([](auto& s) { s.bidir_camera_paths = 4097; }), "Welcome.settings.bidir_camera_paths"},
       {settings_edited([](auto& s) { s.method = MethodKind::PathTracer; s.importance_paths = 0; s.caustics = false; }),

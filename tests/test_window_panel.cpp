@@ -84,6 +84,7 @@ TEST(WindowPanel, PickingAMethodDropsWhatItRefuses) {
     EXPECT_TRUE(panel_settings_error(s)) << method_name(m) << " refuses caustics and --bidir";
     const RenderSettings picked = with_method(glass, m);
     EXPECT_EQ(picked.method, m);
+    EXPECT_EQ(picked.bidir_vpls, kBidirAuto) << "back to the default, which " << method_name(m) << " ignores";
     EXPECT_FALSE(panel_settings_error(picked)) << *panel_settings_error(picked);
     SettingsPanel panel(glass, 1.0f);
     EXPECT_TRUE(panel.commit(picked)) << method_name(m);

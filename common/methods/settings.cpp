@@ -127,13 +127,14 @@ Check check_importance(const RenderSettings& s) {
   const char* off = " (0 = off)";
   if (auto e = integer("importance_paths", "--importance", s.importance_paths, 0, kMaxImportancePaths, off)) return e;
   if (auto e = closed("importance_floor", "--importance-floor", s.importance_floor, 0.0f, 1.0f, "a share")) return e;
-  if (auto e = integer("bidir_vpls", "--bidir", s.bidir_vpls, 0, kMaxBidirVpls, off)) return e;
+  if (s.bidir_vpls != kBidirAuto)
+    if (auto e = integer("bidir_vpls", "--bidir", s.bidir_vpls, 0, kMaxBidirVpls, " (0 = off, or auto)")) return e;
   if (auto e = integer("bidir_camera_paths", "--bidir-camera-paths", s.bidir_camera_paths, 0, kMaxBidirPaths,
                        " (0 = --vpl-paths)"))
     return e;
   const bool vpl_method = s.method == MethodKind::InstantRadiosity || s.method == MethodKind::Igi;
   if (!vpl_method && s.bidir_vpls > 0) return wrong("bidir_vpls", "--bidir: only for --method ir or igi");
-  if (s.bidir_vpls == 0) return std::nullopt;
+  if (s.bidir_vpls <= 0) return std::nullopt;  // off, or auto (which keeps within these limits)
   if (s.paths_per_set > kMaxBidirPaths)
     return wrong("paths_per_set", "--bidir needs --vpl-paths <= " + std::to_string(kMaxBidirPaths) +
                                       " (every candidate is tested against every camera path), got " +

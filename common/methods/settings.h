@@ -30,6 +30,7 @@ inline constexpr int kMaxGlassBranches = 8;
 inline constexpr int kMaxImportancePaths = 1 << 20;  // camera paths of the light-importance estimate
 inline constexpr int kMaxBidirPaths = 4096;          // bidirectional: light and camera paths per set
 inline constexpr int kMaxBidirVpls = 1 << 16;        // bidirectional: VPLs kept per set
+inline constexpr int kBidirAuto = -1;               // bidirectional: chosen by the view
 
 // The defaults of anti-aliasing, clamp and compensation: README, "Defaults";
 // their measurements in tests/bench/RESULTS.md, "Convergence".
@@ -106,8 +107,11 @@ struct RenderSettings {
   float importance_floor = 0.2f;  // share of the light paths still started by power (no light starved)
   // Bidirectional instant radiosity (ir/igi; common/importance/bidirectional.h):
   // each set's M light paths and R camera paths give candidate VPLs, of which
-  // this many are kept by their estimated contribution to the image. 0 = off.
-  int bidir_vpls = 0;
+  // this many are kept by their estimated contribution to the image. 0 = off;
+  // kBidirAuto (the default): 2 M where the view sees little direct light,
+  // else off (importance/view_vpls.h; the corridor scene at one pass: FLIP
+  // 0.11 against 0.16 by light paths alone).
+  int bidir_vpls = kBidirAuto;
   int bidir_camera_paths = 0;     // R; 0 = as many as light paths (M)
 };
 

@@ -57,7 +57,7 @@ RenderSettings bounded(RenderSettings s) {
   s.lightcuts_samples = gather_side * gather_side;
   s.importance_paths = std::clamp(s.importance_paths, 0, kMaxImportancePaths);
   s.importance_floor = std::clamp(s.importance_floor, 0.0f, 1.0f);
-  s.bidir_vpls = std::clamp(s.bidir_vpls, 0, kMaxBidirVpls);
+  if (s.bidir_vpls != kBidirAuto) s.bidir_vpls = std::clamp(s.bidir_vpls, 0, kMaxBidirVpls);
   s.bidir_camera_paths = std::clamp(s.bidir_camera_paths, 0, kMaxBidirPaths);
   s.glass_branches = std::clamp(s.glass_branches, 1, kMaxGlassBranches);
   s.caustic_photons = std::clamp(s.caustic_photons, 1, 1 << 22);
@@ -69,7 +69,7 @@ RenderSettings with_method(RenderSettings s, MethodKind m) {
   s.method = m;
   if (m != MethodKind::InstantRadiosity && m != MethodKind::Igi) {
     s.caustics = false;
-    s.bidir_vpls = 0;
+    if (s.bidir_vpls > 0) s.bidir_vpls = kBidirAuto;  // the default, which they ignore
   }
   return s;
 }
@@ -205,8 +205,13 @@ void SettingsPanel::draw_lighting(RenderSettings& s) {
     ImGui::SliderFloat("power share", &s.importance_floor, 0.0f, 1.0f, "%.2f", kBound);
     tip("--importance-floor", "share of light paths still started by power");
   }
-  ImGui::DragInt("bidirectional", &s.bidir_vpls, 1.0f, 0, kMaxBidirVpls, "%d", kBound);
-  tip("--bidir", "bidirectional instant radiosity: per set, keep this many VPLs of light and camera paths by contribution; 0 = off");
+  bool bidir_by_view = s.bidir_vpls == kBidirAuto;
+  if (ImGui::Checkbox("bidirectional by view", &bidir_by_view)) s.bidir_vpls = bidir_by_view ? kBidirAuto : 0;
+  tip("--bidir auto", "bidirectional instant radiosity where the view sees little direct light (2 x light paths kept)");
+  if (!bidir_by_view) {
+    ImGui::DragInt("bidirectional", &s.bidir_vpls, 1.0f, 0, kMaxBidirVpls, "%d", kBound);
+    tip("--bidir", "bidirectional instant radiosity: per set, keep this many VPLs of light and camera paths by contribution; 0 = off");
+  }
   if (s.bidir_vpls > 0) {
     ImGui::DragInt("camera paths", &s.bidir_camera_paths, 1.0f, 0, kMaxBidirPaths, "%d", kBound);
     tip("--bidir-camera-paths", "camera paths per set, 0 = as many as light paths");

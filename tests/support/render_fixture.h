@@ -27,6 +27,7 @@ inline RenderSettings vpl_settings(MethodKind kind, int paths, float clamp = 0.0
   s.compensation_samples = compensation;
   s.aa_samples = aa;
   s.importance_paths = 0;  // lights by power (light importance, the default, is tested where named)
+  s.bidir_vpls = 0;        // light paths alone (bidirectional IR by view, the default, is tested where named)
   return s;
 }
 
