@@ -14,13 +14,14 @@ namespace {
 // VPL method shades (methods/vpl_contribution.h).
 glm::vec3 receiver_bsdf(const GatherPoint& g, glm::vec3 wi) { return bsdf_eval(g.surface, g.wo, wi); }
 
-// A surface VPL's BSDF, light arriving from its incident direction and leaving along `out`.
-glm::vec3 vpl_bsdf(const Scene& scene, const Vpl& v, glm::vec3 out) {
+// A surface VPL's BSDF, light arriving from its incident direction and
+// leaving along `out`; with `white`, albedo 1 (what the clamp bounds).
+glm::vec3 vpl_bsdf(const Scene& scene, const Vpl& v, glm::vec3 out, bool white = false) {
   SurfacePoint sp;
   sp.position = v.position;
   sp.geometric_normal = sp.shading_normal = v.normal;
   sp.material = &scene.materials[v.material];
-  sp.albedo = v.albedo;
+  sp.albedo = white ? glm::vec3(1.0f) : v.albedo;
   return bsdf_eval(sp, v.incident, out);
 }
 
@@ -53,6 +54,10 @@ glm::vec3 light_contribution(const LightingContext& context, const GatherPoint& 
       emitted = leaf.light_class == LightClass::Glossy
                     ? vpl_bsdf(context.scene, context.vpls[leaf.source], -wi) * leaf.intensity
                     : leaf.intensity;
+      // A glossy VPL's lobe is clamped as a glossy receiver's (methods/clamp.h), as ir and igi take it.
+      if (leaf.light_class == LightClass::Glossy && context.clamp_bound < INFINITY)
+        emitted *= glossy_lobe_clamp(max_component(vpl_bsdf(context.scene, context.vpls[leaf.source], -wi, true)),
+                                     g_term, context.clamp_bound);
     }
   }
   glm::vec3 f = receiver_bsdf(g, wi);
@@ -61,7 +66,7 @@ glm::vec3 light_contribution(const LightingContext& context, const GatherPoint& 
       sp.material->type == MaterialType::Conductor && context.clamp_bound < INFINITY) {
     SurfacePoint white = sp;
     white.albedo = glm::vec3(1.0f);
-    f *= glossy_receiver_clamp(max_component(bsdf_eval(white, g.wo, wi)), g_term, context.clamp_bound);
+    f *= glossy_lobe_clamp(max_component(bsdf_eval(white, g.wo, wi)), g_term, context.clamp_bound);
   }
   const glm::vec3 c = f * emitted * g_term;
   // Nothing, or a light on the point itself (unclamped: infinite or NaN).

@@ -28,15 +28,17 @@ inline constexpr float kMaxClamp = 4.0f;
 // Infinity when clamp <= 0 (off).
 float clamp_bound(float clamp, float mean_chord, uint32_t pass);
 
-// The clamp on a glossy (GGX) receiver. Bounding G alone lets its lobe
-// multiply a close VPL's light again: at alpha 0.3 the lobe's peak is about
-// ten times a white Lambertian's 1 / pi, so a VPL a hand's width from a crease
-// lit a rough metal floor as a hot splotch. So the receiver's BSDF with
-// albedo 1 (f_white, its largest channel) times G is bounded by b / pi, what
-// a white Lambertian receiver takes at most under the bound on G; returns the
-// factor (at most 1) that scales the contribution. A Lambertian receiver
-// (f_white = 1 / pi) is never scaled: for it this is the bound on G itself.
-inline float glossy_receiver_clamp(float f_white, float g_term, float bound) {
+// The clamp on a glossy (GGX) lobe at either end of a VPL's light. Bounding
+// G alone lets a lobe multiply a close VPL's light again: at alpha 0.3 a
+// receiver's peak is about ten times a white Lambertian's 1 / pi, so a VPL a
+// hand's width from a crease lit a rough metal floor as a hot splotch; a VPL
+// on a sharp metal surface (its lobe widened to the glossy threshold) lit the
+// wall beside it as a spot. So the lobe's BSDF with albedo 1 (f_white, its
+// largest channel) times G is bounded by b / pi, what a white Lambertian
+// takes or gives at most under the bound on G; returns the factor (at most
+// 1) that scales the contribution. A Lambertian (f_white = 1 / pi) is never
+// scaled: for it this is the bound on G itself.
+inline float glossy_lobe_clamp(float f_white, float g_term, float bound) {
   const float limit = bound * kInvPi;
   const float fg = f_white * g_term;
   return fg > limit ? limit / fg : 1.0f;

@@ -47,6 +47,12 @@ struct VplShading {
     return ggx_reflection(v.normal, v.incident, out, v.albedo, std::max(m.alpha, min_emitter_alpha));
   }
 
+  // vpl_bsdf() with albedo 1: what the clamp bounds.
+  glm::vec3 vpl_bsdf_white(const Vpl& v, glm::vec3 out) const {
+    const Material& m = scene.materials[v.material];
+    return ggx_reflection(v.normal, v.incident, out, glm::vec3(1.0f), std::max(m.alpha, min_emitter_alpha));
+  }
+
   // Returns the contribution (zero when none) and fills the shadow ray.
   glm::vec3 contribution(const GSample& g, const Vpl& v, ShadowQuery& q) const {
     const SurfacePoint& sp = g.surface;
@@ -68,6 +74,13 @@ struct VplShading {
         if (cos_y <= 0.0f) return glm::vec3(0.0f);
         g_term = std::min(cos_x * cos_y / dist2, clamp_bound);
         emitted = v.kind == VplKind::Surface ? vpl_bsdf(v, -wi) * v.flux : v.flux;
+        // The clamp at the emitting end as at the receiving one (clamp.h): a
+        // GGX VPL's lobe times G is bounded by what a white Lambertian VPL
+        // gives at most. On `glossy` the floor's VPLs lit the walls' feet
+        // with spots at their lobes' peaks; on `courtyard`, the metal ball's
+        // lit the ground (tests/bench/RESULTS.md, "Glossy VPLs clamped").
+        if (v.kind == VplKind::Surface && scene.materials[v.material].type == MaterialType::Conductor)
+          emitted *= glossy_lobe_clamp(max_component(vpl_bsdf_white(v, -wi)), g_term, clamp_bound);
       } else {
         g_term = cos_x / dist2;  // exact point and spot lights: never clamped
         emitted = v.kind == VplKind::Spot ? v.flux * spot_attenuation(scene.lights[v.light], -wi) : v.flux;
@@ -76,7 +89,7 @@ struct VplShading {
     glm::vec3 f = demodulated_bsdf(g, wi);
     const bool clamped = v.kind == VplKind::Surface || v.kind == VplKind::Area;
     if (clamped && sp.material->type == MaterialType::Conductor)
-      f *= glossy_receiver_clamp(max_component(f), g_term, clamp_bound);
+      f *= glossy_lobe_clamp(max_component(f), g_term, clamp_bound);
     glm::vec3 c = f * emitted * g_term;
     // Nothing, or a VPL on the point itself (unclamped: infinite or NaN).
     if (!(c.x + c.y + c.z > 0.0f) || !std::isfinite(c.x + c.y + c.z)) return glm::vec3(0.0f);
