@@ -5,8 +5,9 @@
 //    of the image (importance/light_importance.h);
 //  - --bidir K: each set resampled from light-path and camera-path candidates
 //    (importance/bidirectional.h), its light paths chosen either way;
-//  - --bidir auto (the default): K = 2 M where the view sees little direct
-//    light, else light paths alone (view_bidir_vpls below).
+//  - --bidir auto (the default): 2 M light and camera paths and K = 2 M
+//    where the view sees few of the light paths' VPLs, else light paths
+//    alone (choose_bidir below).
 // A pure function of scene, settings and frame setup (camera, image size,
 // seed): every worker computes the same sets, and their hash covers the light
 // probabilities too.
@@ -41,8 +42,9 @@ inline constexpr float kBidirReach = 0.2f;
 // grows as M^2 (every candidate against every camera path). At least --aa.
 inline constexpr int kMaxAutoBidirPaths = 256;
 
-// The share of the probe's camera points that a probe VPL or punctual light
-// reaches; 1 when no probe ray finds a surface. `rays` counts the probe's rays.
+// The share of the probe's VPLs and punctual lights a point of the view
+// sees, averaged over the probe's camera points; 1 when no probe ray finds
+// a surface. `rays` counts the probe's rays.
 float light_path_reach(const SceneContext& context, const RenderSettings& settings, const FrameSetup& frame,
                        const LightPathOptions& light_paths, RayCounts& rays);
 // The settings a frame's sets are made with: `settings` unless bidir_vpls

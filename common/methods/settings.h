@@ -108,9 +108,9 @@ struct RenderSettings {
   // Bidirectional instant radiosity (ir/igi; common/importance/bidirectional.h):
   // each set's M light paths and R camera paths give candidate VPLs, of which
   // this many are kept by their estimated contribution to the image. 0 = off;
-  // kBidirAuto (the default): 2 M where the view sees little direct light,
-  // else off (importance/view_vpls.h; the corridor scene at one pass: FLIP
-  // 0.11 against 0.16 by light paths alone).
+  // kBidirAuto (the default): 2 M (of 2 M light paths) where the view sees
+  // few of the light paths' VPLs, else off (importance/view_vpls.h; the
+  // corridor scene at one pass: FLIP 0.097 against 0.168 by light paths alone).
   int bidir_vpls = kBidirAuto;
   int bidir_camera_paths = 0;     // R; 0 = as many as light paths (M)
 };

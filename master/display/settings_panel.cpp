@@ -207,7 +207,7 @@ void SettingsPanel::draw_lighting(RenderSettings& s) {
   }
   bool bidir_by_view = s.bidir_vpls == kBidirAuto;
   if (ImGui::Checkbox("bidirectional by view", &bidir_by_view)) s.bidir_vpls = bidir_by_view ? kBidirAuto : 0;
-  tip("--bidir auto", "bidirectional instant radiosity where the view sees little direct light (2 x light paths kept)");
+  tip("--bidir auto", "bidirectional instant radiosity where the view sees few of the light paths' VPLs (2 x light and camera paths)");
   if (!bidir_by_view) {
     ImGui::DragInt("bidirectional", &s.bidir_vpls, 1.0f, 0, kMaxBidirVpls, "%d", kBound);
     tip("--bidir", "bidirectional instant radiosity: per set, keep this many VPLs of light and camera paths by contribution; 0 = off");
