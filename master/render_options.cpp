@@ -178,9 +178,15 @@ void add_lightcuts_and_importance_options(CLI::App& app, RenderSettings& s) {
   app.add_option_function<std::string>(
          "--bidir", [&s](const std::string& k) { s.bidir_vpls = k == "auto" ? kBidirAuto : std::stoi(k); },
          "ir/igi: bidirectional instant radiosity: per set, keep K of the VPLs of --vpl-paths light paths and R "
-         "camera paths, by their estimated contribution; 0 = off; auto = 2 x --vpl-paths where the view sees "
-         "little direct light, else off" + shown_default(bidir_text(kDefaults.settings.bidir_vpls)))
-      ->check(cli::one_of({"auto"}) | integer<int>())->type_name("K|auto");
+         "camera paths, by their estimated contribution; 0 = off; auto = where the view sees few of the light "
+         "paths' VPLs, 2 x --vpl-paths light and camera paths and K = 2 x --vpl-paths, else off" +
+             shown_default(bidir_text(kDefaults.settings.bidir_vpls)))
+      ->check(CLI::Validator(
+          [](std::string& k) -> std::string {
+            return k == "auto" || integer<int>()(k).empty() ? "" : "expected an integer or auto, got '" + k + "'";
+          },
+          ""))
+      ->type_name("K|auto");
   app.add_option("--bidir-camera-paths", s.bidir_camera_paths,
                  "ir/igi with --bidir: camera paths per set, 0 = --vpl-paths" + shown_default(kDefaults.settings.bidir_camera_paths))
       ->check(integer<int>())->type_name("R");
