@@ -13,6 +13,8 @@ reads it (README "Conventions"), for an independent reference render.
   KHR_lights_punctual   -> point (W/sr), directional (W/m^2), spot (W/sr, glTF's
                            smooth falloff as a texture over a sharp Mitsuba cone)
   first perspective camera -> perspective, fov_axis y, box-filtered hdrfilm
+  scene extras.environment [r, g, b] -> constant emitter of that radiance
+                           (igi's constant sky; a map's file name is not mapped)
 
 Opaque materials are two-sided because igi shades either side of a
 double-sided face alike (common/material/bsdf.cpp); glass is not wrapped.
@@ -327,6 +329,20 @@ def sensor_dict(gltf, nodes, width, height):
                      "rfilter": {"type": "box"}}}
 
 
+def environment(gltf):
+    """The default scene's sky, extras.environment, as igi reads it (common/scene/gltf_loader.cpp):
+    a constant radiance [r, g, b] becomes a constant emitter; None without one."""
+    scenes = gltf.doc.get("scenes", [])
+    index = gltf.doc.get("scene", 0)
+    extras = scenes[index].get("extras", {}) if index < len(scenes) else {}
+    value = extras.get("environment") if isinstance(extras, dict) else None
+    if value is None:
+        return None
+    if isinstance(value, list) and len(value) == 3 and all(isinstance(c, (int, float)) for c in value):
+        return {"type": "constant", "radiance": rgb(value)}
+    unsupported(gltf, "scenes", "extras.environment other than a constant [r, g, b] (a map)")
+
+
 def scene_dict(path, width, height):
     """The Mitsuba scene dict of the glTF file at `path`, for a width x height image."""
     gltf = Gltf(path)
@@ -340,4 +356,7 @@ def scene_dict(path, width, height):
             out.update(node_meshes(gltf, node_index, node, world, materials))
         if "KHR_lights_punctual" in node.get("extensions", {}):
             out[f"light_{node_index}"] = punctual_light(gltf, node_index, node, world)
+    sky = environment(gltf)
+    if sky:
+        out["environment"] = sky
     return out

@@ -276,6 +276,22 @@ class MappingTest(unittest.TestCase):
             with self.subTest(degrees=degrees):
                 self.assertAlmostEqual(float(value[0]), 40.0 * a * a, delta=0.002 * 40.0)
 
+    def test_constant_sky_is_seen_and_lights_the_scene(self):
+        # No light but the scene's extras.environment: a pixel that sees the
+        # sky has its radiance, and a white floor under it reflects about as
+        # much (an open plane under a uniform sky: E = pi L, L_out = albedo L).
+        scene = SceneFile()
+        scene.camera(yfov=0.3)
+        scene.quad((0, 0, -1), 0.05, scene.material(colour=(1, 1, 1)))  # a third of the view, in the middle
+        scene.doc["scenes"][0]["extras"] = {"environment": [0.5, 1.0, 2.0]}
+        image = self.render(scene, spp=256)
+        np.testing.assert_allclose(image[0, 0], [0.5, 1.0, 2.0], rtol=1e-4)  # a corner sees the sky
+        middle = image[SIZE // 2 - 4:SIZE // 2 + 4, SIZE // 2 - 4:SIZE // 2 + 4].reshape(-1, 3).mean(axis=0)
+        np.testing.assert_allclose(middle, [0.5, 1.0, 2.0], rtol=0.03)  # the quad, lit by the sky above it
+        scene.doc["scenes"][0]["extras"] = {"environment": "sky.hdr"}
+        with self.assertRaisesRegex(UnsupportedFeature, "extras.environment"):
+            scene_dict(scene.write(self.path("map.gltf")), SIZE, SIZE)
+
     def test_unsupported_features_are_named(self):
         def alter(doc):
             doc["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 0.5

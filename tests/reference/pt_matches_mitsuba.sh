@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The ruler checked: pt's image mean within 1 % of Mitsuba 3's (the
-# independent reference, scripts/mitsuba/) on every suite scene, both
+# independent reference, scripts/mitsuba/) on every suite scene and the sky-lit courtyard, both
 # rendered from the same exported glTF at a small size with fixed seeds (so
 # the test is deterministic; at these sample counts either mean's noise is
 # about 0.3 %). Writes both images beside each other on failure.
@@ -9,7 +9,7 @@ set -euo pipefail
 build=$(cd "$1" && pwd); shift
 cd "$(dirname "$0")/../.."
 scenes=("$@")
-[ ${#scenes[@]} -gt 0 ] || scenes=(cornell corner rooms rooms-10 corridor tilted-light glossy glossy-rough glass)
+[ ${#scenes[@]} -gt 0 ] || scenes=(cornell corner rooms rooms-10 corridor tilted-light glossy glossy-rough glass courtyard)
 python="$(scripts/venv.sh --mitsuba)"
 out="$build/test-output/reference"
 mkdir -p "$out"
