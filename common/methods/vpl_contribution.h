@@ -41,16 +41,12 @@ struct VplShading {
   // the spots merge into the smooth light such a surface reflects onto a
   // room. The lobe keeps its direction and (nearly) its albedo: the light is
   // blurred, not lost (the glossy scene's mean is within 1 % of pt).
-  glm::vec3 vpl_bsdf(const Vpl& v, glm::vec3 out) const {
+  glm::vec3 vpl_bsdf(const Vpl& v, glm::vec3 out) const { return vpl_bsdf(v, out, v.albedo); }
+  // The same lobe with another albedo (1: what the clamp bounds).
+  glm::vec3 vpl_bsdf(const Vpl& v, glm::vec3 out, glm::vec3 albedo) const {
     const Material& m = scene.materials[v.material];
-    if (m.type == MaterialType::Diffuse) return v.albedo * kInvPi;
-    return ggx_reflection(v.normal, v.incident, out, v.albedo, std::max(m.alpha, min_emitter_alpha));
-  }
-
-  // vpl_bsdf() with albedo 1: what the clamp bounds.
-  glm::vec3 vpl_bsdf_white(const Vpl& v, glm::vec3 out) const {
-    const Material& m = scene.materials[v.material];
-    return ggx_reflection(v.normal, v.incident, out, glm::vec3(1.0f), std::max(m.alpha, min_emitter_alpha));
+    if (m.type == MaterialType::Diffuse) return albedo * kInvPi;
+    return ggx_reflection(v.normal, v.incident, out, albedo, std::max(m.alpha, min_emitter_alpha));
   }
 
   // Returns the contribution (zero when none) and fills the shadow ray.
@@ -80,7 +76,7 @@ struct VplShading {
         // with spots at their lobes' peaks; on `courtyard`, the metal ball's
         // lit the ground (tests/bench/RESULTS.md, "Glossy VPLs clamped").
         if (v.kind == VplKind::Surface && scene.materials[v.material].type == MaterialType::Conductor)
-          emitted *= glossy_lobe_clamp(max_component(vpl_bsdf_white(v, -wi)), g_term, clamp_bound);
+          emitted *= glossy_lobe_clamp(max_component(vpl_bsdf(v, -wi, glm::vec3(1.0f))), g_term, clamp_bound);
       } else {
         g_term = cos_x / dist2;  // exact point and spot lights: never clamped
         emitted = v.kind == VplKind::Spot ? v.flux * spot_attenuation(scene.lights[v.light], -wi) : v.flux;
