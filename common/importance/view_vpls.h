@@ -24,11 +24,13 @@ namespace igi::importance {
 // pass; bidirectional IR puts VPLs where the camera looks. A probe measures
 // it: kProbePaths light paths, their lights chosen as the frame chooses them
 // (by power or by importance) but with a seed of their own, and kViewProbes
-// camera points (one net over the film, also with its own seed), so every
-// pass of a view decides alike. Where a point sees on average under
+// camera points (one net over the film, also with its own seed), so the
+// passes of a view decide alike (with light importance the lights' choice is
+// the frame's own estimate, so a view near the threshold may not). Where a
+// point sees on average under
 // kBidirReach of those VPLs and punctual lights (in front of both,
 // unoccluded), each set starts 2 M light paths and 2 M camera paths and
-// keeps 2 M VPLs (M = --vpl-paths): about the cost of the M light paths'
+// keeps 2 M VPLs (M = --vpl-paths; at least --aa): about the cost of the M light paths'
 // own VPLs there, and more of the paths that do reach the view. Measured at
 // the suite's cameras: the corridor 7 %; rooms and rooms-10 43-48 % (by
 // power 6 % and 0 %: there auto turns it on too); the Cornell box, the lit
@@ -39,7 +41,7 @@ inline constexpr uint32_t kViewProbes = 64;
 inline constexpr int kProbePaths = 32;
 inline constexpr float kBidirReach = 0.2f;
 // Past this many light paths a set, auto stays off: bidirectional IR's cost
-// grows as M^2 (every candidate against every camera path). At least --aa.
+// grows as M^2 (every candidate against every camera path).
 inline constexpr int kMaxAutoBidirPaths = 256;
 
 // The share of the probe's VPLs and punctual lights a point of the view
