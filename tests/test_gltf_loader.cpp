@@ -585,6 +585,44 @@ TEST(GltfLoader, TextureHeaderTooLargeIsRejectedBeforeDecoding) {
   expect_scene_error(b.write_gltf(dir, "huge"), {"images[0]", "at most 2^26 pixels"});
 }
 
+// A flat side x side RGB JPEG, at OIIO's default quality.
+std::vector<unsigned char> flat_jpeg(const fs::path& path, int side) {
+  const std::vector<unsigned char> pixels(size_t(side) * size_t(side) * 3, 90);
+  auto out = OIIO::ImageOutput::create(path.string());
+  EXPECT_TRUE(out && out->open(path.string(), OIIO::ImageSpec(side, side, 3, OIIO::TypeDesc::UINT8)));
+  EXPECT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
+  out->close();
+  return read_file_bytes(path.string()).value();
+}
+
+// stb decodes a JPEG whose scan data is cut short as if it were all there: a
+// header that claims 8000 x 8000 over a few hundred bytes would cost seconds
+// and 1.4 GB. The loader refuses more pixels than the file can hold, and
+// still loads a flat image (the most compressible kind a user brings).
+TEST(GltfLoader, TextureClaimingMorePixelsThanItsBytesHoldIsRejectedBeforeDecoding) {
+  const fs::path dir = test_dir();
+  GltfBuilder b = lit_quad();
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", textured_material()))}});
+  b.add("images", {{"uri", "texture.jpg"}});
+  b.add("textures", {{"source", 0}});
+  std::vector<unsigned char> jpeg = flat_jpeg(dir / "texture.jpg", 512);
+  const LoadedScene flat = load_gltf(b.write_gltf(dir, "flat"));
+  ASSERT_EQ(flat.scene.textures.size(), 1u);
+  EXPECT_EQ(flat.scene.textures[0].width, 512);
+  EXPECT_GT(512 * 512 / double(jpeg.size()), 20.0) << "the flat JPEG should be a compressible one";
+
+  jpeg = flat_jpeg(dir / "texture.jpg", 16);
+  for (size_t at = 2; at + 9 <= jpeg.size(); at += 2 + size_t(jpeg[at + 2] << 8 | jpeg[at + 3])) {
+    ASSERT_EQ(jpeg[at], 0xFF);
+    if (jpeg[at + 1] != 0xC0) continue;  // baseline start of frame: height, then width
+    for (size_t i : {at + 5, at + 7}) { jpeg[i] = 8000 >> 8; jpeg[i + 1] = 8000 & 0xFF; }
+    break;
+  }
+  write_bytes(dir / "texture.jpg", jpeg);
+  expect_scene_error(b.write_gltf(dir, "bomb"),
+                     {"images[0]", "8000 x 8000 pixels in", "more than a JPEG file of that size can hold"});
+}
+
 // A scene may name files beside it, never elsewhere: a scene from a peer
 // must not read the machine's other files.
 TEST(GltfLoader, ExternalFileOutsideTheSceneFolderIsRefused) {

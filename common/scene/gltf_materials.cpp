@@ -219,14 +219,30 @@ int MaterialConverter::base_color_texture(const tinygltf::TextureInfo& info, con
   return slot;
 }
 
-// Texels are stored as float4: 2^26 of them are 1 GiB.
+// Texels are stored as float4: 2^26 of them are 1 GiB. A header may also
+// claim more pixels than its file can hold: stb decodes a JPEG whose scans
+// are cut short or missing as if the rest were there, so a 600-byte file
+// that says 8000 x 8000 took 12 s and 1.4 GB before this check. The most
+// pixels a byte can hold:
+// - PNG: 8 (1-bit pixels) times deflate's largest ratio, 1032:1.
+// - JPEG: a scan spends at least one bit on each 8 x 8 block (a 1-bit DC
+//   code, progressive); 1024 is twice that, for slack. Real files stay far
+//   below: a flat 4:2:0 JPEG with the standard tables holds about 64.
 void MaterialConverter::check_image_size(const unsigned char* bytes, size_t size, const std::string& name) {
   constexpr int64_t kMaxTexels = int64_t(1) << 26;
   const std::optional<glm::ivec2> extent = encoded_image_size(bytes, size);
   if (!extent) diag_.fail(name, "neither a PNG nor a JPEG image (or its header is cut short)");
-  if (extent->x <= 0 || extent->y <= 0 || int64_t(extent->x) * extent->y > kMaxTexels)
+  const int64_t texels = int64_t(extent->x) * extent->y;
+  if (extent->x <= 0 || extent->y <= 0 || texels > kMaxTexels)
     diag_.fail(name, std::to_string(extent->x) + " x " + std::to_string(extent->y) +
                          " pixels, expected at least 1 x 1 and at most 2^26 pixels");
+  const bool png = bytes[0] == 0x89;
+  const int64_t per_byte = png ? 8 * 1032 : 1024;
+  if (texels > per_byte * int64_t(size))
+    diag_.fail(name, std::to_string(extent->x) + " x " + std::to_string(extent->y) + " pixels in " +
+                         std::to_string(size) + " bytes: more than a " + (png ? "PNG" : "JPEG") +
+                         " file of that size can hold (" + std::to_string(per_byte) +
+                         " pixels a byte); the file is cut short or broken");
 }
 
 void MaterialConverter::warn_sampler(int sampler) {
