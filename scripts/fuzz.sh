@@ -23,6 +23,8 @@ declare -A options=(
   [scene]="-max_len=1048576 -dict=tests/fuzz/gltf.dict"
 )
 failed=()
+summary="$dir/fuzz-summary.txt"  # scripts/test.sh repeats it at the end of a CI run
+: >"$summary"
 for target in "${targets[@]}"; do
   corpus="$dir/fuzz-corpus/$target" crashes="$dir/fuzz-crashes/$target"
   mkdir -p "$corpus" "$crashes"
@@ -40,6 +42,7 @@ for target in "${targets[@]}"; do
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log")
   coverage=$(grep -o 'cov: [0-9]* ft: [0-9]* corp: [0-9]*/[0-9a-zA-Z]*' "$log" | tail -n 1)
+  {
   printf '%-7s %-6s %s runs in %s s, %s exec/s, %s (corpus %s files)\n' "$target" "$status" "${runs:-?}" \
     "$seconds" "${rate:-?}" "${coverage:-no coverage line}" "$(find "$corpus" -type f | wc -l)"
   if [ "$status" = FAILED ]; then
@@ -49,7 +52,13 @@ for target in "${targets[@]}"; do
     echo "  reproduce: $dir/tests/fuzz/igi-fuzz-$target ${artifact:-CRASH-FILE}"
     echo "  after the fix, keep it: cp ${artifact:-CRASH-FILE} tests/fuzz/regressions/$target/<what-it-was>"
     echo "  (the replay test in igi_tests then runs it in every build)"
+    # The input itself, so that a CI log alone can reproduce it (at most 4 kB shown).
+    if [ -n "$artifact" ] && [ -f "$artifact" ]; then
+      echo "  input, $(stat -c %s "$artifact") bytes, base64 (first 4 kB):"
+      head -c 4096 "$artifact" | base64 -w 100 | sed 's/^/    /'
+    fi
   fi
+  } | tee -a "$summary"
 done
 if [ "${#failed[@]}" -gt 0 ]; then
   echo "fuzz.sh: ${failed[*]} failed" >&2

@@ -56,6 +56,10 @@ stage "fuzzing (60 s a target)" - scripts/fuzz.sh 60
 stage "tsan suite" build-tsan scripts/test-sanitizers.sh tsan "${retry[@]}"
 for t in "${flaky_tests[@]}"; do echo "=== flaky (failed, then passed when run again): $t"; done
 if [ ${#failed[@]} -gt 0 ]; then
+  # CI keeps only the end of the log: repeat what the fuzzer found.
+  if [[ " ${failed[*]} " == *" fuzzing "* ]] && [ -f build-asan/fuzz-summary.txt ]; then
+    sed 's/^/=== fuzzing: /' build-asan/fuzz-summary.txt
+  fi
   for t in "${failed_tests[@]}"; do echo "=== failed test: $t"; done
   echo "=== failed: ${failed[*]}"
   exit 1
