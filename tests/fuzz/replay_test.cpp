@@ -62,7 +62,7 @@ TEST(FuzzReplay, DecodeSeedsCutShortAreRejected) {
 
 TEST(FuzzReplay, SceneSeedsLoadAndPassTheChecks) {
   const std::vector<Seed> seeds = scene_seeds_here();
-  ASSERT_EQ(seeds.size(), 9u);
+  ASSERT_EQ(seeds.size(), 10u);
   for (const Seed& seed : seeds) {
     EXPECT_NO_THROW(load_gltf_memory(seed.bytes, kSceneInputName)) << seed.name;
     EXPECT_EQ(check_scene(seed.bytes), "") << seed.name;

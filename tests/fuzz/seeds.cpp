@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "image/image.h"
 #include "protocol/codec.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_writer.h"
@@ -203,6 +204,18 @@ std::vector<Seed> scene_seeds(const std::string& scratch_dir) {
     seeds.push_back({glb.filename().string(), read_all(glb)});
     seeds.push_back({gltf.filename().string(), embedded_gltf(gltf)});
   }
+  // The textured quad again with a JPEG, so that the fuzzer starts from both
+  // of glTF's image formats (stb's JPEG decoder once took a 600-byte file
+  // that claimed 8000 x 8000 pixels for 12 s and 1.4 GB).
+  Image image(8, 8);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) image.at(x, y) = glm::vec3(float(x) / 8.0f, float(y) / 8.0f, 0.5f);
+  const fs::path jpeg = dir / "texture.jpg";
+  write_image(image, jpeg.string());
+  nlohmann::json doc = nlohmann::json::parse(embedded_gltf(dir / "textured-quad.gltf"));
+  doc["images"][0]["uri"] = "data:image/jpeg;base64," + test::base64(read_all(jpeg));
+  const std::string jpeg_quad = doc.dump();
+  seeds.push_back({"textured-quad-jpeg.gltf", std::vector<uint8_t>(jpeg_quad.begin(), jpeg_quad.end())});
   const std::string animated = test::animated_document(true).dump();  // the camera flies too
   seeds.push_back({"animated.gltf", std::vector<uint8_t>(animated.begin(), animated.end())});
   return seeds;
