@@ -122,6 +122,48 @@ TEST(PhotonGrid, FindsExactlyThePhotonsWithinTheRadius) {
   }
 }
 
+// Light spread thin (a lamp reflected off a ball over a whole ceiling) is a
+// few photons a square metre; at the focused radius each shows as a speckle.
+// The split sends a photon with fewer than K photons within r (itself
+// included) to the wide grid, whatever order the photons come in.
+TEST(PhotonGrid, PhotonsWithFewNeighboursAreSplitOffWhateverTheirOrder) {
+  const float r = 0.01f;
+  std::vector<Photon> photons;
+  for (int i = 0; i < 12; ++i) photons.push_back({.position = {0.5f + 0.001f * float(i), 0.2f, 0.5f}});  // a focus
+  for (int i = 0; i < 5; ++i) photons.push_back({.position = {0.1f * float(i), 0.9f, 0.1f}});  // 10 cm apart
+  photons.push_back({.position = {0.5155f, 0.2f, 0.5f}});  // 4.5 mm past the focus: 7 within r
+  auto x_of = [](const std::vector<Photon>& set) {
+    std::vector<float> x;
+    for (const Photon& p : set) x.push_back(p.position.x);
+    std::sort(x.begin(), x.end());
+    return x;
+  };
+  std::vector<Photon> dense, sparse;
+  split_by_density(photons, r, glm::vec3(0.0f), 8, dense, sparse);
+  EXPECT_EQ(dense.size(), 12u);
+  ASSERT_EQ(sparse.size(), 6u);
+  EXPECT_FLOAT_EQ(x_of(sparse).back(), 0.5155f) << "the photon beside the focus has 7 neighbours, not 8";
+  std::mt19937 rng(2);
+  for (int round = 0; round < 5; ++round) {
+    std::vector<Photon> shuffled = photons, d, s;
+    std::shuffle(shuffled.begin(), shuffled.end(), rng);
+    split_by_density(shuffled, r, glm::vec3(0.0f), 8, d, s);
+    EXPECT_EQ(x_of(d), x_of(dense));
+    EXPECT_EQ(x_of(s), x_of(sparse));
+  }
+  split_by_density(photons, r, glm::vec3(0.0f), 1, dense, sparse);
+  EXPECT_EQ(dense.size(), photons.size()) << "K = 1: every photon counts itself";
+}
+
+// Sparse photons are blurred most at one pass and less as passes add up, as
+// the clamp relaxes, down to the bounced photons' radius.
+TEST(PhotonGrid, TheSparseRadiusRelaxesWithPassesDownToTheBouncedRadius) {
+  EXPECT_FLOAT_EQ(sparse_radius_scale(0), CausticMap::kSparseRadiusScale);
+  for (uint32_t pass = 1; pass < 64; ++pass) EXPECT_LE(sparse_radius_scale(pass), sparse_radius_scale(pass - 1));
+  EXPECT_NEAR(sparse_radius_scale(15), 2.0f, 1e-5f);
+  EXPECT_FLOAT_EQ(sparse_radius_scale(1000000), CausticMap::kBouncedRadiusScale);
+}
+
 // --- The map: a pure function of scene, settings and seed.
 
 const test::Prepared& glass_scene() {

@@ -50,7 +50,7 @@ void VplMethod::begin_frame(const FrameSetup& frame) {
   wavelet_levels_ = wavelet_levels_at_pass(settings_.wavelet_levels, frame.sample_begin);
   setup_rays_ = RayCounts{};
   vpls_ = importance::generate_view_vpls(context_, settings_, frame, setup_rays_);
-  if (caustics_) caustics_->build(frame.seed);
+  if (caustics_) caustics_->build(frame.seed, 0, frame.sample_begin);
   draws_.reset();
   if (settings_.vpl_draws > 0) draws_.emplace(context_.scene, vpls_, frame.seed);
   // A typical demodulated irradiance: one set's flux spread over the scene.

@@ -1,6 +1,7 @@
 #include "photons/caustic_map.h"
 
 #include <algorithm>
+#include <cmath>
 #include <thread>
 
 #include "methods/vpl_contribution.h"
@@ -15,12 +16,29 @@ uint64_t hash_photons(const std::vector<Photon>& photons) {
   return content_hash(photons.data(), photons.size() * sizeof(Photon));
 }
 
+void split_by_density(const std::vector<Photon>& photons, float radius, glm::vec3 origin, int min_neighbours,
+                      std::vector<Photon>& dense, std::vector<Photon>& sparse) {
+  const PhotonGrid all(photons, radius, origin);
+  dense.clear();
+  sparse.clear();
+  for (const Photon& p : photons) {
+    int count = 0;
+    all.for_each_within(p.position, [&](const Photon&, float) { ++count; });
+    (count >= min_neighbours ? dense : sparse).push_back(p);
+  }
+}
+
 CausticMap::CausticMap(const SceneContext& context, const RenderSettings& settings)
     : context_(context), settings_(settings),
       radius_(settings.caustic_radius * context.scene.bounds().diagonal()),
       paths_(uint32_t(settings.caustic_photons)) {}
 
-void CausticMap::build(uint32_t frame_seed, int threads) {
+float sparse_radius_scale(uint32_t pass) {
+  return std::max(CausticMap::kBouncedRadiusScale,
+                  CausticMap::kSparseRadiusScale / std::sqrt(std::sqrt(float(pass) + 1.0f)));
+}
+
+void CausticMap::build(uint32_t frame_seed, int threads, uint32_t pass) {
   if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
   rays_ = RayCounts{};
   const std::vector<Photon> photons = trace_photon_paths(context_, settings_, frame_seed, paths_, threads, rays_);
@@ -28,8 +46,14 @@ void CausticMap::build(uint32_t frame_seed, int threads) {
   std::vector<Photon> focused, bounced;
   for (const Photon& p : photons) (p.bounced ? bounced : focused).push_back(p);
   const glm::vec3 origin = context_.scene.bounds().lower;
-  focused_ = PhotonGrid(focused, radius_, origin);
-  bounced_ = PhotonGrid(bounced, kBouncedRadiusScale * radius_, origin);
+  // Sparse photons of both sets share one wide grid: one lookup, not two.
+  std::vector<Photon> dense_focused, dense_bounced, sparse, sparse_bounced;
+  split_by_density(focused, radius_, origin, kDenseNeighbours, dense_focused, sparse);
+  split_by_density(bounced, kBouncedRadiusScale * radius_, origin, kDenseNeighbours, dense_bounced, sparse_bounced);
+  sparse.insert(sparse.end(), sparse_bounced.begin(), sparse_bounced.end());
+  focused_ = PhotonGrid(dense_focused, radius_, origin);
+  bounced_ = PhotonGrid(dense_bounced, kBouncedRadiusScale * radius_, origin);
+  sparse_ = PhotonGrid(sparse, sparse_radius_scale(pass) * radius_, origin);
 }
 
 glm::vec3 CausticMap::radiance(const GSample& g) const {
@@ -48,7 +72,7 @@ glm::vec3 CausticMap::radiance(const GSample& g) const {
     });
     return sum * (3.0f * kInvPi * inv_r2);
   };
-  const glm::vec3 sum = estimate(focused_) + estimate(bounced_);
+  const glm::vec3 sum = estimate(focused_) + estimate(bounced_) + estimate(sparse_);
   return lambert ? sum * kInvPi : sum;
 }
 
