@@ -142,10 +142,11 @@ void add_filter_and_caustic_options(CLI::App& app, RenderOptions& o) {
                      shown_default(kDefaults.settings.wavelet_levels))
       ->check(integer<int>())->type_name("L");
   app.add_flag_callback("--caustics", [&o] { o.settings.caustics = o.caustics_given = true; },
-                        "ir/igi: add caustics from a photon map (light through mirrors and glass); the default "
-                        "where the scene has mirrors or glass");
+                        "ir/igi: add caustics from a photon map (light through mirrors, glass and GGX sharper "
+                        "than --glossy-threshold); the default where the scene has them");
   app.add_flag_callback("--no-caustics", [&o] { o.settings.caustics = false, o.caustics_given = true; },
-                        "ir/igi: no caustics, even where the scene has mirrors or glass");
+                        "ir/igi: no caustics, even where the scene has mirrors or glass (sharp GGX then holds "
+                        "VPLs)");
   app.add_option_function<int>(
          "--caustic-photons", [&o](int n) { o.settings.caustic_photons = n, o.settings.caustics = o.caustics_given = true; },
          "ir/igi: photon paths shot per frame, >= 1; implies --caustics" +
@@ -226,10 +227,12 @@ void check_render_options(const CLI::App& app, const RenderOptions& o) {
 
 std::optional<std::string> choose_caustics(RenderOptions& o, const Scene& scene) {
   const bool vpl = o.settings.method == MethodKind::InstantRadiosity || o.settings.method == MethodKind::Igi;
-  if (o.caustics_given || !vpl || o.settings.caustics || !photons::has_specular_surfaces(scene)) return std::nullopt;
+  if (o.caustics_given || !vpl || o.settings.caustics ||
+      !photons::has_specular_surfaces(scene, o.settings.glossy_threshold))
+    return std::nullopt;
   o.settings.caustics = true;
   check_memory(o);
-  return "caustics on: the scene has mirrors or glass (" + std::to_string(o.settings.caustic_photons) +
+  return "caustics on: the scene has mirrors, glass or sharp glossy surfaces (" + std::to_string(o.settings.caustic_photons) +
          " photon paths a frame; --no-caustics leaves them out)";
 }
 

@@ -57,7 +57,8 @@ void check_render_options(const CLI::App& app, const RenderOptions& options);
 // The sky the options ask for (scale and rotation applied), or none.
 std::optional<SkyChoice> sky_choice(const RenderOptions& options);
 
-// Caustics by default where the scene has mirrors or glass: for ir and igi,
+// Caustics by default where the scene has mirrors, glass or sharp GGX
+// (photons::has_specular_surfaces): for ir and igi,
 // unless an option chose, turns settings.caustics on when `scene` has such
 // surfaces, and returns a note for the user; nothing otherwise. Throws
 // cli::OptionError when the photon map would not fit in memory.

@@ -19,6 +19,7 @@
 #include "scene/load_scene.h"
 #include "scene/surface.h"
 #include "scene/suite_scenes.h"
+#include "vpl/vpl_generator.h"
 #include "support/image_compare.h"
 #include "support/process.h"
 #include "support/render_fixture.h"
@@ -219,6 +220,34 @@ TEST(CausticMap, PhotonsArriveThroughMirrorsAndGlassOnly) {
     EXPECT_NEAR(glm::length(ph.incident), 1.0f, 1e-4f);
     EXPECT_GT(glm::dot(ph.incident, ph.normal), 0.0f) << "light arrives on the side it is stored for";
   }
+}
+
+// With caustics on, a GGX lobe sharper than the glossy threshold focuses
+// light like a mirror: light paths leave no VPL on it (its VPLs lit their
+// neighbours through a lobe widened to the threshold), and photon paths pass
+// it, so the light it reflects onto the walls arrives as photons.
+TEST(CausticMap, SharpGlossySurfacesHoldNoVplAndPassPhotonsOnWhenCausticsAreOn) {
+  const test::Prepared p(make_glossy_cornell());  // a GGX floor at alpha 0.04
+  RenderSettings s = caustic_settings(4000);
+  auto on_the_floor = [&](const RenderSettings& settings) {
+    const VplSets sets = generate_vpls(p.context(), settings, 7);
+    return std::count_if(sets.vpls.begin(), sets.vpls.end(), [&](const Vpl& v) {
+      return v.kind == VplKind::Surface && p.scene.materials[v.material].type == MaterialType::Conductor;
+    });
+  };
+  RenderSettings off = s;
+  off.caustics = false;
+  EXPECT_GT(on_the_floor(off), 50) << "without caustics the floor holds VPLs with widened lobes";
+  EXPECT_EQ(on_the_floor(s), 0);
+  RayCounts rays;
+  const std::vector<Photon> photons = trace_photon_paths(p.context(), s, 1, 4000, 2, rays);
+  EXPECT_GT(photons.size(), 400u) << "the floor passes the lamp's light on to the walls and ceiling";
+  for (const Photon& ph : photons)
+    EXPECT_FALSE(ph.position.y < 1e-3f && ph.normal.y > 0.99f) << "no photon lies on the floor itself";
+  RenderSettings no_gather = s;
+  no_gather.glossy_threshold = 0.0f;  // VPLs shade every GGX lobe: nothing here focuses light
+  EXPECT_TRUE(trace_photon_paths(p.context(), no_gather, 1, 4000, 2, rays).empty());
+  EXPECT_GT(on_the_floor(no_gather), 50) << "and the floor holds VPLs again";
 }
 
 // --- The caustic against the path tracer.

@@ -15,6 +15,7 @@
 #include <sys/wait.h>
 #include <zmq.hpp>
 
+#include "photons/caustic_settings.h"
 #include "protocol/codec.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_writer.h"
@@ -75,8 +76,9 @@ TEST(Distributed, TwoWorkersMatchTheSingleProcessRenderBitForBit) {
 }
 
 // Anti-aliasing by VPL groups, the glossy gather and its light samples
-// (glossy), the glossy receiver's clamp (glossy-rough) and exact spot light
-// (corner), with compensation: workers give the one-process image.
+// (glossy, where the master turns caustics on for the sharp floor), the
+// glossy receiver's clamp (glossy-rough) and exact spot light (corner), with
+// compensation: workers give the one-process image.
 TEST(Distributed, AntialiasingGlossyGatherAndExactLightsMatchOneProcess) {
   for (const std::string scene : {"glossy", "glossy-rough", "corner"}) {
     const std::string out = test::output_path("dist-quality-" + scene + ".exr");
@@ -89,6 +91,8 @@ TEST(Distributed, AntialiasingGlossyGatherAndExactLightsMatchOneProcess) {
     s.aa_samples = 4;
     s.clamp = 0.05f;
     s.compensation_samples = 2;
+    s.caustics = photons::has_specular_surfaces(p.scene, s.glossy_threshold);
+    EXPECT_EQ(s.caustics, scene == "glossy");
     EXPECT_TRUE(test::images_identical("dist-quality-" + scene, read_image(out), p.render(s, kWidth, kHeight, 1, 1)));
   }
 }

@@ -15,6 +15,7 @@
 #include "master_options.h"
 #include "render_options.h"
 #include "methods/memory_check.h"
+#include "photons/caustic_settings.h"
 #include "protocol/codec.h"
 #include "protocol/messages.h"
 #include "scene/load_scene.h"
@@ -226,10 +227,16 @@ TEST(Options, IgiMasterRefusesTheOptionsItWouldIgnore) {
   EXPECT_EQ(pt.render.samples, 4) << "pt's samples per pixel stay";
 }
 
-// Caustics are on by default where the scene has mirrors or glass (for ir
-// and igi), unless an option chose; igi-render and igi-master say so.
+// Caustics are on by default where the scene has mirrors, glass or GGX
+// sharper than the glossy threshold (for ir and igi), unless an option
+// chose; igi-render and igi-master say so.
 TEST(Options, CausticsAreOnWhereTheSceneHasMirrorsOrGlassUnlessAnOptionChose) {
   const Scene glass = load_scene("glass"), cornell = load_scene("cornell");
+  // The courtyard's ball is GGX at alpha 0.02, glossy-rough's floor at 0.3.
+  EXPECT_TRUE(photons::has_specular_surfaces(load_scene("courtyard"), 0.2f));
+  EXPECT_FALSE(photons::has_specular_surfaces(load_scene("courtyard"), 0.0f)) << "0: VPLs shade every GGX lobe";
+  EXPECT_FALSE(photons::has_specular_surfaces(load_scene("glossy-rough"), 0.2f));
+  EXPECT_TRUE(photons::has_specular_surfaces(load_scene("glossy-rough"), 0.5f));
   struct Case {
     std::vector<std::string> args;
     const Scene* scene;
@@ -257,7 +264,8 @@ TEST(Options, CausticsAreOnWhereTheSceneHasMirrorsOrGlassUnlessAnOptionChose) {
                                     std::string(IGI_MASTER_BINARY) + " --workers 1 --worker-threads 1 --frames 1"}) {
     const auto r = test::run(program + " --scene glass --size 16x16 -o " + out);
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    EXPECT_NE(r.output.find("caustics on: the scene has mirrors or glass"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("caustics on: the scene has mirrors, glass or sharp glossy surfaces"), std::string::npos)
+        << r.output;
   }
 }
 

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "material/bsdf.h"
+
 namespace igi::photons {
 
 std::string memory_error(const RenderSettings& s, uint64_t memory_bytes) {
@@ -16,9 +18,9 @@ std::string memory_error(const RenderSettings& s, uint64_t memory_bytes) {
   return text;
 }
 
-bool has_specular_surfaces(const Scene& scene) {
+bool has_specular_surfaces(const Scene& scene, float glossy_threshold) {
   for (uint32_t m : scene.triangle_material)
-    if (scene.materials[m].is_specular()) return true;
+    if (focuses_light(scene.materials[m], glossy_threshold)) return true;
   return false;
 }
 

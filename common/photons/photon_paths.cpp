@@ -24,7 +24,7 @@ void trace_path(const SceneContext& ctx, const RenderSettings& settings, uint32_
   rays.secondary += uint64_t(walk_light_path(
       ctx.accel, ctx.scene, start, settings.light_depth, path, seed, BounceDraws::OnePair,
       [&](const LightPathVertex& v) {
-        const bool specular = v.sp.material->is_specular();
+        const bool specular = focuses_light(*v.sp.material, settings.glossy_threshold);
         if (!specular) {
           if (after_specular && receives_vpls(*v.sp.material, settings.glossy_threshold)) {
             out.push_back(Photon{v.sp.position, v.wo, v.sp.geometric_normal_facing(v.wo), v.flux * inv_paths,

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "material/bsdf.h"
 #include "sampling/content_hash.h"
 #include "sampling/hash.h"
 #include "sampling/sobol.h"
@@ -35,9 +36,12 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
   }
   walk_light_path(ctx.accel, ctx.scene, start, settings.light_depth, path, seed, BounceDraws::TwoSingles,
                   [&](const LightPathVertex& v) {
-                    // Mirrors and glass get no VPL; the path carries their light on. VPLs on sharp GGX
-                    // surfaces radiate through a widened lobe (VplShading::vpl_bsdf).
-                    if (v.sp.material->is_specular()) {
+                    // Mirrors and glass get no VPL; the path carries their light on. Nor, with caustics
+                    // on, do sharp GGX surfaces: their light reaches diffuse surfaces as caustic photons
+                    // (material/bsdf.h: focuses_light). Without caustics, VPLs on them radiate through a
+                    // widened lobe (VplShading::vpl_bsdf).
+                    const Material& m = *v.sp.material;
+                    if (settings.caustics ? focuses_light(m, settings.glossy_threshold) : m.is_specular()) {
                       previous = {LightVertex::From::Specular, 0};
                       return true;
                     }

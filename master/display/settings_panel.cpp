@@ -217,7 +217,7 @@ void SettingsPanel::draw_lighting(RenderSettings& s) {
     tip("--bidir-camera-paths", "camera paths per set, 0 = as many as light paths");
   }
   ImGui::Checkbox("caustic photons", &s.caustics);
-  tip("--caustics", "adds caustics from a photon map (light through mirrors and glass)");
+  tip("--caustics", "adds caustics from a photon map (light through mirrors, glass and sharp GGX)");
   if (s.caustics) {
     ImGui::DragInt("photon paths", &s.caustic_photons, 100.0f, 1, 1 << 22, "%d", kBound);
     tip("--caustic-photons", "photon paths shot per frame");

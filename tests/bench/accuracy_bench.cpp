@@ -305,7 +305,7 @@ void sweep_vpl(const Prepared& p, const std::string& name, const Options& o, con
     series(MethodKind::InstantRadiosity, true, kDefaultClamp, 0, 1);
   }
   // The caustic photon map where there are mirrors or glass to make caustics.
-  if (!photons::has_specular_surfaces(p.scene) || !o.runs("caustics")) return;
+  if (!photons::has_specular_surfaces(p.scene, RenderSettings{}.glossy_threshold) || !o.runs("caustics")) return;
   for (int photons : o.quick ? std::vector<int>{kCausticPhotons.front()} : kCausticPhotons)
     for (float clamp : {0.0f, kDefaultClamp}) {
       RenderSettings s;
