@@ -65,7 +65,7 @@ inline bool receives_vpls(const Material& m, float glossy_threshold) {
 // lobe lit its neighbours through a lobe widened to the threshold: a few
 // bright squares on the ground beside the courtyard's metal ball, dark
 // streaks at the foot of the glossy scene's walls, and an image that
-// converged to the widened lobe (glossy, 16 passes: FLIP 0.070 by VPLs,
+// converged to the widened lobe (glossy at 64 passes: FLIP 0.069 by VPLs,
 // 0.048 by photons; tests/bench/RESULTS.md, "Sharp glossy light as caustics").
 inline bool focuses_light(const Material& m, float glossy_threshold) {
   return m.is_specular() || is_gathered_glossy(m, glossy_threshold);
