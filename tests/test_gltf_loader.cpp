@@ -367,6 +367,15 @@ json textured_material() {
           {"normalTexture", {{"index", 0}}}};
 }
 
+// The lit quad with a textured material whose image is `uri`.
+GltfBuilder textured_quad(const std::string& uri) {
+  GltfBuilder b = lit_quad();
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", textured_material()))}});
+  b.add("images", {{"uri", uri}});
+  b.add("textures", {{"source", 0}});
+  return b;
+}
+
 TEST(GltfLoader, BaseColorTextureFromFileIsLinear) {
   const fs::path dir = test_dir();
   GltfBuilder b = lit_quad();
@@ -551,19 +560,13 @@ TEST(GltfLoader, SceneWithoutGeometryIsAnError) {
 // A texture the file asks for and the loader cannot read is broken input: an
 // error, not a silent fallback to baseColorFactor.
 TEST(GltfLoader, MissingTextureFileIsAnError) {
-  GltfBuilder b = lit_quad();
-  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", textured_material()))}});
-  b.add("images", {{"uri", "absent.png"}});
-  b.add("textures", {{"source", 0}});
+  GltfBuilder b = textured_quad("absent.png");
   expect_scene_error(b.write_gltf(test_dir(), "textured"), {"images[0]", "'absent.png'", "missing"});
 }
 
 TEST(GltfLoader, UndecodableTextureIsAnError) {
   const fs::path dir = test_dir();
-  GltfBuilder b = lit_quad();
-  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", textured_material()))}});
-  b.add("images", {{"uri", "texture.png"}});
-  b.add("textures", {{"source", 0}});
+  GltfBuilder b = textured_quad("texture.png");
   write_bytes(dir / "texture.png", {'n', 'o', 't', ' ', 'a', 'n', ' ', 'i', 'm', 'a', 'g', 'e'});
   expect_scene_error(b.write_gltf(dir, "garbage"), {"images[0]", "'texture.png'", "neither a PNG nor a JPEG"});
   // A PNG header over broken data.
@@ -578,10 +581,7 @@ TEST(GltfLoader, TextureHeaderTooLargeIsRejectedBeforeDecoding) {
   std::vector<unsigned char> png = read_file_bytes(write_png(dir / "texture.png").string()).value();
   for (int at : {16, 20}) png[size_t(at)] = 0x7f;  // IHDR width and height: about 2^31
   write_bytes(dir / "texture.png", png);
-  GltfBuilder b = lit_quad();
-  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", textured_material()))}});
-  b.add("images", {{"uri", "texture.png"}});
-  b.add("textures", {{"source", 0}});
+  GltfBuilder b = textured_quad("texture.png");
   expect_scene_error(b.write_gltf(dir, "huge"), {"images[0]", "at most 2^26 pixels"});
 }
 
@@ -601,10 +601,7 @@ std::vector<unsigned char> flat_jpeg(const fs::path& path, int side) {
 // still loads a flat image (the most compressible kind a user brings).
 TEST(GltfLoader, TextureClaimingMorePixelsThanItsBytesHoldIsRejectedBeforeDecoding) {
   const fs::path dir = test_dir();
-  GltfBuilder b = lit_quad();
-  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", textured_material()))}});
-  b.add("images", {{"uri", "texture.jpg"}});
-  b.add("textures", {{"source", 0}});
+  GltfBuilder b = textured_quad("texture.jpg");
   std::vector<unsigned char> jpeg = flat_jpeg(dir / "texture.jpg", 512);
   const LoadedScene flat = load_gltf(b.write_gltf(dir, "flat"));
   ASSERT_EQ(flat.scene.textures.size(), 1u);

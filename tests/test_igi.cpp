@@ -31,7 +31,8 @@ struct TileCase {
 
 // Every option that changes how a pixel is shaded, on a scene where it acts:
 // anti-aliasing, the glossy gather (glossy), exact spot light (corner),
-// bias compensation, glass branches and the caustic photon map (glass), light
+// bias compensation, glass branches and the caustic photon map (glass; on
+// glossy, the sharp floor's light as photons and sparse photons gathered wide), light
 // importance (rooms), bidirectional IR (corridor, by option and by view) and the sky's directional
 // VPLs and misses (courtyard, with the glossy gather on its metal ball), and
 // VPLs drawn from a light tree (--vpl-draws) with all of them.
@@ -70,6 +71,7 @@ std::vector<TileCase> tile_cases() {
           {"ir_aa_glossy_compensation", "glossy", ir_all},
           {"igi_aa_spot", "corner", all},
           {"igi_aa_glass_caustics", "glass", caustics},
+          {"igi_aa_glossy_caustics", "glossy", caustics},
           {"lightcuts", "cornell", vpl_settings(MethodKind::Lightcuts, 4, 0.05f)},
           {"igi_importance", "rooms", importance},
           {"igi_bidir", "corridor", bidir},
