@@ -56,15 +56,13 @@ class CausticMap {
 
   // `threads` trace the paths (0: all hardware threads); the map does not
   // depend on it. `pass`: the progressive pass (0-based), which sets the
-  // sparse photons' radius (sparse_radius).
+  // sparse photons' radius (sparse_radius_scale).
   void build(uint32_t frame_seed, int threads = 0, uint32_t pass = 0);
   glm::vec3 radiance(const GSample& g) const;
 
   uint64_t hash() const { return hash_; }
   uint32_t paths() const { return paths_; }
-  size_t photon_count() const {
-    return focused_.size() + bounced_.size() + sparse_.size();
-  }
+  size_t photon_count() const { return focused_.size() + bounced_.size() + sparse_.size(); }
   float radius() const { return radius_; }
   // Rays traced by the last build().
   const RayCounts& rays() const { return rays_; }
@@ -74,7 +72,7 @@ class CausticMap {
   RenderSettings settings_;
   float radius_;      // absolute, in scene units
   uint32_t paths_;
-  PhotonGrid focused_, bounced_;  // Photon::bounced 0 and 1, radius r and kBouncedRadiusScale r
+  PhotonGrid focused_, bounced_;  // dense photons, Photon::bounced 0 and 1: radius r and kBouncedRadiusScale r
   PhotonGrid sparse_;  // the sparse photons of both, radius sparse_radius_scale(pass) r
   uint64_t hash_ = 0;
   RayCounts rays_;
