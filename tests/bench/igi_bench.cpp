@@ -1,10 +1,14 @@
 // igi-bench: throughput of the IGI renderer against raw Embree on the same
 // rays, frames per second, border overhead. Prints figures; asserts nothing.
 //
-//   igi-bench [--size WxH] [--frames F] [--vpls-per-set V] [--scenes a,b]
+//   igi-bench [--size WxH] [--frames F] [--vpls-per-set V] [--scenes a,b] [--tile T]
 //
 // Also: the same frame with 4x anti-aliasing by VPL groups (same VPLs), and
 // the cost of progress reporting on a multi-pass render (render_offline).
+// Tiles are T x T pixels, igi-render's and igi-master's default (64) unless
+// given. The AA cost is also the median of per-pair ratios over F pairs of
+// frames rendered alternately (plain, AA, plain, ...), which a load that
+// comes and goes sways less than two medians taken one after the other.
 //
 // Every figure is the median over F frames. "cpu" columns divide by the CPU
 // time the process actually received (the machine is shared), "wall" by
@@ -108,7 +112,19 @@ int paths_for_vpls(const SceneContext& ctx, RenderSettings s, int target) {
   return std::max(1, int(std::lround(target / per_path)));
 }
 
-void bench_scene(const std::string& name, int width, int height, int frames, int vpls_per_set) {
+// Median over `frames` pairs of the 2-thread frame time of b over a, the two
+// rendered alternately.
+double paired_ratio(const Method& a, const Method& b, const FrameSetup& frame, int border, int tile, int frames) {
+  std::vector<double> ratios;
+  for (int f = 0; f < frames; ++f) {
+    const Timing ta = time_frames(a, frame, border, 2, tile, 1);
+    const Timing tb = time_frames(b, frame, border, 2, tile, 1);
+    ratios.push_back(tb.wall / ta.wall);
+  }
+  return median(ratios);
+}
+
+void bench_scene(const std::string& name, int width, int height, int frames, int vpls_per_set, int tile) {
   Scene scene = load_scene(name);
   Clock build_start = Clock::now();
   Accel accel(scene);
@@ -129,16 +145,16 @@ void bench_scene(const std::string& name, int width, int height, int frames, int
   frame.seed = 1;
   method.begin_frame(frame);
   const int border = tile_border(settings);
-  std::printf("\n== %s: %zu triangles (BVH build %.2f s), %dx%d, M=%d paths/set -> %.1f VPLs/set, tiles 40x40 border %d\n",
+  std::printf("\n== %s: %zu triangles (BVH build %.2f s), %dx%d, M=%d paths/set -> %.1f VPLs/set, tiles %dx%d border %d\n",
               name.c_str(), scene.triangles.size(), build, width, height, settings.paths_per_set,
-              double(method.vpls().vpls.size()) / method.vpls().set_count(), border);
+              double(method.vpls().vpls.size()) / method.vpls().set_count(), tile, tile, border);
 
   RayLog log;
   method.record_rays(&log);
   RayCounts counted;
   FrameOptions one;
   one.threads = 1;
-  one.tile_size = 40;
+  one.tile_size = tile;
   render_frame(method, frame, border, one, counted);
   method.record_rays(nullptr);
   Timing raw = time_replay(accel, log, frames);
@@ -150,8 +166,8 @@ void bench_scene(const std::string& name, int width, int height, int frames, int
     std::printf("%-26s %9.1f %9.2f %10.2f %10.2f %8.1f\n", label, 1e3 * t.wall, 1.0 / t.wall, mr / t.wall,
                 mr / t.cpu, double(t.rays.total()) / (width * height));
   };
-  Timing t1 = time_frames(method, frame, border, 1, 40, frames);
-  Timing t2 = time_frames(method, frame, border, 2, 40, frames);
+  Timing t1 = time_frames(method, frame, border, 1, tile, frames);
+  Timing t2 = time_frames(method, frame, border, 2, tile, frames);
   row("igi, 1 thread", t1);
   row("igi, 2 threads", t2);
   row("raw Embree, same rays, 1t", raw);
@@ -164,8 +180,8 @@ void bench_scene(const std::string& name, int width, int height, int frames, int
               coherent.rays.total() * 1e-6 / coherent.cpu, raw.rays.total() * 1e-6 / raw.cpu, raw.cpu / coherent.cpu);
 
   // Border overhead: the same frame without the filter border.
-  Timing nb = time_frames(method, frame, 0, 1, 40, frames);
-  std::printf("border overhead (40x40 tiles): %+.1f %% primary rays, %+.1f %% frame time (1 thread)\n",
+  Timing nb = time_frames(method, frame, 0, 1, tile, frames);
+  std::printf("border overhead (%dx%d tiles): %+.1f %% primary rays, %+.1f %% frame time (1 thread)\n", tile, tile,
               100.0 * (double(t1.rays.primary) / nb.rays.primary - 1.0), 100.0 * (t1.cpu / nb.cpu - 1.0));
 
   // Anti-aliasing by VPL groups: the same light paths split into 4 groups.
@@ -174,12 +190,14 @@ void bench_scene(const std::string& name, int width, int height, int frames, int
   aa.paths_per_set = std::max(settings.paths_per_set, aa.aa_samples);
   VplMethod aa_method(ctx, aa);
   aa_method.begin_frame(frame);
-  Timing a1 = time_frames(aa_method, frame, border, 1, 40, frames);
-  Timing a2 = time_frames(aa_method, frame, border, 2, 40, frames);
+  Timing a1 = time_frames(aa_method, frame, border, 1, tile, frames);
+  Timing a2 = time_frames(aa_method, frame, border, 2, tile, frames);
   row("igi 4x AA, 1 thread", a1);
   row("igi 4x AA, 2 threads", a2);
   std::printf("4x AA costs %.2fx the frame time of 1x (2 threads), %.2fx the rays\n", a2.wall / t2.wall,
               double(a2.rays.total()) / double(t2.rays.total()));
+  std::printf("4x AA costs %.2fx the frame time of 1x (2 threads, median of %d frame pairs rendered alternately)\n",
+              paired_ratio(method, aa_method, frame, border, tile, frames), frames);
 }
 
 // A multi-pass render with and without a progress callback (igi-render's
@@ -210,13 +228,14 @@ void bench_progress(const std::string& name, int width, int height, int frames) 
 }  // namespace igi
 
 int main(int argc, char** argv) {
-  int width = 640, height = 480, frames = 5, vpls = 16;
+  int width = 640, height = 480, frames = 5, vpls = 16, tile = 64;
   std::vector<std::string> scenes = {"cornell", "cornell-blob"};
   for (int i = 1; i + 1 < argc; i += 2) {
     std::string a = argv[i], v = argv[i + 1];
     if (a == "--size") std::sscanf(v.c_str(), "%dx%d", &width, &height);
     else if (a == "--frames") frames = std::stoi(v);
     else if (a == "--vpls-per-set") vpls = std::stoi(v);
+    else if (a == "--tile") tile = std::stoi(v);
     else if (a == "--scenes") {
       scenes.clear();
       for (size_t p = 0, q; p <= v.size(); p = q + 1) {
@@ -227,7 +246,7 @@ int main(int argc, char** argv) {
     }
   }
   igi::enable_flush_to_zero();
-  for (const std::string& s : scenes) igi::bench_scene(s, width, height, frames, vpls);
+  for (const std::string& s : scenes) igi::bench_scene(s, width, height, frames, vpls, tile);
   igi::bench_progress("cornell", width, height, frames);
   return 0;
 }
