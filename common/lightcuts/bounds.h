@@ -33,32 +33,41 @@ inline float distance2(const Box& b) {
   return glm::dot(d, d);
 }
 
+// The frame (t, b, n) around a unit axis n, with the absolute values of its
+// vectors: what max_cos asks of a frame at every cluster, computed once.
+struct BoundFrame : Onb {
+  glm::vec3 abs_t, abs_b, abs_n;
+  explicit BoundFrame(glm::vec3 axis) : Onb(axis), abs_t(glm::abs(t)), abs_b(glm::abs(b)), abs_n(glm::abs(n)) {}
+};
+
 // max over v in B of cos(v, axis), axis a unit vector (given as the frame
 // around it, so callers can keep frames they use often); 1 when B holds the
 // origin. The box is taken into the axis' frame (z = axis) as the box around
 // its rotated corners; there, for fixed (x, y), z / |v| grows with z, so
 //   cos <= z_max / sqrt(min x^2 + min y^2 + z_max^2)   (z_max > 0)
 //   cos <= z_max / sqrt(max x^2 + max y^2 + z_max^2)   (z_max <= 0).
-inline float max_cos(const Onb& f, const Box& b) {
+inline float max_cos(const BoundFrame& f, const Box& b) {
   const glm::vec3 c = 0.5f * (b.lo + b.hi), e = 0.5f * (b.hi - b.lo);
   const glm::vec3 lc = f.to_local(c);
-  const glm::vec3 le(glm::dot(glm::abs(f.t), e), glm::dot(glm::abs(f.b), e), glm::dot(glm::abs(f.n), e));
+  const glm::vec3 le(glm::dot(f.abs_t, e), glm::dot(f.abs_b, e), glm::dot(f.abs_n, e));
   const glm::vec3 lo = lc - le, hi = lc + le;
-  auto min_sq = [](float a, float b) { return a > 0.0f ? a * a : b < 0.0f ? b * b : 0.0f; };
-  auto max_sq = [](float a, float b) { return std::max(a * a, b * b); };
+  // Written without branches (selects): which case holds depends on the
+  // cluster, and mispredicted branches cost a cut more than both cases do.
+  const float min_x = std::max(std::max(lo.x, -hi.x), 0.0f), min_y = std::max(std::max(lo.y, -hi.y), 0.0f);
+  const float max_x = std::max(lo.x * lo.x, hi.x * hi.x), max_y = std::max(lo.y * lo.y, hi.y * hi.y);
   const float z = hi.z;
-  if (z > 0.0f) {
-    const float xy = min_sq(lo.x, hi.x) + min_sq(lo.y, hi.y);
-    return xy > 0.0f ? std::min(1.0f, z / std::sqrt(xy + z * z)) : 1.0f;
-  }
-  const float xy = max_sq(lo.x, hi.x) + max_sq(lo.y, hi.y);
-  return xy + z * z > 0.0f ? z / std::sqrt(xy + z * z) : 1.0f;
+  const bool above = z > 0.0f;
+  const float xy = above ? min_x * min_x + min_y * min_y : max_x + max_y;
+  const float r2 = xy + z * z;
+  const float cos = z / std::sqrt(r2);
+  // Above: 1 when B meets the axis (xy = 0); below: 1 only when B holds the origin (r2 = 0).
+  return above ? (xy > 0.0f ? std::min(1.0f, cos) : 1.0f) : (r2 > 0.0f ? cos : 1.0f);
 }
-inline float max_cos(glm::vec3 axis, const Box& b) { return max_cos(Onb(axis), b); }
+inline float max_cos(glm::vec3 axis, const Box& b) { return max_cos(BoundFrame(axis), b); }
 
 // A cone of unit directions: every member within half-angle theta of axis.
 struct Cone {
-  Onb frame{glm::vec3(0.0f, 0.0f, 1.0f)};  // around the axis, frame.n
+  BoundFrame frame{glm::vec3(0.0f, 0.0f, 1.0f)};  // around the axis, frame.n
   float cos_theta = 1.0f, sin_theta = 0.0f;  // theta >= pi: cos -1, sin 0
   glm::vec3 axis() const { return frame.n; }
 };
@@ -67,14 +76,13 @@ struct Cone {
 // between v and the axis, less theta.
 inline float max_cos(const Cone& cone, const Box& b) {
   const float c = max_cos(cone.frame, b);
-  if (c >= cone.cos_theta) return 1.0f;
   const float s = std::sqrt(std::max(0.0f, 1.0f - c * c));
-  return std::max(0.0f, std::min(1.0f, c * cone.cos_theta + s * cone.sin_theta));
+  return c >= cone.cos_theta ? 1.0f : std::max(0.0f, std::min(1.0f, c * cone.cos_theta + s * cone.sin_theta));
 }
 
 // Whether some v in B lies within angle (theta + spread) of the axis, given
 // cos_reach = cos(theta + spread) (-1 when that reaches pi).
-inline bool within_reach(const Onb& axis, float cos_reach, const Box& b) {
+inline bool within_reach(const BoundFrame& axis, float cos_reach, const Box& b) {
   return cos_reach <= -1.0f || max_cos(axis, b) >= cos_reach;
 }
 

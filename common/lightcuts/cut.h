@@ -70,18 +70,23 @@ class CutEngine {
     uint32_t point = 0, leaf = 0;    // its representatives
     Visibility visibility = Visibility::Unknown;
     bool alive = true;
-    // Per reconstruction sample: what it says about the light node, and
-    // whether the node lies at or below its cut (then children inherit that).
-    SampleSays says[kMaxSamples] = {};
-    bool covered[kMaxSamples] = {};
     glm::vec3 estimate() const { return unit * scale; }
   };
+  // Per reconstruction sample: what it says about an entry's light node, and
+  // whether the node lies at or below its cut (then children inherit that).
+  // Kept beside the entries, and only for reconstruction cuts.
+  struct SampleWords {
+    SampleSays says[kMaxSamples] = {};
+    bool covered[kMaxSamples] = {};
+  };
 
-  Entry make_entry(const GatherTree& gather, uint32_t g, uint32_t l, const Entry* parent, CutStats& stats,
-                   RayCounts& rays) const;
-  void read_samples(Entry& e, const Entry* parent) const;
-  bool visible(const Entry& e, const Ray& shadow, CutStats& stats, RayCounts& rays) const;
-  void add(const Entry& e);
+  // `parent` is the entry being refined and `parent_words` its sample words
+  // (null without samples); `words` receives the new entry's.
+  Entry make_entry(const GatherTree& gather, uint32_t g, uint32_t l, const Entry* parent,
+                   const SampleWords* parent_words, SampleWords& words, CutStats& stats, RayCounts& rays) const;
+  void read_samples(uint32_t light, const SampleWords* parent_words, SampleWords& words) const;
+  bool visible(const SampleWords& words, const Ray& shadow, CutStats& stats, RayCounts& rays) const;
+  void add(const Entry& e, const SampleWords& words);
   void refine(const GatherTree& gather, CutStats& stats, RayCounts& rays);
   bool split_light(const GatherTree& gather, const Entry& e) const;
 
@@ -91,6 +96,7 @@ class CutEngine {
   CutSettings settings_;
   // Scratch of the current cut.
   std::vector<Entry> entries_;
+  std::vector<SampleWords> words_;  // per entry, with samples only
   struct HeapItem {
     float error;
     uint32_t entry;

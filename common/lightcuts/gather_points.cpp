@@ -42,9 +42,9 @@ GatherPoint gather_point(const GSample& chain) {
   g.shading_normal = sp.shading_normal_facing(g.wo);
   g.geometric_normal = sp.geometric_normal_facing(g.wo);
   g.cos_o = glm::dot(g.wo, g.shading_normal);
-  g.shading_frame = Onb(g.shading_normal);
-  g.geometric_frame = Onb(g.geometric_normal);
-  g.back_frame = Onb(-g.wo);
+  g.shading_frame = BoundFrame(g.shading_normal);
+  g.geometric_frame = BoundFrame(g.geometric_normal);
+  g.back_frame = BoundFrame(-g.wo);
   const float cos_tilt = std::min(1.0f, glm::dot(g.shading_normal, g.geometric_normal));
   g.tilt_sin = g.shading_normal == g.geometric_normal ? 0.0f : std::sqrt(std::max(0.0f, 1.0f - cos_tilt * cos_tilt)) * 1.0001f;
   return g;

@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include "lightcuts/bounds.h"
 #include "methods/gbuffer.h"
 #include "render/frame.h"
 #include "scene/accel.h"
@@ -34,8 +35,8 @@ struct GatherPoint {
   float cos_o = 0.0f;           // dot(wo, shading_normal)
   // Frames around the shading normal, the geometric normal and -wo: the bounds (lightcuts/cluster_bound.h) ask
   // for cosines against these at every cluster.
-  Onb shading_frame{glm::vec3(0.0f, 0.0f, 1.0f)}, geometric_frame{glm::vec3(0.0f, 0.0f, 1.0f)};
-  Onb back_frame{glm::vec3(0.0f, 0.0f, 1.0f)};
+  BoundFrame shading_frame{glm::vec3(0.0f, 0.0f, 1.0f)}, geometric_frame{glm::vec3(0.0f, 0.0f, 1.0f)};
+  BoundFrame back_frame{glm::vec3(0.0f, 0.0f, 1.0f)};
   float tilt_sin = 0.0f;        // sin of the angle between shading and geometric normal
   bool valid() const { return depth < INFINITY; }
 };

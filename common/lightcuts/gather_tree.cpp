@@ -74,7 +74,7 @@ class Builder {
       node.cone.sin_theta = 0.0f;
       return;
     }
-    node.cone.frame = Onb(sum / length);
+    node.cone.frame = BoundFrame(sum / length);
     float cos_min = 1.0f;
     for (uint32_t i = begin; i < end; ++i)
       cos_min = std::min(cos_min, glm::dot(node.cone.axis(), tree_.points[order_[i]].shading_normal));

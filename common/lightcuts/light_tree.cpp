@@ -208,7 +208,7 @@ void fill_cones(LightTree& tree, const std::vector<Range>& ranges, size_t first,
     const float length = glm::length(sum);
     float theta = kPi;
     if (length > 1e-6f) {
-      node.cone.frame = Onb(sum / length);
+      node.cone.frame = BoundFrame(sum / length);
       float cos_min = 1.0f;
       for (uint32_t i = ranges[n].begin; i < ranges[n].end; ++i)
         cos_min = std::min(cos_min, glm::dot(node.cone.axis(), tree.leaves[i].normal));
@@ -231,6 +231,7 @@ void choose_representatives(LightTree& tree, uint32_t seed) {
     const float u = float(hash(seed, uint32_t(n)) >> 8) * 0x1p-24f;
     node.representative = u * node.weight < l.weight ? l.representative : r.representative;
   }
+  for (LightNode& node : tree.nodes) node.weight_over_representative = node.weight / tree.leaves[node.representative].weight;
 }
 
 }  // namespace

@@ -36,6 +36,7 @@ struct LightNode {
   Cone cone;                  // of the leaves' normals (Cosine, Glossy, spots)
   float cos_reach = -1.0f;    // cos(theta + spread), -1 beyond pi: step emitters (Glossy, Punctual)
   float weight = 0.0f;        // W: sum of the leaves' weights
+  float weight_over_representative = 0.0f;  // W / w of the representative leaf: the cluster's scale
   uint32_t representative = 0;  // a leaf index
   uint32_t right = 0;         // 0 for a leaf (a root is never a right child)
   uint32_t end = 0;           // one past the last node of the subtree
