@@ -201,6 +201,10 @@ int run_all(const Options& o) {
       s.paths_per_set = paths_for(p, target);
       s.method = MethodKind::Lightcuts;
       s.clamp = o.clamp;
+      // One sample a pixel, nothing added: lightcuts has neither anti-aliasing
+      // nor compensation, and ir must estimate the same sum to be compared.
+      s.aa_samples = 1;
+      s.compensation_samples = 0;
       const Run plain = run(p, s, o, o.frames);
       const size_t vpls = generate_vpls(p.context(), s, 1).vpls.size();
       Run ir_run;
