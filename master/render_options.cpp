@@ -168,6 +168,10 @@ void add_lightcuts_and_importance_options(CLI::App& app, RenderSettings& s) {
   app.add_option("--lightcuts-spacing", s.lightcuts_spacing,
                  "lightcuts: reconstruction cuts, full cuts every S pixels only, 0 = off" + shown_default(kDefaults.settings.lightcuts_spacing))
       ->check(integer<int>())->type_name("S");
+  app.add_option("--lightcuts-block", s.lightcuts_block,
+                 "lightcuts: one cut shared by the B x B pixels of a block on one diffuse surface, 0..8, 0 or 1 = a cut "
+                 "per pixel; plain cuts only" + shown_default(kDefaults.settings.lightcuts_block))
+      ->check(integer<int>())->type_name("B");
   app.add_option("--lightcuts-samples", s.lightcuts_samples,
                  "lightcuts: K = 1, 4, 9 ... 64 gather points per pixel (multidimensional)" + shown_default(kDefaults.settings.lightcuts_samples))
       ->check(integer<int>())->type_name("K");

@@ -113,6 +113,7 @@ void write(Writer& w, const RenderSettings& s) {
   w.f32(s.importance_floor);
   w.i32(s.bidir_vpls);
   w.i32(s.bidir_camera_paths);
+  w.i32(s.lightcuts_block);
 }
 
 // RenderSettings in write()'s order, then the one check of them all
@@ -146,6 +147,7 @@ void read(Reader& r, RenderSettings& s) {
   s.importance_floor = r.f32("settings.importance_floor");
   s.bidir_vpls = r.i32("settings.bidir_vpls");
   s.bidir_camera_paths = r.i32("settings.bidir_camera_paths");
+  s.lightcuts_block = r.i32("settings.lightcuts_block");
   if (!r.ok()) return;
   if (auto error = check_settings(s)) r.fail(("settings." + error->field).c_str(), error->message);
 }

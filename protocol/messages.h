@@ -40,7 +40,8 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // pass the clamp relaxes with (methods/clamp.h). 10: settings carry the wavelet
 // filter's levels. 11: Welcome carries the scene's environment (a constant sky, or a map
 // that workers ask for by hash as they ask for the scene). 12: settings carry vpl_draws.
-inline constexpr uint16_t kVersion = 12;
+// 13: settings carry lightcuts_block.
+inline constexpr uint16_t kVersion = 13;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;

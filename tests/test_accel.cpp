@@ -1,8 +1,11 @@
 // The BVH (scene/accel.h) when Embree cannot do what is asked: every failure
 // is an exception naming what could not be built, never a write through the
 // null buffer Embree returns; a limit Embree stays within changes no hit.
+#include <cmath>
+#include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -45,6 +48,46 @@ TEST(Accel, ALimitEmbreeStaysWithinChangesNoHit) {
     EXPECT_EQ(a.triangle, b.triangle);
     EXPECT_EQ(a.t, b.t);
   }
+}
+
+// Shadow rays in a packet (lightcuts' block cuts) answer as one at a time:
+// rays from points over the Cornell box's floor to points near its ceiling,
+// some through the tall block, in packets of 1 to 16 (lanes left unused).
+TEST(Accel, ShadowRaysInAPacketAnswerAsOneAtATime) {
+  const Scene scene = make_builtin_scene("cornell");
+  enable_flush_to_zero();
+  const Accel accel(scene);
+  const Bounds box = scene.bounds();
+  const glm::vec3 extent = box.upper - box.lower;
+  std::vector<Ray> rays;
+  for (int i = 0; i < 16 * 9; ++i) {
+    // A fixed scatter over the floor and under the ceiling (golden-ratio steps).
+    const float u = std::fmod(0.618034f * float(i), 1.0f), v = std::fmod(0.754878f * float(i), 1.0f);
+    const glm::vec3 from = box.lower + extent * glm::vec3(0.05f + 0.9f * u, 0.02f, 0.05f + 0.9f * v);
+    const glm::vec3 to = box.lower + extent * glm::vec3(0.05f + 0.9f * v, 0.95f, 0.05f + 0.9f * u);
+    Ray r;
+    r.origin = from;
+    r.direction = glm::normalize(to - from);
+    r.tnear = 1e-3f;
+    r.tfar = glm::length(to - from) * 0.999f;
+    rays.push_back(r);
+  }
+  size_t blocked = 0, at = 0;
+  for (size_t size = 1; at < rays.size(); size = size % 16 + 1) {
+    const size_t n = std::min(size, rays.size() - at);
+    bool packet[16] = {};
+    accel.occluded16({rays.data() + at, n}, {packet, n});
+    for (size_t i = 0; i < n; ++i) {
+      EXPECT_EQ(packet[i], accel.occluded(rays[at + i])) << "ray " << at + i << " in a packet of " << n;
+      blocked += packet[i];
+    }
+    at += n;
+  }
+  EXPECT_GT(blocked, 0u) << "some rays pass through the blocks";
+  EXPECT_LT(blocked, rays.size()) << "some rays are free";
+  bool none[1];
+  accel.occluded16({}, {none, 0});  // an empty packet traces nothing
+  EXPECT_THROW(accel.occluded16({rays.data(), 17}, {none, 1}), std::invalid_argument);
 }
 
 }  // namespace

@@ -61,13 +61,15 @@ Rendered render(const test::Prepared& p, const RenderSettings& s, int width, int
 struct Variant {
   const char* name;
   int spacing, samples;
+  int block = 4;  // the default
 };
 
 class LightcutsTiles : public ::testing::TestWithParam<Variant> {};
 
 TEST_P(LightcutsTiles, AnyTilingAndThreadCountGiveTheWholeFrameBitForBit) {
   const Variant v = GetParam();
-  const RenderSettings s = lightcuts_settings(6, v.spacing, v.samples);
+  RenderSettings s = lightcuts_settings(6, v.spacing, v.samples);
+  s.lightcuts_block = v.block;
   auto method = make_method(cornell().context(), s);
   // 47 x 35: the last sample column and row are clamped to the image for spacings 4 and 5.
   const FrameSetup frame = cornell().frame(47, 35, 3);
@@ -81,7 +83,10 @@ TEST_P(LightcutsTiles, AnyTilingAndThreadCountGiveTheWholeFrameBitForBit) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Lightcuts, LightcutsTiles,
-                         ::testing::Values(Variant{"plain", 0, 1}, Variant{"reconstruction4", 4, 1},
+                         // Blocks of 4 (the default) and 3 straddle the 7 x 5 and 37 x 23 tiles and the image's edges.
+                         ::testing::Values(Variant{"plain", 0, 1}, Variant{"per_pixel", 0, 1, 0},
+                                           Variant{"blocks3", 0, 1, 3}, Variant{"blocks8", 0, 1, 8},
+                                           Variant{"reconstruction4", 4, 1},
                                            Variant{"reconstruction5", 5, 1}, Variant{"multidimensional", 0, 4}),
                          [](const auto& info) { return std::string(info.param.name); });
 
@@ -173,6 +178,32 @@ TEST(LightcutsAccuracy, OnAGlossyFloorUnderTheClampAnExhaustiveCutIsStillIr) {
   std::printf("glossy floor, clamped, exhaustive cut against ir: mean %.2e, within 2 %%: %.4f\n", d.mean, d.within_2);
   EXPECT_LT(d.mean, 1e-4);
   EXPECT_GE(d.within_2, 0.999);
+}
+
+// Block cuts (the default, 4 x 4): a block's cut is refined until every
+// node's bound over all its points is below 2 % of the smallest of their
+// totals, so each pixel keeps the plain cut's guarantee, with a cut at
+// least as fine as it needs. Most of the Cornell box's blocks lie on one wall.
+TEST(LightcutsAccuracy, BlockCutsKeepEveryPixelWithinTheBoundOfAPlainCut) {
+  RenderSettings ir = lightcuts_settings(150);
+  ir.method = MethodKind::InstantRadiosity;
+  RenderSettings per_pixel = lightcuts_settings(150);
+  per_pixel.lightcuts_block = 0;
+  const Rendered blocks = render(cornell(), lightcuts_settings(150), 96, 72),
+                 plain = render(cornell(), per_pixel, 96, 72), reference = render(cornell(), ir, 96, 72);
+  const Difference d = relative_difference(blocks.image, reference.image),
+                   p = relative_difference(plain.image, reference.image);
+  std::printf("block cuts against ir: mean %.4f, within 2 %%: %.3f, within 10 %%: %.3f, %.0f%% of pixels in blocks, "
+              "%.0f nodes a pixel (a cut per pixel: mean %.4f, %.0f nodes)\n",
+              d.mean, d.within_2, d.within_10, 100.0 * double(blocks.stats.blocked) / blocks.pixels(),
+              double(blocks.stats.cut_nodes) / blocks.pixels(), p.mean, double(plain.stats.cut_nodes) / plain.pixels());
+  EXPECT_GT(double(blocks.stats.blocked), 0.6 * blocks.pixels()) << "most pixels share a block's cut";
+  EXPECT_EQ(plain.stats.blocked, 0u);
+  EXPECT_LT(d.mean, 0.02);
+  EXPECT_LE(d.mean, p.mean * 1.1) << "a block's cut is at least as fine as each of its pixels needs";
+  EXPECT_GE(d.within_10, 0.99);
+  EXPECT_GE(blocks.stats.cut_nodes, plain.stats.cut_nodes);
+  if (d.mean >= 0.02 || d.within_10 < 0.99) test::write_failure_images("lightcuts-blocks-vs-ir", blocks.image, reference.image);
 }
 
 // With the default 2 % threshold. Each cluster's estimate is within its bound,

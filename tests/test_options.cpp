@@ -313,6 +313,7 @@ TEST(Options, HelpShowsTheDefaultsOfTheSettingsStructs) {
       {"--wavelet", std::to_string(s.wavelet_levels)},
       {"--caustic-photons", std::to_string(s.caustic_photons)}, {"--caustic-radius", g(s.caustic_radius)},
       {"--lightcuts-error", g(s.lightcuts_error)}, {"--lightcuts-max-cut", std::to_string(s.lightcuts_max_cut)},
+      {"--lightcuts-block", std::to_string(s.lightcuts_block)},
       {"--importance", std::to_string(s.importance_paths)}, {"--importance-floor", g(s.importance_floor)},
       {"--bidir", s.bidir_vpls == kBidirAuto ? "auto" : std::to_string(s.bidir_vpls)}};
   for (const std::string binary : {IGI_RENDER_BINARY, IGI_MASTER_BINARY}) {

@@ -40,7 +40,7 @@ bool same(const RenderSettings& a, const RenderSettings& b) {
          a.wavelet_levels == b.wavelet_levels &&
          same(a.lightcuts_error, b.lightcuts_error) && a.lightcuts_max_cut == b.lightcuts_max_cut &&
          a.lightcuts_spacing == b.lightcuts_spacing && a.lightcuts_samples == b.lightcuts_samples &&
-         a.vpl_draws == b.vpl_draws &&
+         a.vpl_draws == b.vpl_draws && a.lightcuts_block == b.lightcuts_block &&
          a.glass_branches == b.glass_branches && a.caustics == b.caustics && a.caustic_photons == b.caustic_photons &&
          same(a.caustic_radius, b.caustic_radius) && a.importance_paths == b.importance_paths &&
          same(a.importance_floor, b.importance_floor) && a.bidir_vpls == b.bidir_vpls &&
@@ -417,6 +417,9 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {settings_edited([](auto& s) { s.lightcuts_spacing = 65; }), "Welcome.settings.lightcuts_spacing"},
       {settings_edited([](auto& s) { s.lightcuts_samples = 0; }), "Welcome.settings.lightcuts_samples"},
       {settings_edited([](auto& s) { s.lightcuts_samples = 65; }), "Welcome.settings.lightcuts_samples"},
+      {settings_edited([](auto& s) { s.lightcuts_block = -1; }),
+       "Welcome.settings.lightcuts_block: --lightcuts-block: expected 0..8 (0 or 1 = a cut per pixel), got -1"},
+      {frame_settings_edited([](auto& s) { s.lightcuts_block = 9; }), "FrameSetup.settings.lightcuts_block"},
       {settings_edited([](auto& s) { s.method = MethodKind::Lightcuts; s.caustics = false; s.lightcuts_samples = 5; }),
        "Welcome.settings.lightcuts_samples: --lightcuts-samples: expected a square number"},
       {settings_edited([](auto& s) { s.glass_branches = 0; }), "Welcome.settings.glass_branches: --glass-branches: expected 1..8, got 0"},

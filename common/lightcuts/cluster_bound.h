@@ -79,8 +79,11 @@ inline float light_factor(const LightNode& light, const Box& directions) {
   }
 }
 
-// The bound of the pair, per channel.
-inline glm::vec3 pair_bound(const GatherTree& gather, uint32_t gather_node, const LightNode& light, float clamp_bound) {
+// The bound of the pair, per channel, for gather strength `strength` (the
+// node's S; a block cut gives the largest of its points' strengths, to bound
+// each point alone).
+inline glm::vec3 pair_bound(const GatherTree& gather, uint32_t gather_node, const LightNode& light, float clamp_bound,
+                            float strength) {
   const GatherNode& g = gather.nodes[gather_node];
   const bool directional = light.light_class == LightClass::Directional;
   const Box directions = directional ? light.box : difference(light.box, g.box);
@@ -93,7 +96,10 @@ inline glm::vec3 pair_bound(const GatherTree& gather, uint32_t gather_node, cons
   glm::vec3 bound(0.0f);
   if (r.cos_x > 0.0f) bound += bound_detail::scaled(r.diffuse, std::min(r.cos_x * y * inv_d2, b));
   bound += bound_detail::scaled(r.glossy, y * inv_d2);
-  return bound_detail::scaled(bound, g.strength * light.weight);
+  return bound_detail::scaled(bound, strength * light.weight);
+}
+inline glm::vec3 pair_bound(const GatherTree& gather, uint32_t gather_node, const LightNode& light, float clamp_bound) {
+  return pair_bound(gather, gather_node, light, clamp_bound, gather.nodes[gather_node].strength);
 }
 
 }  // namespace igi::lightcuts

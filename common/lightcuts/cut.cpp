@@ -155,4 +155,106 @@ glm::vec3 CutEngine::shade(const GatherTree& gather, std::vector<CutNode>* cut, 
   return glm::vec3(total_);
 }
 
+bool CutEngine::shade_block(std::span<const GatherPoint> points, std::span<glm::vec3> out, CutStats& stats,
+                            RayCounts& rays) {
+  const size_t n = points.size();
+  if (n == 0 || n > kMaxBlockPoints || out.size() < n) return false;
+  float strength = 0.0f;
+  for (const GatherPoint& g : points) {
+    if (!g.valid() || g.surface.material->type != MaterialType::Diffuse || !same_surface(g, points[0])) return false;
+    const float s = max_component(g.throughput);
+    if (!(s > 0.0f)) return false;
+    strength = std::max(strength, s);
+  }
+  block_gather_.build(points, 1, 0);  // its root: the box, cone and albedo of all the points
+  block_entries_.clear();
+  block_units_.clear();
+  block_totals_.assign(n, glm::dvec3(0.0));
+  heap_.clear();
+  cut_size_ = 0;
+  for (uint32_t root : tree_.roots) add_block_entry(points, strength, root, nullptr, stats, rays);
+  while (!heap_.empty() && cut_size_ < size_t(settings_.max_cut)) {
+    float smallest = INFINITY;
+    for (const glm::dvec3& t : block_totals_) smallest = std::min(smallest, luminance(t));
+    if (heap_.front().error <= settings_.error * smallest) break;
+    const uint32_t worst = heap_.front().entry;
+    std::pop_heap(heap_.begin(), heap_.end());
+    heap_.pop_back();
+    block_entries_[worst].alive = false;
+    const BlockEntry parent = block_entries_[worst];
+    if (parent.first != kNone) {
+      const float scale = tree_.nodes[parent.light].weight_over_representative;
+      for (size_t k = 0; k < n; ++k) block_totals_[k] -= glm::dvec3(block_units_[parent.first + k] * scale);
+    }
+    --cut_size_;
+    add_block_entry(points, strength, parent.light + 1, &parent, stats, rays);
+    add_block_entry(points, strength, tree_.nodes[parent.light].right, &parent, stats, rays);
+  }
+  for (size_t k = 0; k < n; ++k) out[k] = glm::vec3(block_totals_[k]);
+  stats.cuts += n;
+  stats.cut_nodes += cut_size_ * n;
+  stats.blocked += n;
+  return true;
+}
+
+// One node of a block cut: its bound over all the points, and each point's
+// estimate (the parent's shadow rays where the representative is the same).
+void CutEngine::add_block_entry(std::span<const GatherPoint> points, float strength, uint32_t light,
+                                const BlockEntry* parent, CutStats& stats, RayCounts& rays) {
+  const size_t n = points.size();
+  const LightNode& ln = tree_.nodes[light];
+  BlockEntry e;
+  e.light = light;
+  e.leaf = ln.representative;
+  float scale = 1.0f;  // a leaf is exact
+  if (!ln.is_leaf()) {
+    const glm::vec3 bound = pair_bound(block_gather_, 0, ln, lighting_.clamp_bound, strength);
+    if (!(bound.x > 0.0f || bound.y > 0.0f || bound.z > 0.0f)) {  // nothing can arrive at any point
+      e.first = kNone;
+      block_entries_.push_back(e);
+      ++cut_size_;
+      return;
+    }
+    scale = ln.weight_over_representative;
+    e.error = luminance(bound);
+  }
+  e.first = uint32_t(block_units_.size());
+  block_units_.resize(block_units_.size() + n, glm::vec3(0.0f));
+  if (parent && parent->leaf == e.leaf && parent->first != kNone) {
+    std::copy_n(block_units_.begin() + parent->first, n, block_units_.begin() + e.first);
+    stats.reused += n;
+  } else {
+    // The points' shadow rays towards the one leaf, in packets of 16 in
+    // point order: a packet's rays depend on the block alone.
+    const LightLeaf& leaf = tree_.leaves[e.leaf];
+    Ray shadow[16];
+    glm::vec3 lit[16];
+    uint32_t index[16];
+    bool occluded[16];
+    size_t count = 0;
+    auto trace = [&] {
+      accel_.occluded16({shadow, count}, {occluded, count});
+      for (size_t i = 0; i < count; ++i)
+        if (!occluded[i]) block_units_[e.first + index[i]] = lit[i];
+      rays.shadow += count;
+      count = 0;
+    };
+    for (size_t k = 0; k < n; ++k) {
+      const glm::vec3 c = light_contribution(lighting_, points[k], leaf, shadow[count]);
+      if (!(c.x + c.y + c.z > 0.0f)) continue;
+      lit[count] = c * points[k].throughput;
+      index[count++] = uint32_t(k);
+      if (count == 16) trace();
+    }
+    if (count > 0) trace();
+  }
+  for (size_t k = 0; k < n; ++k) block_totals_[k] += glm::dvec3(block_units_[e.first + k] * scale);
+  block_entries_.push_back(e);
+  ++cut_size_;
+  if (e.error > 0.0f) {
+    heap_.push_back({e.error, uint32_t(block_entries_.size() - 1)});
+    std::push_heap(heap_.begin(), heap_.end());
+  }
+}
+
 }  // namespace igi::lightcuts

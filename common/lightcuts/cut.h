@@ -39,9 +39,10 @@ struct CutStats {
   uint64_t reused = 0;        // child pairs that took the parent's result
   uint64_t interpolated = 0;  // reconstruction: visibilities taken from the samples, no ray
   uint64_t reconstructed = 0; // reconstruction: pixels that used samples
+  uint64_t blocked = 0;       // block cuts: points shaded by a block's shared cut
   CutStats& operator+=(const CutStats& o) {
     cuts += o.cuts; cut_nodes += o.cut_nodes; reused += o.reused;
-    interpolated += o.interpolated; reconstructed += o.reconstructed;
+    interpolated += o.interpolated; reconstructed += o.reconstructed; blocked += o.blocked;
     return *this;
   }
 };
@@ -60,6 +61,18 @@ class CutEngine {
   // a cluster's visibility comes from the samples where they agree on it.
   glm::vec3 shade(const GatherTree& gather, std::vector<CutNode>* cut, CutStats& stats, RayCounts& rays,
                   std::span<const SampleVisibility* const> samples = {});
+
+  // A block cut: one light cut shared by the gather points of neighbouring
+  // pixels (one point each, at most kMaxBlockPoints, all on Lambertian surfaces
+  // within one cone of normals). Each node is bounded once for all of them
+  // (over the box of their positions), and refined until every bound is
+  // below `error` times the smallest of their totals, so each point's cut
+  // keeps the plain cut's guarantee; each point's value is its own estimate
+  // over the shared cut (its own shadow rays). Returns false, leaving `out`
+  // alone, when the points do not qualify: shade them one by one then.
+  static constexpr size_t kMaxBlockPoints = 64;
+  bool shade_block(std::span<const GatherPoint> points, std::span<glm::vec3> out, CutStats& stats,
+                   RayCounts& rays);
 
  private:
   struct Entry {
@@ -107,6 +120,22 @@ class CutEngine {
   glm::dvec3 total_{0.0};
   size_t cut_size_ = 0;
   std::span<const SampleVisibility* const> samples_;
+
+  // Scratch of the current block cut: per entry its light node, bound and
+  // each point's unit estimate (points_ of them from `first` in units_).
+  struct BlockEntry {
+    float error = 0.0f;
+    uint32_t light = 0, leaf = 0;
+    uint32_t first = 0;  // into block_units_; kNone: nothing arrives
+    bool alive = true;
+  };
+  static constexpr uint32_t kNone = ~0u;
+  void add_block_entry(std::span<const GatherPoint> points, float strength, uint32_t light, const BlockEntry* parent,
+                       CutStats& stats, RayCounts& rays);
+  std::vector<BlockEntry> block_entries_;
+  std::vector<glm::vec3> block_units_;
+  std::vector<glm::dvec3> block_totals_;
+  GatherTree block_gather_;
 };
 
 }  // namespace igi::lightcuts

@@ -89,7 +89,7 @@ class Builder {
 
 }  // namespace
 
-void GatherTree::build(const std::vector<GatherPoint>& candidates, int samples_per_pixel, uint32_t seed) {
+void GatherTree::build(std::span<const GatherPoint> candidates, int samples_per_pixel, uint32_t seed) {
   points.clear();
   strength.clear();
   nodes.clear();

@@ -11,6 +11,7 @@
 // s_j / S from a number hashed from the frame seed, the pixel and the node.
 // Plain lightcuts are the case K = 1: one leaf.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "lightcuts/bounds.h"
@@ -37,7 +38,7 @@ struct GatherTree {
 
   // Builds over `points` (the pixel's K gather points; invalid ones are left
   // out). Reuses its vectors: one tree per thread, rebuilt per pixel.
-  void build(const std::vector<GatherPoint>& candidates, int samples_per_pixel, uint32_t seed);
+  void build(std::span<const GatherPoint> candidates, int samples_per_pixel, uint32_t seed);
   bool empty() const { return nodes.empty(); }
 };
 

@@ -22,7 +22,7 @@ void LightcutsMethod::begin_frame(const FrameSetup& frame) {
   vpls_ = generate_vpls(context_, settings_, frame.seed);
   tree_ = build_light_tree(make_light_leaves(context_.scene, vpls_), context_.scene.bounds().diagonal(), frame.seed);
   state_hash_ = combine_content_hashes(vpls_.hash, tree_.hash);
-  for (auto* counter : {&cuts_, &cut_nodes_, &reused_, &interpolated_, &reconstructed_}) counter->store(0);
+  for (auto* counter : {&cuts_, &cut_nodes_, &reused_, &interpolated_, &reconstructed_, &blocked_}) counter->store(0);
 }
 
 CutStats LightcutsMethod::stats() const {
@@ -32,6 +32,7 @@ CutStats LightcutsMethod::stats() const {
   s.reused = reused_.load();
   s.interpolated = interpolated_.load();
   s.reconstructed = reconstructed_.load();
+  s.blocked = blocked_.load();
   return s;
 }
 
@@ -120,9 +121,71 @@ void LightcutsMethod::render_reconstructed(const TileJob& job, std::span<glm::ve
     }
 }
 
+// Pixels in blocks of B x B aligned to the image (a block's pixels outside
+// the tile are traced too, so a pixel never depends on the tiling). A block
+// splits into groups by surface, in pixel order: each pixel not yet grouped
+// gathers the later ones on its surface (lightcuts/reconstruction.h,
+// same_surface). A group of two or more Lambertian points takes one block cut
+// (lightcuts/cut.h); any other pixel a plain cut of its own.
+void LightcutsMethod::render_blocks(const TileJob& job, std::span<glm::vec3> out, CutStats& stats,
+                                    RayCounts& rays) const {
+  const int b = settings_.lightcuts_block;
+  const GatherPointTracer tracer(context_.accel, frame_, 1, specular_depth(settings_));
+  CutEngine cuts = engine();
+  thread_local std::vector<GatherPoint> points, group;
+  thread_local std::vector<glm::vec3> values, group_values;
+  thread_local std::vector<size_t> members;
+  thread_local std::vector<char> done;
+  thread_local GatherTree gather;
+  auto diffuse = [](const GatherPoint& g) { return g.valid() && g.surface.material->type == MaterialType::Diffuse; };
+  for (int by = job.y / b * b; by < job.y + job.h; by += b)
+    for (int bx = job.x / b * b; bx < job.x + job.w; bx += b) {
+      const int w = std::min(b, frame_.width - bx), h = std::min(b, frame_.height - by);
+      auto inside = [&](size_t i) {
+        const int x = bx + int(i) % w, y = by + int(i) / w;
+        return x >= job.x && x < job.x + job.w && y >= job.y && y < job.y + job.h;
+      };
+      points.clear();
+      for (int y = by; y < by + h; ++y)
+        for (int x = bx; x < bx + w; ++x) points.push_back(tracer.trace(x, y, 0, rays));
+      values.assign(points.size(), glm::vec3(0.0f));
+      done.assign(points.size(), 0);
+      for (size_t i = 0; i < points.size(); ++i) {
+        if (done[i]) continue;
+        group.clear();
+        members.clear();
+        if (diffuse(points[i]))
+          for (size_t j = i; j < points.size(); ++j)
+            if (!done[j] && diffuse(points[j]) && same_surface(points[j], points[i])) {
+              group.push_back(points[j]);
+              members.push_back(j);
+            }
+        group_values.assign(group.size(), glm::vec3(0.0f));
+        if (group.size() >= 2 && cuts.shade_block(group, group_values, stats, rays)) {
+          for (size_t m = 0; m < members.size(); ++m) {
+            values[members[m]] = group_values[m];
+            done[members[m]] = 1;
+          }
+          continue;
+        }
+        done[i] = 1;
+        if (!inside(i)) continue;  // only the tile's pixels need a cut of their own
+        gather.build(std::span<const GatherPoint>(&points[i], 1), 1, 0);
+        values[i] = cuts.shade(gather, nullptr, stats, rays);
+      }
+      for (int y = std::max(by, job.y); y < std::min(by + h, job.y + job.h); ++y)
+        for (int x = std::max(bx, job.x); x < std::min(bx + w, job.x + job.w); ++x) {
+          const size_t i = size_t(y - by) * w + size_t(x - bx);
+          out[size_t(y - job.y) * job.w + size_t(x - job.x)] = points[i].emitted + values[i];
+        }
+    }
+}
+
 void LightcutsMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const {
   CutStats stats;
-  if (settings_.lightcuts_spacing > 1)
+  if (settings_.lightcuts_block > 1 && settings_.lightcuts_spacing <= 1 && settings_.lightcuts_samples == 1)
+    render_blocks(job, out, stats, rays);
+  else if (settings_.lightcuts_spacing > 1)
     render_reconstructed(job, out, stats, rays);
   else
     render_plain(job, out, stats, rays);
@@ -131,6 +194,7 @@ void LightcutsMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, 
   reused_ += stats.reused;
   interpolated_ += stats.interpolated;
   reconstructed_ += stats.reconstructed;
+  blocked_ += stats.blocked;
 }
 
 }  // namespace igi::lightcuts

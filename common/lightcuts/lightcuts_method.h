@@ -7,7 +7,9 @@
 // optionally reconstruction cuts on a sparse sample grid
 // (lightcuts/reconstruction.h) or several gather points per pixel through
 // the product of a gather tree and the light tree (multidimensional
-// lightcuts, lightcuts/gather_tree.h).
+// lightcuts, lightcuts/gather_tree.h). Plain cuts are taken by blocks of
+// B x B pixels (--lightcuts-block) where a block lies on one Lambertian
+// surface: one cut for the block, each pixel its own estimate over it.
 //
 // begin_frame generates the VPLs (vpl/vpl_generator.h, as ir does) and
 // builds the tree: both are pure functions of scene, settings and seed, and
@@ -39,6 +41,7 @@ class LightcutsMethod final : public Method {
  private:
   CutEngine engine() const;
   void render_plain(const TileJob& job, std::span<glm::vec3> out, CutStats& stats, RayCounts& rays) const;
+  void render_blocks(const TileJob& job, std::span<glm::vec3> out, CutStats& stats, RayCounts& rays) const;
   void render_reconstructed(const TileJob& job, std::span<glm::vec3> out, CutStats& stats, RayCounts& rays) const;
 
   SceneContext context_;
@@ -48,7 +51,7 @@ class LightcutsMethod final : public Method {
   LightTree tree_;
   float clamp_bound_ = INFINITY;
   uint64_t state_hash_ = 0;
-  mutable std::atomic<uint64_t> cuts_{0}, cut_nodes_{0}, reused_{0}, interpolated_{0}, reconstructed_{0};
+  mutable std::atomic<uint64_t> cuts_{0}, cut_nodes_{0}, reused_{0}, interpolated_{0}, reconstructed_{0}, blocked_{0};
 };
 
 }  // namespace igi::lightcuts

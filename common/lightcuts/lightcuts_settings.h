@@ -10,6 +10,9 @@
 //                      (lightcuts/reconstruction.h); 0 or 1 = off
 //   lightcuts_samples  multidimensional lightcuts: K = s x s gather points
 //                      per pixel (1, 4, 9 ... 64); not with reconstruction
+//   lightcuts_block    block cuts: one cut for the B x B pixels of a block
+//                      on one Lambertian surface (lightcuts/cut.h), 0..8;
+//                      0 or 1 = a cut per pixel; plain cuts only
 //
 // VPLs: all N x N sets of M light paths (--vpl-sets, --vpl-paths), each path
 // leaving at most depth_limit(light_depth) + 1 VPLs (vpl/vpl_generator.cpp),
@@ -26,6 +29,7 @@ namespace igi::lightcuts {
 inline constexpr int kMaxCut = 1 << 20;
 inline constexpr int kMaxSpacing = 64;
 inline constexpr int kMaxSamples = 64;
+inline constexpr int kMaxBlock = 8;  // block cuts of at most 8 x 8 pixels
 
 // Light paths per frame: S x M.
 inline uint64_t light_paths(const RenderSettings& s) {

@@ -99,6 +99,9 @@ Check check_lightcuts(const RenderSettings& s) {
   if (auto e = integer("lightcuts_spacing", "--lightcuts-spacing", s.lightcuts_spacing, 0, lightcuts::kMaxSpacing,
                        " (0 = off)"))
     return e;
+  if (auto e = integer("lightcuts_block", "--lightcuts-block", s.lightcuts_block, 0, lightcuts::kMaxBlock,
+                       " (0 or 1 = a cut per pixel)"))
+    return e;
   if (subpixel_side(s.lightcuts_samples) == 0 || s.lightcuts_samples > lightcuts::kMaxSamples)
     return wrong("lightcuts_samples", "--lightcuts-samples: expected a square number of gather points per pixel "
                                       "(1, 4, 9, ..., 64), got " + std::to_string(s.lightcuts_samples));

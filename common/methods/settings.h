@@ -113,6 +113,11 @@ struct RenderSettings {
   // corridor scene at one pass: FLIP 0.097 against 0.168 by light paths alone).
   int bidir_vpls = kBidirAuto;
   int bidir_camera_paths = 0;     // R; 0 = as many as light paths (M)
+  // Lightcuts' block cuts: the B x B pixels of a block on one Lambertian
+  // surface share one light cut, bounded once for all of them, with their
+  // shadow rays in packets (lightcuts/cut.h). 0 or 1: a cut per pixel.
+  // Plain cuts only (no --lightcuts-spacing, one gather point a pixel).
+  int lightcuts_block = 4;
 };
 
 // The one check of RenderSettings, called by the command lines, the window's

@@ -350,4 +350,29 @@ bool Accel::occluded(const Ray& ray) const {
   return r.tfar < 0.0f;
 }
 
+void Accel::occluded16(std::span<const Ray> rays, std::span<bool> occluded) const {
+  if (rays.size() > 16 || occluded.size() < rays.size())
+    throw std::invalid_argument("Accel::occluded16: more than 16 rays, or fewer answers than rays");
+  if (rays.empty()) return;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRay16 r;
+  alignas(64) int valid[16];
+  for (size_t i = 0; i < 16; ++i) {
+    valid[i] = i < rays.size() ? -1 : 0;
+    const Ray& ray = rays[i < rays.size() ? i : 0];  // unused lanes: a copy, masked off
+    r.org_x[i] = ray.origin.x; r.org_y[i] = ray.origin.y; r.org_z[i] = ray.origin.z;
+    r.dir_x[i] = ray.direction.x; r.dir_y[i] = ray.direction.y; r.dir_z[i] = ray.direction.z;
+    r.tnear[i] = ray.tnear;
+    r.tfar[i] = ray.tfar;
+    r.mask[i] = ray.mask;
+    r.time[i] = 0.0f;
+    r.id[i] = 0;
+    r.flags[i] = 0;
+  }
+  rtcOccluded16(valid, top_, &context, &r);
+  for (size_t i = 0; i < rays.size(); ++i) occluded[i] = r.tfar[i] < 0.0f;
+}
+
 }  // namespace igi

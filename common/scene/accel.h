@@ -27,6 +27,7 @@
 // kOpaqueRayMask (all bits, the default) does not.
 #include <atomic>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -92,6 +93,12 @@ class Accel {
 
   bool intersect(const Ray& ray, Hit& hit) const;
   bool occluded(const Ray& ray) const;
+  // Up to 16 shadow rays as one Embree packet (coherent): occluded[i] for
+  // rays[i]. Embree may answer a ray that grazes an edge differently with
+  // other rays beside it, so a caller keeps which rays share a packet a pure
+  // function of what it renders, never of the tiling (methods/shadow_batch.h
+  // traces ray by ray for that reason).
+  void occluded16(std::span<const Ray> rays, std::span<bool> occluded) const;
 
   // The scene's length scale, measured as built and again by each update()
   // (so a posed scene has the value of the same pose loaded static): the

@@ -53,6 +53,7 @@ RenderSettings bounded(RenderSettings s) {
   s.lightcuts_error = std::clamp(s.lightcuts_error, 0.001f, 0.5f);
   s.lightcuts_max_cut = std::clamp(s.lightcuts_max_cut, 1, lightcuts::kMaxCut);
   s.lightcuts_spacing = std::clamp(s.lightcuts_spacing, 0, lightcuts::kMaxSpacing);
+  s.lightcuts_block = std::clamp(s.lightcuts_block, 0, lightcuts::kMaxBlock);
   const int gather_side = std::clamp(subpixel_side(s.lightcuts_samples), 1, 8);  // 0: not a square
   s.lightcuts_samples = gather_side * gather_side;
   s.importance_paths = std::clamp(s.importance_paths, 0, kMaxImportancePaths);
@@ -167,6 +168,8 @@ void SettingsPanel::draw_lightcuts(RenderSettings& s) {
   tip("--lightcuts-max-cut", "at most this many clusters (shadow rays) in a pixel's cut");
   ImGui::SliderInt("cut spacing", &s.lightcuts_spacing, 0, lightcuts::kMaxSpacing, "%d", kBound);
   tip("--lightcuts-spacing", "full cuts every S pixels only, the rest reconstructed; 0 = off");
+  ImGui::SliderInt("block", &s.lightcuts_block, 0, lightcuts::kMaxBlock, "%d", kBound);
+  tip("--lightcuts-block", "one cut for the B x B pixels of a block on one diffuse surface; 0 or 1 = a cut per pixel");
   square_count("gather points", s.lightcuts_samples, "--lightcuts-samples", "gather points per pixel");
 }
 

@@ -22,8 +22,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 STYLE = {
-    "ir": ("tab:blue", "o", "ir (every VPL, 16-wide packets)"),
-    "lightcuts": ("tab:red", "s", "lightcuts"),
+    "ir": ("tab:blue", "o", "ir (every VPL)"),
+    "lightcuts": ("tab:red", "s", "lightcuts (4 x 4 block cuts)"),
+    "lightcuts-pixel": ("tab:olive", "v", "lightcuts, a cut per pixel"),
     "lightcuts-rc": ("tab:orange", "^", "reconstruction cuts"),
     "lightcuts-md": ("tab:purple", "D", "multidimensional (K gather points)"),
 }

@@ -9,12 +9,14 @@
 //
 //   igi-lightcuts-bench [--scenes a,b] [--vpls 1000,10000,100000] [--size WxH]
 //                       [--ref-spp N] [--refs DIR] [--out F.csv] [--spacing S]
-//                       [--samples K] [--frames F] [--clamp C] [--no-ir]
+//                       [--samples K] [--frames F] [--clamp C] [--no-ir] [--no-per-pixel]
 //
 // VPL counts: for each target the bench traces a pilot frame to learn the
 // scene's VPLs per light path, then picks M (N x N sets) to land near it; the
-// row gives the count reached. Methods: ir, lightcuts (plain cuts),
-// lightcuts-rc (reconstruction cuts, --spacing), lightcuts-md (K gather
+// row gives the count reached. Methods: ir (one sample a pixel, no
+// compensation), lightcuts (plain cuts at the defaults: block cuts of 4 x 4),
+// lightcuts-pixel (a cut per pixel, --lightcuts-block 0; --no-per-pixel
+// leaves it out), lightcuts-rc (reconstruction cuts, --spacing), lightcuts-md (K gather
 // points per pixel, --samples; 0 leaves it out). Seconds are medians over F
 // frames of the whole frame: VPL generation and light tree (frame_setup) plus
 // the tiles, on all threads; cpu_seconds is the CPU time the process got.
@@ -59,6 +61,7 @@ struct Options {
   int frames = 1;
   float clamp = 0.0f;
   bool ir = true;
+  bool per_pixel = true;
 };
 
 void declare(CLI::App& app, Options& o) {
@@ -76,6 +79,7 @@ void declare(CLI::App& app, Options& o) {
       ->check(cli::integer(0, 100000));
   app.add_option("--clamp", o.clamp, "clamp [0]")->check(cli::non_negative_number());
   app.add_flag_callback("--no-ir", [&o] { o.ir = false; }, "leave out ir");
+  app.add_flag_callback("--no-per-pixel", [&o] { o.per_pixel = false; }, "leave out lightcuts-pixel");
 }
 
 Options parse(int argc, char** argv) {
@@ -216,6 +220,12 @@ int run_all(const Options& o) {
       }
       const Image* ir_image = o.ir ? &ir_run.image : nullptr;
       write_row(csv, name, vpls, s.paths_per_set, "lightcuts", plain, ir_image, pt, nullptr);
+      if (o.per_pixel) {
+        RenderSettings per_pixel = s;
+        per_pixel.lightcuts_block = 0;
+        write_row(csv, name, vpls, s.paths_per_set, "lightcuts-pixel", run(p, per_pixel, o, o.frames), ir_image, pt,
+                  &plain.image);
+      }
       if (o.spacing > 1) {
         RenderSettings rc = s;
         rc.lightcuts_spacing = o.spacing;
