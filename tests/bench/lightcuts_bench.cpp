@@ -209,6 +209,10 @@ int run_all(const Options& o) {
       // nor compensation, and ir must estimate the same sum to be compared.
       s.aa_samples = 1;
       s.compensation_samples = 0;
+      // Light paths by power, no bidirectional resampling: lightcuts takes
+      // neither, and ir must shade the very same VPLs.
+      s.importance_paths = 0;
+      s.bidir_vpls = 0;
       const Run plain = run(p, s, o, o.frames);
       const size_t vpls = generate_vpls(p.context(), s, 1).vpls.size();
       Run ir_run;
