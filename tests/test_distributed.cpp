@@ -2,6 +2,7 @@
 // very image the single-process renderer gives, whatever happens to workers.
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -362,7 +363,20 @@ bool running(int pid) {
 TEST(Distributed, LocalWorkersDieWithAKilledMaster) {
   pid_t m = test::start(master("--workers 2 --frames 100000 --no-write --quiet -o " + test::output_path("orphans.exr")));
   std::vector<int> workers;
-  for (int i = 0; i < 50 && workers.size() < 2; ++i) {
+  // Whatever fails, nothing this test started outlives it: a master or a
+  // worker left running holds ctest's output pipe open until the test's
+  // timeout (600 s once, under ThreadSanitizer on a loaded machine).
+  struct Cleanup {
+    pid_t& master;
+    std::vector<int>& workers;
+    ~Cleanup() {
+      test::stop(master);
+      for (int w : workers)
+        if (running(w)) kill(w, SIGKILL);
+    }
+  } cleanup{m, workers};
+  // Sanitized builds start slowly: up to 30 s for both workers.
+  for (int i = 0; i < 300 && workers.size() < 2; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     workers.clear();
     auto r = test::run("pgrep -P " + std::to_string(m), 5);
@@ -371,7 +385,10 @@ TEST(Distributed, LocalWorkersDieWithAKilledMaster) {
   }
   ASSERT_EQ(workers.size(), 2u) << "the master started its workers";
   test::stop(m);  // SIGKILL: no chance to clean up
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  m = 0;
+  // They go at once (the kernel signals them when their parent dies); allow a loaded machine 5 s.
+  for (int i = 0; i < 50 && std::any_of(workers.begin(), workers.end(), running); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
   for (int w : workers) EXPECT_FALSE(running(w)) << "worker " << w << " outlived its master";
 }
 
