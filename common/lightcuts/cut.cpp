@@ -180,7 +180,6 @@ bool CutEngine::shade_block(std::span<const GatherPoint> points, std::span<glm::
     const uint32_t worst = heap_.front().entry;
     std::pop_heap(heap_.begin(), heap_.end());
     heap_.pop_back();
-    block_entries_[worst].alive = false;
     const BlockEntry parent = block_entries_[worst];
     if (parent.first != kNone) {
       const float scale = tree_.nodes[parent.light].weight_over_representative;
@@ -205,7 +204,7 @@ void CutEngine::add_block_entry(std::span<const GatherPoint> points, float stren
   const LightNode& ln = tree_.nodes[light];
   BlockEntry e;
   e.light = light;
-  e.leaf = ln.representative;
+  const uint32_t representative = ln.representative;
   float scale = 1.0f;  // a leaf is exact
   if (!ln.is_leaf()) {
     const glm::vec3 bound = pair_bound(block_gather_, 0, ln, lighting_.clamp_bound, strength);
@@ -220,13 +219,13 @@ void CutEngine::add_block_entry(std::span<const GatherPoint> points, float stren
   }
   e.first = uint32_t(block_units_.size());
   block_units_.resize(block_units_.size() + n, glm::vec3(0.0f));
-  if (parent && parent->leaf == e.leaf && parent->first != kNone) {
+  if (parent && tree_.nodes[parent->light].representative == representative && parent->first != kNone) {
     std::copy_n(block_units_.begin() + parent->first, n, block_units_.begin() + e.first);
     stats.reused += n;
   } else {
     // The points' shadow rays towards the one leaf, in packets of 16 in
     // point order: a packet's rays depend on the block alone.
-    const LightLeaf& leaf = tree_.leaves[e.leaf];
+    const LightLeaf& leaf = tree_.leaves[representative];
     Ray shadow[16];
     glm::vec3 lit[16];
     uint32_t index[16];

@@ -122,12 +122,11 @@ class CutEngine {
   std::span<const SampleVisibility* const> samples_;
 
   // Scratch of the current block cut: per entry its light node, bound and
-  // each point's unit estimate (points_ of them from `first` in units_).
+  // each point's unit estimate (one per point, from `first` in block_units_).
   struct BlockEntry {
     float error = 0.0f;
-    uint32_t light = 0, leaf = 0;
+    uint32_t light = 0;
     uint32_t first = 0;  // into block_units_; kNone: nothing arrives
-    bool alive = true;
   };
   static constexpr uint32_t kNone = ~0u;
   void add_block_entry(std::span<const GatherPoint> points, float strength, uint32_t light, const BlockEntry* parent,
