@@ -157,7 +157,9 @@ void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis&
     if (!valid[i]) continue;
     if (packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
       const glm::vec3 direction{packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]};
-      out.at(k, size_t(y) * region.width + x).emitted = accel.scene().sky(direction);  // black without one
+      GSample& g = out.at(k, size_t(y) * region.width + x);
+      g = GSample{};
+      g.emitted = accel.scene().sky(direction);  // black without one
       continue;
     }
     Ray ray{camera.origin, {packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]}, 0.0f, 1e30f, kCameraRayMask};
@@ -186,10 +188,10 @@ void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& re
   out.region = region;
   out.samples = samples;
   out.branches = 1;
-  // Room for every branch (kept between tiles); only branch 0's layers are reset here.
+  // Room for every branch (kept between tiles). Branch 0's layers are not
+  // reset here: trace_block writes every one of their samples.
   const size_t layer_pixels = size_t(samples) * region.pixels();
   if (out.layers.size() < size_t(glass_branches) * layer_pixels) out.layers.resize(size_t(glass_branches) * layer_pixels);
-  std::fill_n(out.layers.begin(), layer_pixels, GSample{});
   const CameraBasis camera(frame.camera, frame.width, frame.height);
   const int side = subpixel_side(samples);
   for (int k = 0; k < samples; ++k) {

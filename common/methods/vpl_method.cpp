@@ -267,12 +267,12 @@ void VplMethod::filter_layer(const GBuffer& gbuffer, int l, const Rect& core, Sc
     FilterInput& in = scratch.filter_input;
     in.x0 = region.x0; in.y0 = region.y0; in.width = region.width; in.height = region.height;
     in.value.assign(layer_value, layer_value + ptrdiff_t(region.pixels()));
-    in.depth.clear();
-    in.normal.clear();
+    in.depth.resize(region.pixels());
+    in.normal.resize(region.pixels());
     for (size_t p = 0; p < region.pixels(); ++p) {
       const GSample& g = gbuffer.at(l, p);
-      in.depth.push_back(g.depth);
-      in.normal.push_back(g.valid() ? g.surface.shading_normal : glm::vec3(0.0f));
+      in.depth[p] = g.depth;
+      in.normal[p] = g.valid() ? g.surface.shading_normal : glm::vec3(0.0f);
     }
     FilterSettings fs;
     fs.window = settings_.interleave;
