@@ -50,6 +50,50 @@ TEST(Accel, ALimitEmbreeStaysWithinChangesNoHit) {
   }
 }
 
+// Which faces each kind of ray finds (scene/accel.h): three sheets across the
+// x axis, a double-sided one, a single-sided one facing away from the rays
+// and an alpha-masked one whose alpha is below its cutoff, each met from
+// behind. Camera rays skip the single-sided back face; shadow rays stop there
+// whatever their mask (its geometry has no occluded callback); the masked
+// sheet lets every ray through.
+TEST(Accel, SingleSidedFacesStopShadowRaysOfAnyMaskAndAlphaMasksNone) {
+  Scene scene;
+  Material plain;
+  add_material(scene, plain);
+  Material single = plain;
+  single.double_sided = false;
+  add_material(scene, single);
+  Material cut_out = plain;
+  cut_out.alpha_mask = true;
+  cut_out.base_alpha = 0.0f;
+  add_material(scene, cut_out);
+  auto sheet = [&](float x, uint32_t material) {  // front face towards -x
+    add_quad(scene, {x, -1, -1}, {x, -1, 1}, {x, 1, 1}, {x, 1, -1}, material);
+  };
+  sheet(3.0f, 1);  // single-sided: the rays (along -x) meet its back
+  sheet(2.0f, 2);  // alpha-masked out
+  sheet(1.0f, 0);  // double-sided
+  enable_flush_to_zero();
+  const Accel accel(scene);
+  auto ray = [](float from, float to, unsigned mask) {
+    return Ray{{from, 0.1f, 0.2f}, {-1.0f, 0.0f, 0.0f}, 0.0f, from - to, mask};
+  };
+  Hit hit;
+  ASSERT_TRUE(accel.intersect(ray(4.0f, -1.0f, kCameraRayMask), hit));
+  EXPECT_FLOAT_EQ(hit.t, 3.0f) << "a camera ray passes the single-sided back and the masked sheet";
+  ASSERT_TRUE(accel.intersect(ray(4.0f, -1.0f, kOpaqueRayMask), hit));
+  EXPECT_FLOAT_EQ(hit.t, 1.0f) << "any other ray stops at the single-sided back";
+  for (unsigned mask : {kCameraRayMask, kOpaqueRayMask}) {
+    EXPECT_TRUE(accel.occluded(ray(4.0f, 2.5f, mask))) << "mask " << mask;
+    EXPECT_FALSE(accel.occluded(ray(2.5f, 1.5f, mask))) << "mask " << mask << ": the alpha-masked sheet";
+    EXPECT_TRUE(accel.occluded(ray(1.5f, 0.5f, mask))) << "mask " << mask;
+    bool occluded[1];
+    const Ray rays[1] = {ray(4.0f, 2.5f, mask)};
+    accel.occluded16(rays, occluded);
+    EXPECT_TRUE(occluded[0]) << "mask " << mask << ", as a packet";
+  }
+}
+
 // Shadow rays in a packet (lightcuts' block cuts) answer as one at a time:
 // rays from points over the Cornell box's floor to points near its ceiling,
 // some through the tall block, in packets of 1 to 16 (lanes left unused).

@@ -92,6 +92,8 @@ class Accel {
   void update();
 
   bool intersect(const Ray& ray, Hit& hit) const;
+  // Shadow rays: whatever their mask, they find single-sided faces opaque
+  // from both sides (only alpha masks let them through).
   bool occluded(const Ray& ray) const;
   // Up to 16 shadow rays as one Embree packet (coherent): occluded[i] for
   // rays[i]. Embree may answer a ray that grazes an edge differently with
@@ -131,12 +133,17 @@ class Accel {
   struct Group {
     RTCScene scene = nullptr;
     RTCGeometry instance = nullptr;
-    std::vector<Geometry> geometries;  // plain, then filtered
+    std::vector<Geometry> geometries;  // Filters order: none, then hits, then hits and shadows
   };
+  // What a geometry's filter callback judges: nothing (double-sided and
+  // opaque), the hits of rays that may cull (single-sided: camera rays skip
+  // back faces; shadow rays never cull, so they need no callback), or every
+  // ray (alpha masks).
+  enum class Filters { None, Hits, HitsAndShadows };
   struct Empty {};
   Accel(const Scene& scene, size_t memory_limit, Empty);  // no Embree object yet
   void add_group(const std::vector<uint32_t>& triangles, RTCBuildQuality quality);
-  void build_triangles(Geometry& g, const std::vector<uint32_t>& triangles, bool moving, bool filtered);
+  void build_triangles(Geometry& g, const std::vector<uint32_t>& triangles, bool moving, Filters filters);
   void write_vertices(const Geometry& geometry) const;
   void measure_areas(const std::vector<uint32_t>& changed);  // all of them on the first call
   uint32_t sample_by_area(float u) const;
