@@ -201,7 +201,7 @@ Accel::Accel(const Scene& scene, size_t memory_limit) : Accel(scene, memory_limi
 }
 
 // One triangle geometry of a group, committed: its vertices written, and the
-// alpha-mask and single-sided filter where `filtered`. `g` is already the
+// filter callbacks that `filters` names (alpha masks, single-sided faces). `g` is already the
 // group's, so that a throw leaves its handle to the destructor.
 void Accel::build_triangles(Geometry& g, const std::vector<uint32_t>& triangles, bool moving, Filters filters) {
   const std::string what = std::to_string(triangles.size()) + " triangles";
