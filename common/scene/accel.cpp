@@ -147,20 +147,30 @@ static RTCDevice new_device(EmbreeMemoryBudget& budget) {
   return device;
 }
 
-// One callback serves rtcIntersect* and rtcOccluded*, any packet width.
-static void filter_hits(const RTCFilterFunctionNArguments* args) {
+// Whether Embree keeps lane i's candidate hit (Accel::rejects).
+static void judge_hit(const RTCFilterFunctionNArguments* args, unsigned i) {
   const auto* accel = static_cast<const Accel*>(args->geometryUserPtr);
-  for (unsigned i = 0; i < args->N; ++i) {
-    if (args->valid[i] != -1) continue;
-    unsigned prim = RTCHitN_primID(args->hit, args->N, i);
-    unsigned geom = RTCHitN_geomID(args->hit, args->N, i);
-    unsigned inst = RTCHitN_instID(args->hit, args->N, i, 0);
-    glm::vec2 bary(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
-    glm::vec3 dir(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
-                  RTCRayN_dir_z(args->ray, args->N, i));
-    const bool camera_ray = RTCRayN_mask(args->ray, args->N, i) == kCameraRayMask;
-    if (accel->rejects(accel->triangle_index(inst, geom, prim), bary, dir, camera_ray)) args->valid[i] = 0;
-  }
+  unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+  unsigned geom = RTCHitN_geomID(args->hit, args->N, i);
+  unsigned inst = RTCHitN_instID(args->hit, args->N, i, 0);
+  glm::vec2 bary(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+  glm::vec3 dir(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                RTCRayN_dir_z(args->ray, args->N, i));
+  const bool camera_ray = RTCRayN_mask(args->ray, args->N, i) == kCameraRayMask;
+  if (accel->rejects(accel->triangle_index(inst, geom, prim), bary, dir, camera_ray)) args->valid[i] = 0;
+}
+
+// Alpha masks: every ray, rtcIntersect* and rtcOccluded*, any packet width.
+static void filter_hits(const RTCFilterFunctionNArguments* args) {
+  for (unsigned i = 0; i < args->N; ++i)
+    if (args->valid[i] == -1) judge_hit(args, i);
+}
+
+// Single-sided opaque faces turn away camera rays only (from their backs):
+// other rays' hits stand without a look at the triangle.
+static void filter_camera_hits(const RTCFilterFunctionNArguments* args) {
+  for (unsigned i = 0; i < args->N; ++i)
+    if (args->valid[i] == -1 && RTCRayN_mask(args->ray, args->N, i) == kCameraRayMask) judge_hit(args, i);
 }
 
 Accel::Accel(const Scene& scene, size_t memory_limit, Empty) : scene_(scene) { budget_.limit = int64_t(memory_limit); }
@@ -222,11 +232,12 @@ void Accel::build_triangles(Geometry& g, const std::vector<uint32_t>& triangles,
   // REFIT in a LOW-quality scene): tight boxes under translation, looser
   // under rotation and deformation.
   if (moving) rtcSetGeometryBuildQuality(g.handle, RTC_BUILD_QUALITY_REFIT);
-  if (filters != Filters::None) {
-    rtcSetGeometryUserData(g.handle, const_cast<Accel*>(this));
+  if (filters != Filters::None) rtcSetGeometryUserData(g.handle, const_cast<Accel*>(this));
+  if (filters == Filters::CameraHits) rtcSetGeometryIntersectFilterFunction(g.handle, filter_camera_hits);
+  if (filters == Filters::AllHits) {
     rtcSetGeometryIntersectFilterFunction(g.handle, filter_hits);
+    rtcSetGeometryOccludedFilterFunction(g.handle, filter_hits);
   }
-  if (filters == Filters::HitsAndShadows) rtcSetGeometryOccludedFilterFunction(g.handle, filter_hits);
   rtcCommitGeometry(g.handle);
   check_embree(device_, true, "commit a geometry of " + what);
 }
@@ -248,7 +259,7 @@ void Accel::add_group(const std::vector<uint32_t>& triangles, RTCBuildQuality qu
   std::vector<uint32_t> lists[3];  // by Filters
   for (uint32_t t : triangles) {
     const Material& m = scene_.materials[scene_.triangle_material[t]];
-    const Filters filters = m.alpha_mask ? Filters::HitsAndShadows : m.double_sided ? Filters::None : Filters::Hits;
+    const Filters filters = m.alpha_mask ? Filters::AllHits : m.double_sided ? Filters::None : Filters::CameraHits;
     lists[int(filters)].push_back(t);
   }
   for (int f = 0; f < 3; ++f) {

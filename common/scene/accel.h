@@ -133,13 +133,12 @@ class Accel {
   struct Group {
     RTCScene scene = nullptr;
     RTCGeometry instance = nullptr;
-    std::vector<Geometry> geometries;  // Filters order: none, then hits, then hits and shadows
+    std::vector<Geometry> geometries;  // in Filters order
   };
-  // What a geometry's filter callback judges: nothing (double-sided and
-  // opaque), the hits of rays that may cull (single-sided: camera rays skip
-  // back faces; shadow rays never cull, so they need no callback), or every
-  // ray (alpha masks).
-  enum class Filters { None, Hits, HitsAndShadows };
+  // Which hits a geometry's filter callbacks judge: none (double-sided and
+  // opaque), camera rays' (single-sided: they skip back faces; every other
+  // ray, shadow rays included, finds both sides), or every ray's (alpha masks).
+  enum class Filters { None, CameraHits, AllHits };
   struct Empty {};
   Accel(const Scene& scene, size_t memory_limit, Empty);  // no Embree object yet
   void add_group(const std::vector<uint32_t>& triangles, RTCBuildQuality quality);
