@@ -2,7 +2,7 @@
 // What frame i of an igi-master run is: its camera (along --camera-path),
 // seed, samples and sub-pixel position. One function, so that a test can
 // render the very same frames in one process (tests/soak).
-#include "render/frame.h"
+#include "core/frame.h"
 #include "render_options.h"
 #include "scene/scene.h"
 

@@ -8,8 +8,8 @@
 
 #include "cli/option_checks.h"
 #include "display/window_keys.h"
+#include "liveness_options.h"
 #include "protocol/curve.h"
-#include "protocol/liveness_options.h"
 #include "protocol/messages.h"
 
 namespace igi {
@@ -47,7 +47,7 @@ void add_network_options(CLI::App& app, MasterOptions& o) {
   app.add_flag("--curve", o.curve, "CURVE on a loopback endpoint too (needs --key)")->group(group);
   app.add_option("--credits", o.credits, "jobs a worker holds at once [2]")
       ->check(integer<int>(1, protocol::kMaxCredits))->group(group)->type_name("K");
-  protocol::add_liveness_options(app, o.heartbeat_ms, o.timeout_ms, group);
+  add_liveness_options(app, o.heartbeat_ms, o.timeout_ms, group);
   app.add_option("--pixels", o.pixels, "pixels on the wire: float, half (6 bytes a pixel, display frames) or auto: "
                  "float when -o is a float file (.exr, .hdr, .pfm, .tif), else half [auto]")
       ->check(cli::one_of({"auto", "float", "half"}))->group(group)->type_name("auto|float|half");
@@ -200,7 +200,7 @@ MasterOptions parse_master_options(const std::vector<std::string>& args) {
   check_camera_path(app, o);
   if (!panel_edit.empty()) o.test_panel_settings = edited_settings(args, panel_edit);
   check_security(o);
-  protocol::check_liveness(o.heartbeat_ms, o.timeout_ms);
+  check_liveness(o.heartbeat_ms, o.timeout_ms);
   return o;
 }
 

@@ -7,7 +7,7 @@
 #include <sys/eventfd.h>
 #include <unistd.h>
 
-#include "methods/method.h"
+#include "core/method.h"
 #include "render/scene_state.h"
 
 namespace igi {

@@ -17,8 +17,8 @@
 #include <thread>
 #include <vector>
 
-#include "methods/settings.h"
-#include "render/frame.h"
+#include "core/frame.h"
+#include "core/settings.h"
 #include "scene/scene.h"
 
 namespace igi {

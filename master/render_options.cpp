@@ -7,8 +7,8 @@
 #include <thread>
 
 #include "cli/option_checks.h"
+#include "core/clamp.h"
 #include "image/image.h"
-#include "methods/clamp.h"
 #include "methods/memory_check.h"
 #include "photons/caustic_settings.h"
 #include "protocol/messages.h"

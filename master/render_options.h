@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "methods/settings.h"
+#include "core/settings.h"
 #include "scene/load_scene.h"
 
 namespace CLI {

@@ -66,7 +66,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "render/frame.h"
+#include "core/frame.h"
 
 namespace igi {
 

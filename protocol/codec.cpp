@@ -15,7 +15,7 @@ namespace {
 
 constexpr size_t kHeaderBytes = 8;
 constexpr int64_t kMaxThreads = 4096;
-// Settings are checked by methods/settings.h's check_settings(); liveness and
+// Settings are checked by core/settings.h's check_settings(); liveness and
 // credits are messages.h's, which the master's command line checks too.
 constexpr int64_t kMaxBorder = 64;
 // sin of the smallest angle allowed between camera forward and up.
@@ -117,7 +117,7 @@ void write(Writer& w, const RenderSettings& s) {
 }
 
 // RenderSettings in write()'s order, then the one check of them all
-// (methods/settings.h): the wire knows the fields, not each method's rules.
+// (core/settings.h): the wire knows the fields, not each method's rules.
 void read(Reader& r, RenderSettings& s) {
   s.method = static_cast<MethodKind>(r.u8("settings.method"));
   s.path_depth = r.i32("settings.path_depth");

@@ -22,9 +22,9 @@
 
 #include <glm/glm.hpp>
 
+#include "core/frame.h"
+#include "core/settings.h"
 #include "image/frame_buffer.h"
-#include "methods/settings.h"
-#include "render/frame.h"
 
 namespace igi::protocol {
 
@@ -37,7 +37,7 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // frame's settings (the window changes them live). 8: FrameSetup carries the
 // scene's pose (animation time, moved lights). 9: settings.clamp is a fraction of the
 // scene's mean chord, at most kMaxClamp; FrameSetup.sample_begin is the ir/igi/lightcuts
-// pass the clamp relaxes with (methods/clamp.h). 10: settings carry the wavelet
+// pass the clamp relaxes with (core/clamp.h). 10: settings carry the wavelet
 // filter's levels. 11: Welcome carries the scene's environment (a constant sky, or a map
 // that workers ask for by hash as they ask for the scene). 12: settings carry vpl_draws.
 // 13: settings carry lightcuts_block.
@@ -53,7 +53,7 @@ inline constexpr double kMaxSceneTime = 1e9;  // seconds
 inline constexpr double kMaxEnvironment = 1e6;  // a sky's radiance, per channel (--environment)
 // Welcome's liveness and flow control: the decoder refuses a Welcome outside
 // these, and the master's command line refuses the options that would fill
-// them in (protocol/liveness_options.h, --credits), so both say the same.
+// them in (master/liveness_options.h, --credits), so both say the same.
 inline constexpr uint32_t kMinTimeoutMs = 50, kMaxTimeoutMs = 3600000;
 inline constexpr uint32_t kMinHeartbeatMs = 10, kMaxHeartbeatMs = 60000;
 inline constexpr uint32_t kMaxCredits = 64;  // jobs a worker holds at once

@@ -15,8 +15,8 @@
 
 #include <gtest/gtest.h>
 
-#include "methods/gbuffer.h"
-#include "methods/method.h"
+#include "core/gbuffer.h"
+#include "core/method.h"
 #include "scene/builtin_scenes.h"
 #include "support/image_compare.h"
 #include "support/process.h"

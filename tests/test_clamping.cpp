@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "methods/gbuffer.h"
-#include "methods/vpl_contribution.h"
+#include "core/gbuffer.h"
+#include "core/vpl_contribution.h"
 #include "sampling/warp.h"
 #include "scene/builtin_scenes.h"
 #include "scene/load_scene.h"
@@ -65,7 +65,7 @@ TEST(Clamping, EnergyLossIsConfinedToCreases) {
 }
 
 // A glossy receiver takes from a close VPL at most what a white Lambertian
-// receiver takes under the same clamp (methods/clamp.h): f_white G <= b / pi.
+// receiver takes under the same clamp (core/clamp.h): f_white G <= b / pi.
 // On glossy-rough (alpha 0.3) every visible floor point, lit by a diffuse VPL
 // a few centimetres away in the floor's mirror direction (where its lobe
 // peaks), against a bound b; without the glossy clamp the lobe multiplied

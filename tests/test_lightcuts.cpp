@@ -11,9 +11,9 @@
 #include "image/flip.h"
 #include "lightcuts/lightcuts_method.h"
 #include "lightcuts/lightcuts_settings.h"
-#include "scene/load_scene.h"
 #include "render/frame_renderer.h"
 #include "scene/builtin_scenes.h"
+#include "scene/load_scene.h"
 #include "support/image_compare.h"
 #include "support/process.h"
 #include "support/render_fixture.h"
@@ -163,7 +163,7 @@ TEST(LightcutsAccuracy, OnTiltedShadingNormalsAnExhaustiveCutIsStillIr) {
 }
 
 // And on a rough metal floor under the clamp: a glossy receiver's clamp
-// (methods/clamp.h, on its BSDF times G) is one rule in igi's general lanes
+// (core/clamp.h, on its BSDF times G) is one rule in igi's general lanes
 // and in lightcuts, so the exhaustive cut is still ir.
 TEST(LightcutsAccuracy, OnAGlossyFloorUnderTheClampAnExhaustiveCutIsStillIr) {
   static const test::Prepared glossy(load_scene("glossy-rough"));

@@ -1,4 +1,4 @@
-// The shared pool (render/parallel.h): every task once, on any thread count
+// The shared pool (core/parallel.h): every task once, on any thread count
 // the same outputs, flush-to-zero inside a task and the caller's mode after,
 // and a task's exception at the caller instead of std::terminate.
 #include <atomic>
@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 #include <xmmintrin.h>
 
-#include "render/parallel.h"
+#include "core/parallel.h"
 #include "sampling/hash.h"
 
 namespace igi {

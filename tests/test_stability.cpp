@@ -23,8 +23,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/gbuffer.h"
 #include "image/metrics.h"
-#include "methods/gbuffer.h"
 #include "render/offline_render.h"
 #include "scene/builtin_scenes.h"
 #include "scene/suite_scenes.h"

@@ -6,8 +6,8 @@
 
 #include <gtest/gtest.h>
 
-#include "methods/method.h"
-#include "methods/settings.h"
+#include "core/method.h"
+#include "core/settings.h"
 #include "scene/builtin_scenes.h"
 #include "scene/suite_scenes.h"
 #include "support/image_compare.h"

@@ -9,7 +9,7 @@
 // a frame ever sees another frame's scene.
 //
 // These are threads of their own, not tasks of the shared pool
-// (render/parallel.h): they block on the queue and on a pose change, which
+// (core/parallel.h): they block on the queue and on a pose change, which
 // a TBB task must not do. Work inside a frame (begin_frame's per-set work,
 // photons, the light tree) runs on the shared pool.
 #include <condition_variable>
@@ -21,9 +21,9 @@
 #include <thread>
 #include <vector>
 
-#include "methods/method.h"
-#include "render/scene_state.h"
+#include "core/method.h"
 #include "protocol/messages.h"
+#include "render/scene_state.h"
 
 namespace igi {
 

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/clamp.h"
+#include "core/direct_lights.h"
+#include "core/parallel.h"
+#include "core/vpl_contribution.h"
 #include "importance/camera_points.h"
-#include "render/parallel.h"
 #include "importance/resample.h"
 #include "material/bsdf.h"
-#include "methods/clamp.h"
-#include "methods/direct_lights.h"
-#include "methods/vpl_contribution.h"
 #include "sampling/hash.h"
 #include "sampling/sobol.h"
 #include "sampling/warp.h"

@@ -50,9 +50,9 @@
 // R (C + punctual lights) for the gathers, C being the standard candidates
 // (about 3 M), in begin_frame, one task per set on threads of its own
 // (importance/parallel.h).
-#include "methods/method.h"
-#include "render/frame.h"
-#include "vpl/vpl.h"
+#include "core/frame.h"
+#include "core/method.h"
+#include "core/vpl.h"
 #include "vpl/vpl_generator.h"
 
 namespace igi::importance {
@@ -72,7 +72,7 @@ VplSets generate_bidirectional(const SceneContext& context, const RenderSettings
 float continuation_density(const Scene& scene, const Vpl& z, const LightVertex& from, glm::vec3 y, glm::vec3 n_y,
                            int max_depth);
 // Area density with which a light path leaving punctual light `light` (a
-// Vpl of methods/direct_lights.h) first reaches y; directional lights leave a
+// Vpl of core/direct_lights.h) first reaches y; directional lights leave a
 // disc of the scene's radius.
 float punctual_density(const Scene& scene, const Vpl& light, float scene_radius, glm::vec3 y, glm::vec3 n_y);
 

@@ -11,8 +11,8 @@
 // stratified net over the film (Sobol).
 #include <cstdint>
 
-#include "methods/gbuffer.h"
-#include "render/frame.h"
+#include "core/frame.h"
+#include "core/gbuffer.h"
 #include "scene/accel.h"
 #include "scene/camera_rays.h"
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/parallel.h"
 #include "importance/camera_points.h"
-#include "render/parallel.h"
 #include "material/bsdf.h"
 #include "sampling/content_hash.h"
 #include "sampling/hash.h"

@@ -43,8 +43,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "methods/method.h"
-#include "render/frame.h"
+#include "core/frame.h"
+#include "core/method.h"
 #include "sampling/distribution.h"
 
 namespace igi::importance {

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <optional>
 
+#include "core/direct_lights.h"
+#include "core/vpl_contribution.h"
 #include "importance/bidirectional.h"
 #include "importance/camera_points.h"
 #include "importance/light_importance.h"
-#include "methods/direct_lights.h"
-#include "methods/vpl_contribution.h"
 #include "sampling/content_hash.h"
 #include "vpl/vpl_generator.h"
 

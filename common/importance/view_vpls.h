@@ -11,9 +11,9 @@
 // A pure function of scene, settings and frame setup (camera, image size,
 // seed): every worker computes the same sets, and their hash covers the light
 // probabilities too.
-#include "methods/method.h"
-#include "render/frame.h"
-#include "vpl/vpl.h"
+#include "core/frame.h"
+#include "core/method.h"
+#include "core/vpl.h"
 #include "vpl/vpl_generator.h"
 
 namespace igi::importance {

@@ -19,12 +19,12 @@
 #include <span>
 #include <vector>
 
+#include "core/frame.h"
 #include "lightcuts/cut_node.h"
 #include "lightcuts/gather_tree.h"
 #include "lightcuts/light_contribution.h"
 #include "lightcuts/light_tree.h"
 #include "lightcuts/reconstruction.h"
-#include "render/frame.h"
 
 namespace igi::lightcuts {
 

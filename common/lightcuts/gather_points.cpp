@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "methods/gbuffer.h"
-#include "methods/subpixel.h"
+#include "core/gbuffer.h"
+#include "core/subpixel.h"
 #include "sampling/hash.h"
 
 namespace igi::lightcuts {

@@ -8,18 +8,18 @@
 // points do not depend on its tile.
 //
 // Sub-sample positions and the specular chain are the VPL methods'
-// (methods/subpixel.h, methods/gbuffer.h), camera rays culling single-sided
+// (core/subpixel.h, core/gbuffer.h), camera rays culling single-sided
 // back faces like theirs.
 #include <cstdint>
 
 #include <glm/glm.hpp>
 
+#include "core/frame.h"
+#include "core/gbuffer.h"
 #include "lightcuts/bounds.h"
-#include "methods/gbuffer.h"
-#include "render/frame.h"
+#include "sampling/warp.h"
 #include "scene/accel.h"
 #include "scene/camera_rays.h"
-#include "sampling/warp.h"
 #include "scene/surface.h"
 
 namespace igi::lightcuts {
@@ -41,7 +41,7 @@ struct GatherPoint {
   bool valid() const { return depth < INFINITY; }
 };
 
-// The gather point at the end of a specular chain (methods/gbuffer.h):
+// The gather point at the end of a specular chain (core/gbuffer.h):
 // its surface, direction, emission and throughput, and the frames.
 GatherPoint gather_point(const GSample& chain);
 

@@ -2,16 +2,16 @@
 
 #include <cmath>
 
+#include "core/clamp.h"
 #include "lighting/lights.h"
 #include "material/bsdf.h"
-#include "methods/clamp.h"
 #include "sampling/warp.h"
 
 namespace igi::lightcuts {
 namespace {
 
 // The BSDF at the gather point, albedo included: bsdf_eval's rule, as every
-// VPL method shades (methods/vpl_contribution.h).
+// VPL method shades (core/vpl_contribution.h).
 glm::vec3 receiver_bsdf(const GatherPoint& g, glm::vec3 wi) { return bsdf_eval(g.surface, g.wo, wi); }
 
 // A surface VPL's BSDF, light arriving from its incident direction and
@@ -54,14 +54,14 @@ glm::vec3 light_contribution(const LightingContext& context, const GatherPoint& 
       emitted = leaf.light_class == LightClass::Glossy
                     ? vpl_bsdf(context.scene, context.vpls[leaf.source], -wi) * leaf.intensity
                     : leaf.intensity;
-      // A glossy VPL's lobe is clamped as a glossy receiver's (methods/clamp.h), as ir and igi take it.
+      // A glossy VPL's lobe is clamped as a glossy receiver's (core/clamp.h), as ir and igi take it.
       if (leaf.light_class == LightClass::Glossy && context.clamp_bound < INFINITY)
         emitted *= glossy_lobe_clamp(max_component(vpl_bsdf(context.scene, context.vpls[leaf.source], -wi, true)),
                                      g_term, context.clamp_bound);
     }
   }
   glm::vec3 f = receiver_bsdf(g, wi);
-  // A glossy receiver's clamp (methods/clamp.h), on its BSDF with albedo 1, as ir and igi take it.
+  // A glossy receiver's clamp (core/clamp.h), on its BSDF with albedo 1, as ir and igi take it.
   if (leaf.light_class != LightClass::Punctual && leaf.light_class != LightClass::Directional &&
       sp.material->type == MaterialType::Conductor && context.clamp_bound < INFINITY) {
     SurfacePoint white = sp;

@@ -6,7 +6,7 @@
 // Scale. ir sums all S sets and divides by S, since each set alone estimates
 // the whole light. Lightcuts estimates that same sum, so a VPL leaf carries
 // its flux divided by S; punctual lights carry their own intensity (W/sr;
-// directional W/m^2). Directional VPLs (the environment's, vpl/vpl.h) are
+// directional W/m^2). Directional VPLs (the environment's, core/vpl.h) are
 // leaves with their irradiance divided by S; VPL kinds Point and Spot, if a
 // VplSets holds them, are skipped: those lights come from the scene.
 //
@@ -27,8 +27,8 @@
 
 #include <glm/glm.hpp>
 
+#include "core/vpl.h"
 #include "scene/scene.h"
-#include "vpl/vpl.h"
 
 namespace igi::lightcuts {
 

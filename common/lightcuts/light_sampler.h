@@ -33,7 +33,7 @@
 // bits for 20 levels.
 //
 // Point and spot lights (the Punctual class) are few and exact: never drawn,
-// the caller adds them (igi's exact lights, methods/direct_lights.h).
+// the caller adds them (igi's exact lights, core/direct_lights.h).
 //
 // Where both children's bounds are 0 but their parent's is not (the
 // children's boxes are tighter), no leaf below can light the point; the draw
@@ -42,9 +42,9 @@
 #include <cstdint>
 #include <optional>
 
+#include "core/frame.h"
 #include "lightcuts/gather_points.h"
 #include "lightcuts/light_tree.h"
-#include "render/frame.h"
 
 namespace igi::lightcuts {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "render/parallel.h"
+#include "core/parallel.h"
 #include "sampling/content_hash.h"
 #include "sampling/hash.h"
 
@@ -125,7 +125,7 @@ class Builder {
   static constexpr int kBins = 16;
   static constexpr uint32_t kBinned = 1024;
   static constexpr uint32_t kMedianBelow = 8;  // small nodes: binning costs more than it gains
-  // The top two levels of large trees build their halves at once (render/parallel.h).
+  // The top two levels of large trees build their halves at once (core/parallel.h).
   static constexpr int kParallelDepth = 2;
   static constexpr uint32_t kParallelLeaves = 1 << 15;
   static constexpr int kMaxBinnedDepth = 48;

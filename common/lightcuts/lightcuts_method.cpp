@@ -2,9 +2,9 @@
 
 #include <stdexcept>
 
+#include "core/clamp.h"
 #include "lightcuts/lightcuts_settings.h"
 #include "lightcuts/reconstruction.h"
-#include "methods/clamp.h"
 #include "sampling/content_hash.h"
 #include "sampling/hash.h"
 #include "vpl/vpl_generator.h"

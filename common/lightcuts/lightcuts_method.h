@@ -18,10 +18,10 @@
 #include <atomic>
 #include <memory>
 
+#include "core/method.h"
+#include "core/vpl.h"
 #include "lightcuts/cut.h"
 #include "lightcuts/light_tree.h"
-#include "methods/method.h"
-#include "vpl/vpl.h"
 
 namespace igi::lightcuts {
 

@@ -1,13 +1,8 @@
 #include "lightcuts/lightcuts_settings.h"
 
-#include <cmath>
-#include <cstdio>
-
-#include <unistd.h>
-
+#include "core/memory.h"
+#include "core/vpl.h"
 #include "lightcuts/light_tree.h"
-#include "methods/memory_check.h"
-#include "vpl/vpl.h"
 
 namespace igi::lightcuts {
 uint64_t bytes_per_vpl() {
@@ -23,11 +18,6 @@ std::string memory_error(const RenderSettings& s, uint64_t memory_bytes) {
          std::to_string(max_vpls(s)) + " VPLs (" + std::to_string(depth_limit(s.light_depth) + 1) +
          " a path, --light-depth), which with the light tree need up to " + gib(need) + ", over half of this machine's " +
          gib(double(memory_bytes)) + ": lower --vpl-paths, --vpl-sets or --light-depth";
-}
-
-uint64_t physical_memory_bytes() {
-  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-  return pages > 0 && page > 0 ? uint64_t(pages) * uint64_t(page) : 0;
 }
 
 }  // namespace igi::lightcuts

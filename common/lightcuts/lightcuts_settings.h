@@ -22,14 +22,12 @@
 #include <cstdint>
 #include <string>
 
-#include "methods/settings.h"
+#include "core/settings.h"
 
 namespace igi::lightcuts {
 
-inline constexpr int kMaxCut = 1 << 20;
-inline constexpr int kMaxSpacing = 64;
-inline constexpr int kMaxSamples = 64;
-inline constexpr int kMaxBlock = 8;  // block cuts of at most 8 x 8 pixels
+// Their limits (kMaxCut, kMaxSpacing, kMaxSamples, kMaxBlock) are in
+// core/settings.h with every other option's, where check_settings() reads them.
 
 // Light paths per frame: S x M.
 inline uint64_t light_paths(const RenderSettings& s) {
@@ -45,7 +43,5 @@ inline int specular_depth(const RenderSettings& s) { return depth_limit(s.specul
 
 // "" when the worst-case VPL count fits in `memory_bytes`, else why not.
 std::string memory_error(const RenderSettings& s, uint64_t memory_bytes);
-// This machine's physical memory (0 when unknown).
-uint64_t physical_memory_bytes();
 
 }  // namespace igi::lightcuts

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "methods/subpixel.h"
-#include "methods/vpl_contribution.h"
+#include "core/subpixel.h"
+#include "core/vpl_contribution.h"
 #include "sampling/hash.h"
 #include "sampling/sobol.h"
 #include "sampling/warp.h"

@@ -16,22 +16,22 @@
 // Emission at y IS added, unlike pbrt-v2's igi: there direct light is
 // computed apart and never clamped, so Le(y) would count it twice. Here the
 // direct light of emissive triangles reaches x only through Area VPLs, which
-// are clamped like the rest (vpl/vpl.h), so Le(y) over the short hop is
+// are clamped like the rest (core/vpl.h), so Le(y) over the short hop is
 // exactly the direct light the clamp cut. Point and spot lights are never
 // clamped and have no surface a ray could hit. Measured in the furnace
 // (tests/test_bias_compensation.cpp): with Le(y) one level gives 1.775
 // against its analytic 1.778; without it 1.440.
 //
-// With anti-aliasing (methods/subpixel.h) the pixel's n samples are shared
+// With anti-aliasing (core/subpixel.h) the pixel's n samples are shared
 // out over its S sub-samples (n / S each, at least one), so a pixel costs
 // about the same at any S, and L(y -> x) is the sub-sample's own group's
 // estimate scaled by the group count, like its VPL sum. Exact point, spot and directional lights
-// (never clamped, methods/direct_lights.h) light y too: their light reflected
+// (never clamped, core/direct_lights.h) light y too: their light reflected
 // over the short hop is what the clamp cut from the VPLs their paths left on y.
 //
 // Random numbers: sample_2d(k n / S + i, 0, hash(hash(x, y, frame seed), b))
 // in GLOBAL pixel coordinates (x, y), sub-sample k, glass branch b of G-buffer
-// layer l = b S + k (methods/gbuffer.h), so a pixel's compensation is the
+// layer l = b S + k (core/gbuffer.h), so a pixel's compensation is the
 // same in whatever tile, thread or process renders it. All methods are const
 // and thread-safe.
 #include <span>
@@ -39,11 +39,11 @@
 
 #include <glm/glm.hpp>
 
-#include "methods/gbuffer.h"
-#include "methods/vpl_contribution.h"
-#include "render/frame.h"
+#include "core/frame.h"
+#include "core/gbuffer.h"
+#include "core/vpl.h"
+#include "core/vpl_contribution.h"
 #include "scene/accel.h"
-#include "vpl/vpl.h"
 
 namespace igi {
 

@@ -39,9 +39,9 @@
 
 #include <glm/glm.hpp>
 
+#include "core/gbuffer.h"
+#include "core/settings.h"
 #include "lighting/lights.h"
-#include "methods/gbuffer.h"
-#include "methods/settings.h"
 
 namespace igi {
 

@@ -1,5 +1,5 @@
+#include "core/method.h"
 #include "lightcuts/lightcuts_method.h"
-#include "methods/method.h"
 #include "methods/path_tracer.h"
 #include "methods/vpl_method.h"
 

@@ -4,18 +4,12 @@
 
 #include <glm/glm.hpp>
 
+#include "core/gbuffer.h"
 #include "lightcuts/gather_points.h"
 #include "lightcuts/lightcuts_settings.h"
-#include "methods/gbuffer.h"
 #include "photons/caustic_settings.h"
 
 namespace igi {
-std::string gib(double bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f GiB", bytes / double(1ull << 30));
-  return text;
-}
-
 std::string memory_error(const RenderSettings& s, uint64_t memory_bytes) {
   if (s.method == MethodKind::Lightcuts)
     if (std::string e = lightcuts::memory_error(s, memory_bytes); !e.empty()) return e;
@@ -55,7 +49,5 @@ std::string tile_memory_error(const RenderSettings& s, int width, int height, in
          (threads == 1 ? " thread" : " threads") + ", over half of this machine's " + gib(double(memory_bytes)) +
          ": lower --tile" + (options.empty() ? "" : " or the options named") + " (or use fewer threads)";
 }
-
-uint64_t machine_memory_bytes() { return lightcuts::physical_memory_bytes(); }
 
 }  // namespace igi

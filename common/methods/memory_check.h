@@ -8,7 +8,8 @@
 #include <cstdint>
 #include <string>
 
-#include "methods/settings.h"
+#include "core/memory.h"  // gib, machine_memory_bytes
+#include "core/settings.h"
 
 namespace igi {
 
@@ -23,11 +24,5 @@ std::string memory_error(const RenderSettings& settings, uint64_t memory_bytes);
 uint64_t tile_bytes(const RenderSettings& settings, int width, int height);
 // "" when `threads` render threads' tiles fit in half of `memory_bytes` (0: unknown), else why not.
 std::string tile_memory_error(const RenderSettings& settings, int width, int height, int threads, uint64_t memory_bytes);
-
-// "1.5 GiB": bytes for a memory message.
-std::string gib(double bytes);
-
-// This machine's physical memory; 0 when unknown.
-uint64_t machine_memory_bytes();
 
 }  // namespace igi

@@ -2,7 +2,7 @@
 // Method `pt`: unidirectional path tracing with next-event estimation and
 // multiple importance sampling (power heuristic) against BSDF sampling, and
 // Russian roulette. The accuracy reference for every other method.
-#include "methods/method.h"
+#include "core/method.h"
 #include "scene/surface.h"
 
 namespace igi {

@@ -12,9 +12,9 @@
 
 #include <embree3/rtcore.h>
 
-#include "methods/gbuffer.h"
-#include "methods/ray_log.h"
-#include "methods/vpl_contribution.h"
+#include "core/gbuffer.h"
+#include "core/ray_log.h"
+#include "core/vpl_contribution.h"
 
 namespace igi {
 

@@ -11,7 +11,7 @@
 // blotches (the same few VPLs behind every pixel of the set) become fine
 // per-point noise, which the discontinuity buffer and the wavelet filter
 // average over neighbours' independent draws. The scene's point, spot and
-// directional lights stay exact (methods/direct_lights.h); the tree holds
+// directional lights stay exact (core/direct_lights.h); the tree holds
 // the VPLs alone.
 //
 // Determinism: the tree is a pure function of the VPLs and the frame seed;
@@ -23,12 +23,12 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/frame.h"
+#include "core/gbuffer.h"
+#include "core/vpl.h"
+#include "core/vpl_contribution.h"
 #include "lightcuts/light_tree.h"
-#include "methods/gbuffer.h"
-#include "methods/vpl_contribution.h"
-#include "render/frame.h"
 #include "scene/accel.h"
-#include "vpl/vpl.h"
 
 namespace igi {
 

@@ -4,13 +4,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/clamp.h"
+#include "core/direct_lights.h"
+#include "core/subpixel.h"
+#include "core/vpl_contribution.h"
 #include "filter/discontinuity_buffer.h"
 #include "importance/view_vpls.h"
 #include "methods/bias_compensation.h"
-#include "methods/clamp.h"
-#include "methods/direct_lights.h"
-#include "methods/subpixel.h"
-#include "methods/vpl_contribution.h"
 #include "sampling/content_hash.h"
 #include "sampling/hash.h"
 #include "vpl/vpl_generator.h"
@@ -247,7 +247,7 @@ void VplMethod::combine(const GBuffer& gbuffer, const GlossyHits& hits, Scratch&
 // filter off). Each layer is filtered on its own: a sub-sample is averaged
 // with the same sub-sample of its neighbours where they lie on its surface,
 // so edges stay sharp per sub-sample. The rotation of groups
-// (methods/subpixel.h) gives the neighbours other groups, and over the S
+// (core/subpixel.h) gives the neighbours other groups, and over the S
 // layers a pixel on an open surface averages every (set, group) once: all the
 // frame's VPLs, as with S = 1. A glass branch's layer holds what neighbouring
 // pixels see through the same branch (the refracted room, the reflection),

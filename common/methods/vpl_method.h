@@ -6,15 +6,15 @@
 //       N x N window, so each pixel sees all sets at 1/S of the cost.
 // Around that core, per tile:
 //  - anti-aliasing by VPL groups: S sub-samples per pixel, each shaded by its
-//    own group of the pixel's light paths (methods/subpixel.h);
+//    own group of the pixel's light paths (core/subpixel.h);
 //  - GGX surfaces sharper than the glossy threshold gather their lobe with
 //    rays instead of taking VPL light (methods/glossy_gather.h);
 //  - exact point, spot and directional lights, once per sub-sample, added
-//    after the filter (methods/direct_lights.h);
+//    after the filter (core/direct_lights.h);
 //  - with a clamp, optional bias compensation (methods/bias_compensation.h)
 //    adds back the clamped light before the filter;
 //  - glass seen from the camera splits into reflection and refraction
-//    layers (methods/gbuffer.h), each filtered on its own;
+//    layers (core/gbuffer.h), each filtered on its own;
 //  - with --wavelet, the edge-avoiding wavelet filter after the
 //    discontinuity buffer, once per pixel (wavelet/wavelet_filter.h);
 //  - with --vpl-draws K, each shading point draws K VPLs of all sets from
@@ -25,15 +25,15 @@
 // Shadow rays go out in 16-wide packets that share one VPL (coherent).
 #include <optional>
 
-#include "methods/method.h"
-#include "methods/ray_log.h"
-#include "methods/shadow_batch.h"
-#include "methods/gbuffer.h"
-#include "methods/glossy_gather.h"
-#include "methods/vpl_draws.h"
+#include "core/gbuffer.h"
+#include "core/method.h"
+#include "core/ray_log.h"
+#include "core/vpl.h"
 #include "filter/discontinuity_buffer.h"
+#include "methods/glossy_gather.h"
+#include "methods/shadow_batch.h"
+#include "methods/vpl_draws.h"
 #include "photons/caustic_map.h"
-#include "vpl/vpl.h"
 
 namespace igi {
 
@@ -73,7 +73,7 @@ class VplMethod final : public Method {
   FrameSetup frame_;
   VplSets vpls_;
   RayCounts setup_rays_;
-  std::vector<Vpl> exact_;  // point, spot and directional lights (methods/direct_lights.h)
+  std::vector<Vpl> exact_;  // point, spot and directional lights (core/direct_lights.h)
   std::optional<CausticMap> caustics_;
   std::optional<VplDraws> draws_;  // --vpl-draws: the light tree over this frame's VPLs
   float clamp_bound_ = INFINITY;

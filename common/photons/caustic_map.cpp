@@ -4,7 +4,7 @@
 #include <cmath>
 #include <thread>
 
-#include "methods/vpl_contribution.h"
+#include "core/vpl_contribution.h"
 #include "photons/photon_paths.h"
 #include "sampling/content_hash.h"
 #include "sampling/warp.h"

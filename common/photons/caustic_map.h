@@ -39,8 +39,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "methods/gbuffer.h"
-#include "methods/method.h"
+#include "core/gbuffer.h"
+#include "core/method.h"
 #include "photons/photon_grid.h"
 
 namespace igi {
@@ -81,7 +81,7 @@ class CausticMap {
 uint64_t hash_photons(const std::vector<Photon>& photons);
 
 // The sparse photons' radius over r at progressive pass k (0-based):
-// kSparseRadiusScale / (k + 1)^(1/4), as the clamp relaxes (methods/clamp.h),
+// kSparseRadiusScale / (k + 1)^(1/4), as the clamp relaxes (core/clamp.h),
 // but never below kBouncedRadiusScale, so no sparse photon is gathered
 // sharper than the dense ones of its set: 4 r at one pass, 2 r from pass 16 on.
 float sparse_radius_scale(uint32_t pass);

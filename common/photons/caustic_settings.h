@@ -13,14 +13,13 @@
 #include <cstdint>
 #include <string>
 
-#include "methods/settings.h"
+#include "core/settings.h"
 #include "scene/scene.h"
 
 namespace igi::photons {
 
-inline constexpr int kMaxCausticPhotons = 1 << 26;
-inline constexpr float kMinCausticRadius = 1e-5f;
-inline constexpr float kMaxCausticRadius = 0.25f;
+// kMaxCausticPhotons, kMinCausticRadius and kMaxCausticRadius: core/settings.h,
+// with every other option's limits, where check_settings() reads them.
 inline constexpr int kMaxPhotonsPerPath = 4;
 // A photon, its copy in the grid's order and the grid's per-photon share.
 inline constexpr uint64_t kBytesPerPhoton = 2 * 52 + 16;

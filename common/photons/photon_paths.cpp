@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
+#include "core/parallel.h"
 #include "material/bsdf.h"
 #include "photons/caustic_settings.h"
-#include "render/parallel.h"
 #include "sampling/hash.h"
 #include "sampling/warp.h"
 #include "scene/surface.h"
@@ -48,7 +48,7 @@ std::vector<Photon> trace_photon_paths(const SceneContext& context, const Render
   const uint32_t chunks = (paths + kChunk - 1) / kChunk;
   std::vector<std::vector<Photon>> per_chunk(chunks);
   std::vector<RayCounts> per_chunk_rays(chunks);
-  // Each chunk a task of the shared pool (render/parallel.h), with
+  // Each chunk a task of the shared pool (core/parallel.h), with
   // flush-to-zero set whatever the caller's mode: the photons cannot depend
   // on who calls.
   parallel_tasks(

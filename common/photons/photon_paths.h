@@ -28,7 +28,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "methods/method.h"
+#include "core/method.h"
 #include "photons/photon.h"
 
 namespace igi {

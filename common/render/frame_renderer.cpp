@@ -14,7 +14,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "render/parallel.h"
+#include "core/parallel.h"
 #include "scene/accel.h"
 
 namespace igi {

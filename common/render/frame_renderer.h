@@ -5,8 +5,8 @@
 #include <functional>
 #include <vector>
 
+#include "core/method.h"
 #include "image/image.h"
-#include "methods/method.h"
 
 namespace igi {
 

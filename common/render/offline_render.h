@@ -4,7 +4,7 @@
 // is one sample sequence); ir/igi passes advance the VPL seed.
 #include <functional>
 
-#include "methods/method.h"
+#include "core/method.h"
 #include "render/frame_renderer.h"
 
 namespace igi {

@@ -10,8 +10,8 @@
 #include <memory>
 #include <optional>
 
+#include "core/method.h"
 #include "lighting/lights.h"
-#include "methods/method.h"
 #include "scene/accel.h"
 #include "scene/animation.h"
 

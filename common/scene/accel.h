@@ -109,7 +109,7 @@ class Accel {
   // from each side, counting the rays that hit (4 V / S for a closed room,
   // Cauchy's formula; about a room in a building of many). Deterministic.
   // The scene's diagonal when no ray hits. The VPL clamp is relative to it
-  // (methods/clamp.h).
+  // (core/clamp.h).
   float mean_chord() const { return mean_chord_; }
 
   RTCScene handle() const { return top_; }

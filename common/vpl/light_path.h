@@ -11,8 +11,8 @@
 
 #include <glm/glm.hpp>
 
+#include "core/settings.h"
 #include "lighting/lights.h"
-#include "methods/settings.h"
 #include "sampling/sobol.h"
 #include "scene/accel.h"
 #include "scene/surface.h"

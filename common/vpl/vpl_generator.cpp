@@ -19,7 +19,7 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
   // The vertex the path leaves from: the Area VPL it leaves on the light, or the punctual light.
   LightVertex previous{LightVertex::From::Punctual, start.light};
   // An area light leaves a VPL on itself, the environment a directional one.
-  // Point, spot and directional lights leave none: the methods evaluate their light exactly (vpl/vpl.h); their
+  // Point, spot and directional lights leave none: the methods evaluate their light exactly (core/vpl.h); their
   // paths still carry it on.
   if (start.on_area_light || start.from_environment) {
     // The environment's path leaves a Directional VPL: the sky's light from

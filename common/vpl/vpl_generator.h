@@ -1,8 +1,8 @@
 #pragma once
 // Light paths from the addressable sampler: same scene, settings and seed give
 // bit-identical VPL sets in any process and with any thread count.
-#include "methods/method.h"
-#include "vpl/vpl.h"
+#include "core/method.h"
+#include "core/vpl.h"
 
 namespace igi {
 

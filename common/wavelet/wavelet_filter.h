@@ -36,14 +36,10 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/settings.h"  // kMaxWaveletLevels, wavelet_footprint
 #include "filter/discontinuity_buffer.h"  // Rect
 
 namespace igi {
-
-inline constexpr int kMaxWaveletLevels = 5;
-
-// Pixels an output pixel reads on each side; 0 for 0 levels (no filter).
-constexpr int wavelet_footprint(int levels) { return levels > 0 ? 2 << levels : 0; }
 
 // One region, row-major, width * height entries in each vector.
 struct WaveletInput {

@@ -8,10 +8,10 @@
 
 #include <imgui.h>
 
+#include "core/clamp.h"
+#include "core/subpixel.h"
 #include "lightcuts/lightcuts_settings.h"
-#include "methods/clamp.h"
 #include "methods/memory_check.h"
-#include "methods/subpixel.h"
 #include "photons/caustic_settings.h"
 
 namespace igi {

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "methods/settings.h"
+#include "core/settings.h"
 
 namespace igi {
 

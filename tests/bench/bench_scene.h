@@ -10,9 +10,9 @@
 
 #include "cli/option_checks.h"
 
+#include "core/frame.h"
+#include "core/method.h"
 #include "lighting/lights.h"
-#include "methods/method.h"
-#include "render/frame.h"
 #include "scene/accel.h"
 #include "scene/scene.h"
 #include "support/render_fixture.h"  // test::camera_frame

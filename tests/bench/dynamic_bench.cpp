@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "bench/bench_clock.h"
-#include "methods/gbuffer.h"
+#include "core/gbuffer.h"
 #include "render/frame_renderer.h"
 #include "render/scene_state.h"
 #include "scene/builtin_scenes.h"

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "cli/option_checks.h"
-#include "protocol/liveness_options.h"
+#include "liveness_options.h"
 #include "protocol/messages.h"
 
 namespace igi::loadgen {
@@ -36,7 +36,7 @@ void add_load_options(CLI::App& app, LoadgenOptions& o) {
       ->check(integer(1, kMaxPools))->type_name("P");
   app.add_option("--io-threads", o.io_threads, "the master's ZeroMQ I/O threads [1]")
       ->check(integer(1, cli::kMaxIoThreads))->type_name("N");
-  protocol::add_liveness_options(app, o.heartbeat_ms, o.timeout_ms);
+  add_liveness_options(app, o.heartbeat_ms, o.timeout_ms);
 }
 
 void add_fault_and_check_options(CLI::App& app, CommandLine& c) {
@@ -89,7 +89,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   CommandLine c;
   c.help = !cli::parse_into(c, declare, joined_master_args(args));
   if (c.help) return c;
-  protocol::check_liveness(c.run.heartbeat_ms, c.run.timeout_ms);
+  check_liveness(c.run.heartbeat_ms, c.run.timeout_ms);
   if (c.check_every > 0 && !c.run.write_frames) throw cli::OptionError("--check-every needs --write-frames");
   if (c.run.write_frames && c.run.pixels != "float" && c.check_every > 0)
     throw cli::OptionError("--check-every compares exactly: use --pixels float");

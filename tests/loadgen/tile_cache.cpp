@@ -3,7 +3,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "methods/method.h"
+#include "core/method.h"
 #include "protocol/codec.h"
 #include "sampling/content_hash.h"
 #include "scene/load_scene.h"

@@ -14,9 +14,9 @@
 #include <glm/glm.hpp>
 #include <zmq.hpp>
 
+#include "core/frame.h"
+#include "core/settings.h"
 #include "image/frame_buffer.h"
-#include "methods/settings.h"
-#include "render/frame.h"
 #include "render/scene_state.h"
 
 namespace igi::loadgen {

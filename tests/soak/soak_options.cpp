@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #include "cli/option_checks.h"
-#include "protocol/liveness_options.h"
+#include "liveness_options.h"
 #include "protocol/messages.h"
 
 namespace igi::soak {
@@ -28,7 +28,7 @@ void add_run_options(CLI::App& app, SoakOptions& o) {
   app.add_option("--render-args", o.render_args, "scene, method and settings, as igi-render takes them "
                  "[--scene cornell --method igi --vpl-paths 16 --clamp 0.05 --tile 16]")->type_name("\"...\"");
   app.add_option("--workers", o.workers, "loopback workers [3]")->check(integer(1, kMaxWorkers))->type_name("K");
-  protocol::add_liveness_options(app, o.heartbeat_ms, o.timeout_ms);
+  add_liveness_options(app, o.heartbeat_ms, o.timeout_ms);
   app.add_option("--deadline", o.deadline_seconds, "give up (and fail) after S seconds; 0 = 30 + 0.6 x frames [0]")
       ->check(non_negative_number())->type_name("S");
   app.add_option("--dir", o.dir, "working folder, emptied first [soak-run]")->type_name("DIR");
@@ -75,7 +75,7 @@ std::string soak_usage() { return cli::help<SoakOptions>(kAbout, "igi-soak", dec
 SoakOptions parse_soak_options(const std::vector<std::string>& args) {
   SoakOptions o;
   o.help = !cli::parse_into(o, declare, args);
-  if (!o.help) protocol::check_liveness(o.heartbeat_ms, o.timeout_ms);
+  if (!o.help) check_liveness(o.heartbeat_ms, o.timeout_ms);
   if (o.faults == 0) o.faults = o.frames / 10;
   if (o.deadline_seconds == 0) o.deadline_seconds = 30.0 + 0.6 * o.frames;
   return o;

@@ -4,8 +4,8 @@
 #include <memory>
 #include <vector>
 
+#include "core/gbuffer.h"
 #include "image/image.h"
-#include "methods/gbuffer.h"
 #include "render/offline_render.h"
 #include "sampling/sobol.h"
 #include "scene/animation.h"
@@ -71,7 +71,7 @@ struct Prepared {
     return render_offline(context(), settings, frame(width, height, seed), samples, options).image;
   }
 
-  // The clamp (methods/clamp.h) that bounds G at `distance` metres in one frame.
+  // The clamp (core/clamp.h) that bounds G at `distance` metres in one frame.
   float clamp_at(float distance) const { return distance / accel->mean_chord(); }
 
   // `passes` frames as render() takes them (seeds seed, seed + 1, ...; the

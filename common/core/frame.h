@@ -16,7 +16,7 @@ struct FrameSetup {
   uint32_t seed = 0;          // scrambles every sample of the frame
   // pt: first sample index of this pass. ir/igi/lightcuts: the progressive
   // pass this frame is (0 for a frame on its own): the clamp relaxes with it
-  // (methods/clamp.h).
+  // (core/clamp.h).
   uint32_t sample_begin = 0;
   uint32_t sample_count = 1;  // pt: samples per pixel in this pass
   // ir/igi: where in each pixel the primary ray goes ((0.5, 0.5) = centre);

@@ -5,9 +5,9 @@
 
 #include <glm/glm.hpp>
 
-#include "methods/ray_log.h"
-#include "methods/settings.h"
-#include "render/frame.h"
+#include "core/frame.h"
+#include "core/ray_log.h"
+#include "core/settings.h"
 #include "scene/accel.h"
 #include "scene/surface.h"
 
@@ -32,7 +32,7 @@ struct Region {
 // The tile plus its border, clipped to the image.
 Region tile_region(const TileJob& job, int image_width, int image_height);
 
-// The region's layers: S sub-sample positions (methods/subpixel.h) times the
+// The region's layers: S sub-sample positions (core/subpixel.h) times the
 // glass branches. Layer l = b S + k holds branch b of sub-sample k of every
 // pixel, row-major, so each layer reads like a one-sample G-buffer of the
 // region and the discontinuity buffer filters it on its own. Branch 0 is

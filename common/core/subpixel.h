@@ -2,7 +2,7 @@
 // Anti-aliasing by VPL groups (after Benthin, Wald and Slusallek 2003).
 //
 // A pixel takes S = s x s primary rays at stratified sub-pixel positions.
-// Its VPL set is split into S groups of light paths (vpl/vpl.h), and
+// Its VPL set is split into S groups of light paths (core/vpl.h), and
 // sub-sample k connects only to group g = (k + r_p) mod S, scaled by S, so
 // the pixel's mean over its sub-samples is still an unbiased estimate of the
 // whole set, while it casts the same number of shadow rays as with S = 1:

@@ -15,7 +15,7 @@
 // the path's direction, flux = irradiance L 4 pi / its choice's probability).
 // Point, spot and directional lights start light paths like any light, but
 // their own light is exact: the methods evaluate each once per shading point
-// (methods/direct_lights.h) rather than through M identical copies per set.
+// (core/direct_lights.h) rather than through M identical copies per set.
 #include <cstdint>
 #include <vector>
 
@@ -41,7 +41,7 @@ struct Vpl {
 
 // S = N x N sets; set k holds the VPLs of light paths [k M, (k+1) M). Each
 // set is cut into G groups of consecutive paths for anti-aliasing
-// (methods/subpixel.h): path i of a set is in group floor(i G / M).
+// (core/subpixel.h): path i of a set is in group floor(i G / M).
 struct VplSets {
   int interleave = 3;                 // N
   int groups = 1;                     // G

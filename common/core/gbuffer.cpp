@@ -1,9 +1,9 @@
-#include "methods/gbuffer.h"
+#include "core/gbuffer.h"
 
 #include <algorithm>
 
+#include "core/subpixel.h"
 #include "material/bsdf.h"
-#include "methods/subpixel.h"
 #include "sampling/hash.h"
 #include "scene/camera_rays.h"
 

@@ -7,7 +7,7 @@ namespace CLI {
 class App;
 }
 
-namespace igi::protocol {
+namespace igi {
 
 // Declares both options on `app` (defaults: the variables' values); call
 // check_liveness() after the parse.
@@ -16,4 +16,4 @@ void add_liveness_options(CLI::App& app, int& heartbeat_ms, int& timeout_ms, con
 // every --heartbeat-ms, so the timeout must be the longer: throws cli::OptionError naming both.
 void check_liveness(int heartbeat_ms, int timeout_ms);
 
-}  // namespace igi::protocol
+}  // namespace igi

@@ -1,4 +1,4 @@
-#include "render/parallel.h"
+#include "core/parallel.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -11,9 +11,9 @@
 
 #include <glm/glm.hpp>
 
+#include "core/frame.h"
+#include "core/settings.h"
 #include "lighting/lights.h"
-#include "methods/settings.h"
-#include "render/frame.h"
 #include "scene/accel.h"
 
 namespace igi {

@@ -1,12 +1,10 @@
-#include "methods/settings.h"
+#include "core/settings.h"
 
 #include <cmath>
 #include <cstdio>
 
-#include "lightcuts/lightcuts_settings.h"
-#include "methods/clamp.h"
-#include "methods/subpixel.h"
-#include "photons/caustic_settings.h"
+#include "core/clamp.h"
+#include "core/subpixel.h"
 
 namespace igi {
 

@@ -2,7 +2,7 @@
 // Point, spot and directional lights, evaluated exactly: one shadow ray per
 // light and shading point, with the receiver's full BSDF (a point light's
 // highlight on a glossy floor is real, not a VPL artefact). VPL sets carry
-// none of them (vpl/vpl.h), and their direct light is added after the
+// none of them (core/vpl.h), and their direct light is added after the
 // discontinuity buffer, so hard shadows stay hard.
 //
 // Each light becomes a Vpl of its kind with flux = its intensity (W/sr) or
@@ -11,8 +11,8 @@
 // punctual lights pays a shadow ray per light per point.
 #include <vector>
 
+#include "core/vpl.h"
 #include "scene/scene.h"
-#include "vpl/vpl.h"
 
 namespace igi {
 

@@ -1,14 +1,14 @@
 #pragma once
 // Unoccluded light from one VPL to one G-buffer sample, demodulated (the
 // BSDF at the shading point is evaluated with albedo 1; the caller multiplies
-// the filtered result by the albedo once). See vpl/vpl.h for the terms.
+// the filtered result by the albedo once). See core/vpl.h for the terms.
 #include <cmath>
 
+#include "core/clamp.h"
+#include "core/gbuffer.h"
+#include "core/vpl.h"
 #include "material/bsdf.h"
-#include "methods/clamp.h"
-#include "methods/gbuffer.h"
 #include "sampling/warp.h"
-#include "vpl/vpl.h"
 
 namespace igi {
 

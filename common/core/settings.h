@@ -4,8 +4,6 @@
 #include <optional>
 #include <string>
 
-#include "wavelet/wavelet_filter.h"
-
 namespace igi {
 
 enum class MethodKind : uint8_t { PathTracer, InstantRadiosity, Igi, Lightcuts };
@@ -31,6 +29,24 @@ inline constexpr int kMaxImportancePaths = 1 << 20;  // camera paths of the ligh
 inline constexpr int kMaxBidirPaths = 4096;          // bidirectional: light and camera paths per set
 inline constexpr int kMaxBidirVpls = 1 << 16;        // bidirectional: VPLs kept per set
 inline constexpr int kBidirAuto = -1;               // bidirectional: chosen by the view
+inline constexpr int kMaxWaveletLevels = 5;
+
+// The wavelet filter's footprint (wavelet/wavelet_filter.h): pixels an
+// output pixel reads on each side; 0 for 0 levels (no filter).
+constexpr int wavelet_footprint(int levels) { return levels > 0 ? 2 << levels : 0; }
+
+namespace lightcuts {  // lightcuts/lightcuts_settings.h says what each option does
+inline constexpr int kMaxCut = 1 << 20;
+inline constexpr int kMaxSpacing = 64;
+inline constexpr int kMaxSamples = 64;
+inline constexpr int kMaxBlock = 8;  // block cuts of at most 8 x 8 pixels
+}  // namespace lightcuts
+
+namespace photons {  // photons/caustic_settings.h says what each option does
+inline constexpr int kMaxCausticPhotons = 1 << 26;
+inline constexpr float kMinCausticRadius = 1e-5f;
+inline constexpr float kMaxCausticRadius = 0.25f;
+}  // namespace photons
 
 // The defaults of anti-aliasing, clamp and compensation: README, "Defaults";
 // their measurements in tests/bench/RESULTS.md, "Convergence".
@@ -52,7 +68,7 @@ struct RenderSettings {
   // shadow ray each, instead of its set's group (methods/vpl_draws.h). 0 = sets.
   int vpl_draws = 0;
   // Anti-aliasing by VPL groups: S = s x s stratified sub-samples per pixel,
-  // each shaded by 1/S of the pixel's light paths (methods/subpixel.h). 1 = off.
+  // each shaded by 1/S of the pixel's light paths (core/subpixel.h). 1 = off.
   int aa_samples = 4;
   // GGX surfaces with alpha below this are too sharp for VPLs (each would show
   // as a highlight of its own): their lobe is gathered with BSDF-sampled rays
@@ -60,7 +76,7 @@ struct RenderSettings {
   // paths pass through them without leaving VPLs. 0 = VPLs shade every GGX surface.
   float glossy_threshold = 0.2f;
   int glossy_rays = 1;         // gather rays per sub-sample of such a surface
-  // Geometry-term bound (methods/clamp.h), scale-free and consistent: clamp
+  // Geometry-term bound (core/clamp.h), scale-free and consistent: clamp
   // is the distance, a fraction of the scene's mean chord (about a room),
   // below which 1/r^2 stops growing in one frame; progressive pass k clamps
   // at clamp / (k + 1)^(1/4) of it, so passes converge to the unclamped
@@ -88,7 +104,7 @@ struct RenderSettings {
   int lightcuts_samples = 1;      // multidimensional lightcuts: K = s x s gather points per pixel
   // ir/igi: glass seen from the camera splits into reflection and refraction
   // at its first B - 1 surfaces, each branch a G-buffer layer of its own
-  // (methods/gbuffer.h); past them glass picks one by Fresnel. 1 = always pick.
+  // (core/gbuffer.h); past them glass picks one by Fresnel. 1 = always pick.
   int glass_branches = 3;
   // ir/igi: caustic photon map (common/photons/): light that reached a
   // diffuse surface through mirrors or glass, added after the filter.

@@ -1,4 +1,4 @@
-#include "methods/clamp.h"
+#include "core/clamp.h"
 
 #include <cmath>
 
