@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
+  ccache                               # compiles shared by every build folder and clone (CMakeLists.txt)
   libembree-dev libtbb-dev
   libopenimageio-dev openimageio-tools
   libglfw3-dev libgl-dev libglm-dev libimgui-dev   # libimgui-dev: the window's panels (its GLFW and OpenGL 2 backends are in libimgui.a)

@@ -1,17 +1,23 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs the test suite with ctest.
 #   scripts/test.sh [ctest args]   the suite in the Release build (build/), e.g. -R Sampler
-#   scripts/test.sh --all          what CI runs: the suite, then the suite again under
-#                                  ASan + UBSan (build-asan/), each fuzz target for 60 s,
-#                                  and the suite under TSan (build-tsan/)
+#   scripts/test.sh --all          what CI runs (.ci/run), each build and each suite a timed stage:
+#                                  the whole suite in Release (build/); under ASan + UBSan
+#                                  (build-asan/) every test but the statistical accuracy ones
+#                                  (ctest label accuracy); each fuzz target for 30 s; under TSan
+#                                  (build-tsan/) the tests that start threads or processes (label
+#                                  threads). Labels and timeouts: tests/CMakeLists.txt.
 # With --all every stage runs even when an earlier one failed; the exit status
-# is non-zero when any failed, and the summary names the stages and the tests.
+# is non-zero when any failed, and the summary names the stages and the tests
+# and ends with each stage's time. Builds compile through ccache (CMakeLists.txt).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 all=0
 if [ "${1:-}" = --all ]; then all=1; shift; fi
 
+build_start=$SECONDS
 scripts/build.sh
+release_build_seconds=$((SECONDS - build_start))
 if [ $all = 0 ]; then
   cd build
   exec ctest --output-on-failure -j2 "$@"
@@ -24,6 +30,7 @@ retry=(--repeat until-pass:2)
 failed=()
 failed_tests=()
 flaky_tests=()
+stage_times=("$(printf '%-24s %5d s  %s' "release build" "$release_build_seconds" passed)")
 stage() {
   local name=$1 dir=$2; shift 2
   local start=$SECONDS status=0
@@ -47,14 +54,22 @@ stage() {
       grep -qxF "$t" <<<"$finally_failed" || flaky_tests+=("$name: $t")
     done
   fi
+  local result=passed
   if [ "$status" = 0 ]; then echo "=== $name: passed in $((SECONDS - start)) s"
-  else echo "=== $name: FAILED after $((SECONDS - start)) s"; failed+=("$name"); fi
+  else echo "=== $name: FAILED after $((SECONDS - start)) s"; failed+=("$name"); result=FAILED; fi
+  stage_times+=("$(printf '%-24s %5d s  %s' "$name" $((SECONDS - start)) "$result")")
 }
+all_start=$SECONDS
 stage "release suite" build bash -c "cd build && ctest --output-on-failure -j2 ${retry[*]}"
-stage "asan+ubsan suite" build-asan scripts/test-sanitizers.sh asan "${retry[@]}"
-stage "fuzzing (60 s a target)" - scripts/fuzz.sh 60
-stage "tsan suite" build-tsan scripts/test-sanitizers.sh tsan "${retry[@]}"
+stage "asan+ubsan build" - scripts/test-sanitizers.sh asan --build-only
+stage "asan+ubsan suite" build-asan scripts/test-sanitizers.sh asan -LE accuracy "${retry[@]}"
+stage "fuzzing (30 s a target)" - scripts/fuzz.sh 30
+stage "tsan build" - scripts/test-sanitizers.sh tsan --build-only
+stage "tsan suite" build-tsan scripts/test-sanitizers.sh tsan -L threads "${retry[@]}"
 for t in "${flaky_tests[@]}"; do echo "=== flaky (failed, then passed when run again): $t"; done
+echo "=== stage times"
+for t in "${stage_times[@]}"; do echo "=== $t"; done
+echo "=== total $((SECONDS - all_start + release_build_seconds)) s"
 if [ ${#failed[@]} -gt 0 ]; then
   # CI keeps only the end of the log: repeat what the fuzzer found.
   if [[ " ${failed[*]} " == *" fuzzing "* ]] && [ -f build-asan/fuzz-summary.txt ]; then
