@@ -1,6 +1,7 @@
-// The window's panel without a window (issue 18): widgets bound what can be
-// entered, a set that does not fit together is not sent, the panel draws in a
+// The window's panel without a window (issue 18): widgets offer the ranges the
+// settings check accepts and rewrite nothing, a set that does not fit together is not sent, the panel draws in a
 // headless ImGui context, and camera bookmarks round-trip and name bad fields.
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -19,34 +20,60 @@
 namespace igi {
 namespace {
 
-TEST(WindowPanel, BoundedSettingsCannotHoldAZeroVplCountOrANegativeClamp) {
+// The panel's widgets span kLimits (issue 48: ranges written once): each
+// range's ends pass check_settings() and a step past either end fails it,
+// naming the field, so the check and the panel cannot drift apart.
+template <class T>
+void expect_range(const char* field, T RenderSettings::*member, Range<T> range, bool open = false) {
   RenderSettings s;
-  s.paths_per_set = 0;
-  s.clamp = -1.0f;
-  s.interleave = 0;
-  s.aa_samples = 8;  // not a square
-  s.compensation_samples = 100000;
-  s.filter_normal_cos = 3.0f;
-  s.lightcuts_samples = 5;  // not a square
-  s.lightcuts_spacing = -2;
-  s.importance_paths = -1;
-  s.importance_floor = 2.0f;
-  s.bidir_vpls = kMaxBidirVpls + 1;
-  s.bidir_camera_paths = -3;
-  const RenderSettings b = bounded(s);
-  EXPECT_EQ(b.paths_per_set, 1);
-  EXPECT_EQ(b.clamp, 0.0f);
-  EXPECT_EQ(b.interleave, 1);
-  EXPECT_EQ(b.aa_samples, 1) << "a square no larger than the paths per set";
-  EXPECT_EQ(b.compensation_samples, kMaxCompensationSamples);
-  EXPECT_EQ(b.filter_normal_cos, 1.0f);
-  EXPECT_EQ(b.lightcuts_samples, 1) << "a square";
-  EXPECT_EQ(b.lightcuts_spacing, 0);
-  EXPECT_EQ(b.importance_paths, 0);
-  EXPECT_EQ(b.importance_floor, 1.0f);
-  EXPECT_EQ(b.bidir_vpls, kMaxBidirVpls);
-  EXPECT_EQ(b.bidir_camera_paths, 0);
-  EXPECT_FALSE(panel_settings_error(b)) << *panel_settings_error(b);
+  s.method = MethodKind::Igi;
+  s.paths_per_set = 64;  // room for every anti-aliasing count
+  s.aa_samples = 1;
+  for (T v : {range.lo, range.hi}) {
+    s.*member = v;
+    const auto error = check_settings(s);
+    if (open) {
+      ASSERT_TRUE(error) << field << " = " << v << ": an open range's end";
+    } else {
+      EXPECT_FALSE(error) << field << " = " << v << ": " << error->message;
+    }
+  }
+  // One step past each end: the next integer, or the next float.
+  const auto past = [](T v, bool up) {
+    if constexpr (std::is_integral_v<T>) return T(up ? v + 1 : v - 1);
+    else return std::nextafter(v, up ? std::numeric_limits<T>::infinity() : -std::numeric_limits<T>::infinity());
+  };
+  for (T v : {past(range.lo, false), past(range.hi, true)}) {
+    s.*member = v;
+    const auto error = check_settings(s);
+    ASSERT_TRUE(error) << field << " = " << v << " passed the check";
+    EXPECT_EQ(error->field, field);
+  }
+}
+
+TEST(WindowPanel, EveryWidgetsRangeIsTheRangeTheSettingsCheckAccepts) {
+  expect_range("path_depth", &RenderSettings::path_depth, kLimits.path_depth);
+  expect_range("light_depth", &RenderSettings::light_depth, kLimits.light_depth);
+  expect_range("specular_depth", &RenderSettings::specular_depth, kLimits.specular_depth);
+  expect_range("interleave", &RenderSettings::interleave, kLimits.interleave);
+  expect_range("vpl_draws", &RenderSettings::vpl_draws, kLimits.vpl_draws);
+  expect_range("glossy_threshold", &RenderSettings::glossy_threshold, kLimits.glossy_threshold);
+  expect_range("glossy_rays", &RenderSettings::glossy_rays, kLimits.glossy_rays);
+  expect_range("clamp", &RenderSettings::clamp, kLimits.clamp);
+  expect_range("compensation_samples", &RenderSettings::compensation_samples, kLimits.compensation_samples);
+  expect_range("filter_normal_cos", &RenderSettings::filter_normal_cos, kLimits.filter_normal_cos);
+  expect_range("filter_depth_ratio", &RenderSettings::filter_depth_ratio, kLimits.filter_depth_ratio);
+  expect_range("wavelet_levels", &RenderSettings::wavelet_levels, kLimits.wavelet_levels);
+  expect_range("glass_branches", &RenderSettings::glass_branches, kLimits.glass_branches);
+  expect_range("lightcuts_error", &RenderSettings::lightcuts_error, kLimits.lightcuts_error, /*open=*/true);
+  expect_range("lightcuts_max_cut", &RenderSettings::lightcuts_max_cut, kLimits.lightcuts_max_cut);
+  expect_range("lightcuts_spacing", &RenderSettings::lightcuts_spacing, kLimits.lightcuts_spacing);
+  expect_range("lightcuts_block", &RenderSettings::lightcuts_block, kLimits.lightcuts_block);
+  expect_range("caustic_photons", &RenderSettings::caustic_photons, kLimits.caustic_photons);
+  expect_range("caustic_radius", &RenderSettings::caustic_radius, kLimits.caustic_radius);
+  expect_range("importance_paths", &RenderSettings::importance_paths, kLimits.importance_paths);
+  expect_range("importance_floor", &RenderSettings::importance_floor, kLimits.importance_floor);
+  expect_range("bidir_camera_paths", &RenderSettings::bidir_camera_paths, kLimits.bidir_camera_paths);
 }
 
 TEST(WindowPanel, CommitSendsValidChangesOnceAndHoldsBackSetsThatDoNotFit) {
@@ -61,10 +88,14 @@ TEST(WindowPanel, CommitSendsValidChangesOnceAndHoldsBackSetsThatDoNotFit) {
   EXPECT_NE(panel.error().find("caustic"), std::string::npos) << panel.error();
   EXPECT_EQ(panel.settings().method, start.method) << "an invalid set is not sent";
   RenderSettings fewer = start;
-  fewer.paths_per_set = 0;  // bounded to 1; anti-aliasing follows
+  fewer.paths_per_set = start.aa_samples - 1;  // each sub-sample needs a path of its own
+  EXPECT_FALSE(panel.commit(fewer)) << "not rewritten to fit: held back, with the reason";
+  EXPECT_NE(panel.error().find("--vpl-paths"), std::string::npos) << panel.error();
+  EXPECT_EQ(panel.settings().paths_per_set, start.paths_per_set);
+  fewer.aa_samples = 1;
   EXPECT_TRUE(panel.commit(fewer));
   EXPECT_TRUE(panel.error().empty());
-  EXPECT_EQ(panel.settings().paths_per_set, 1);
+  EXPECT_EQ(panel.settings().paths_per_set, start.aa_samples - 1);
   EXPECT_EQ(panel.settings().aa_samples, 1);
   EXPECT_TRUE(panel.take_change());
   EXPECT_FALSE(panel.take_change()) << "taken once";
@@ -106,6 +137,10 @@ TEST(WindowPanel, EveryMethodsPageDrawsHeadless) {
   for (MethodKind m : {MethodKind::PathTracer, MethodKind::InstantRadiosity, MethodKind::Igi, MethodKind::Lightcuts}) {
     RenderSettings s;
     s.method = m;
+    // Values past what the panel's sliders once showed (depth 64, 2^16 paths): shown as given, never rewritten.
+    s.path_depth = 500;
+    s.paths_per_set = 1 << 18;
+    ASSERT_FALSE(check_settings(s));
     SettingsPanel panel(s, 2.0f);
     for (int frame = 0; frame < 2; ++frame) {  // ImGui sizes a new window in its first frame and draws it in the second
       ImGui::NewFrame();
@@ -116,6 +151,7 @@ TEST(WindowPanel, EveryMethodsPageDrawsHeadless) {
     }
     EXPECT_GT(ImGui::GetDrawData()->TotalVtxCount, 100) << method_name(m);
     EXPECT_FALSE(panel.take_change()) << "drawing alone changes nothing";
+    EXPECT_EQ(std::memcmp(&panel.settings(), &s, sizeof s), 0) << method_name(m) << ": a value was rewritten";
   }
   ImGui::DestroyContext();
 }

@@ -17,13 +17,10 @@
 // shrinks its radius pass by pass. Pass 0 is the clamp one frame shows.
 #include <cstdint>
 
+#include "core/settings.h"  // kMaxClamp
 #include "sampling/warp.h"
 
 namespace igi {
-
-// Above this the clamp distance would exceed several rooms: nothing is left
-// unclamped, and the image is a blur of VPL light.
-inline constexpr float kMaxClamp = 4.0f;
 
 // Infinity when clamp <= 0 (off).
 float clamp_bound(float clamp, float mean_chord, uint32_t pass);

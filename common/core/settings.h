@@ -1,6 +1,7 @@
 #pragma once
 // Every option of every method, as one plain value that travels with a frame.
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -30,6 +31,9 @@ inline constexpr int kMaxBidirPaths = 4096;          // bidirectional: light and
 inline constexpr int kMaxBidirVpls = 1 << 16;        // bidirectional: VPLs kept per set
 inline constexpr int kBidirAuto = -1;               // bidirectional: chosen by the view
 inline constexpr int kMaxWaveletLevels = 5;
+// Above this the clamp distance (core/clamp.h) would exceed several rooms:
+// nothing is left unclamped, and the image is a blur of VPL light.
+inline constexpr float kMaxClamp = 4.0f;
 
 // The wavelet filter's footprint (wavelet/wavelet_filter.h): pixels an
 // output pixel reads on each side; 0 for 0 levels (no filter).
@@ -135,6 +139,38 @@ struct RenderSettings {
   // Plain cuts only (no --lightcuts-spacing, one gather point a pixel).
   int lightcuts_block = 4;
 };
+
+// The range of every numeric option, as data: check_settings() refuses a value
+// outside it and the window's panel offers exactly it (master/display/
+// settings_panel.cpp), so no range is written twice. Closed ranges, except
+// `lightcuts_error`, whose ends are excluded; counts of sub-samples and gather
+// points are also squares, and some fields must fit each other (check_settings).
+template <class T>
+struct Range {
+  T lo, hi;
+};
+struct SettingsLimits {
+  Range<int> path_depth{0, kMaxDepth}, light_depth{0, kMaxDepth}, specular_depth{0, kMaxDepth};
+  Range<int> interleave{1, kMaxInterleave}, paths_per_set{1, kMaxPathsPerSet}, vpl_draws{0, kMaxVplDraws};
+  Range<int> aa_samples{1, kMaxAntialiasSamples};
+  Range<float> glossy_threshold{0.0f, 1.0f};
+  Range<int> glossy_rays{1, kMaxGlossyRays};
+  Range<float> clamp{0.0f, kMaxClamp};
+  Range<int> compensation_samples{0, kMaxCompensationSamples};
+  Range<float> filter_normal_cos{-1.0f, 1.0f};
+  Range<float> filter_depth_ratio{0.0f, std::numeric_limits<float>::max()};  // any finite ratio
+  Range<int> wavelet_levels{0, kMaxWaveletLevels};
+  Range<int> glass_branches{1, kMaxGlassBranches};
+  Range<float> lightcuts_error{0.0f, 1.0f};  // open: both ends excluded
+  Range<int> lightcuts_max_cut{1, lightcuts::kMaxCut}, lightcuts_spacing{0, lightcuts::kMaxSpacing};
+  Range<int> lightcuts_block{0, lightcuts::kMaxBlock}, lightcuts_samples{1, lightcuts::kMaxSamples};
+  Range<int> caustic_photons{1, photons::kMaxCausticPhotons};
+  Range<float> caustic_radius{photons::kMinCausticRadius, photons::kMaxCausticRadius};
+  Range<int> importance_paths{0, kMaxImportancePaths};
+  Range<float> importance_floor{0.0f, 1.0f};
+  Range<int> bidir_vpls{0, kMaxBidirVpls}, bidir_camera_paths{0, kMaxBidirPaths};
+};
+inline constexpr SettingsLimits kLimits{};
 
 // The one check of RenderSettings, called by the command lines, the window's
 // panel, the methods and the wire decoder: the first rule broken, or nothing

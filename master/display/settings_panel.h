@@ -1,9 +1,11 @@
 #pragma once
 // The settings panel: the method and its settings, as RenderSettings, and the
-// display's exposure. Every widget bounds its value (a VPL count below 1 or a
-// clamp below 0 cannot be entered); settings that fit each field but not each
-// other (anti-aliasing samples above the paths per set...) are shown as an
-// error and not sent. A valid change is what the window sends with the next
+// display's exposure. Every widget offers its field's range from kLimits
+// (core/settings.h), the range check_settings() accepts, so a VPL count below
+// 1 or a clamp below 0 cannot be entered, and no value is rewritten: one the
+// panel cannot show stays as it was typed on the command line. Settings that
+// fit each field but not each other (anti-aliasing samples above the paths
+// per set...) are shown as an error and not sent. A valid change is what the window sends with the next
 // frame (protocol FrameSetup); no worker reconnects.
 #include <optional>
 #include <string>
@@ -12,8 +14,6 @@
 
 namespace igi {
 
-// Each field held inside the range its widget offers (the wire's own bounds or tighter).
-RenderSettings bounded(RenderSettings settings);
 // The method combo's choice: `settings` with method `m`, less what only ir and
 // igi take (caustics, on by default in scenes with glass, and bidirectional
 // IR), so picking pt or lightcuts is never held back by an option it refuses.
@@ -28,7 +28,7 @@ class SettingsPanel {
   // (closed), inside an ImGui window the caller opened; each widget's tooltip
   // names its command-line option, in the command line's units.
   void draw();
-  // The working copy, bounded, becomes the committed settings when valid (the
+  // The working copy, as edited, becomes the committed settings when valid (the
   // widgets call this; so does the test hook). True when the committed set changed.
   bool commit(const RenderSettings& edited);
   // Settings changed since the last call: the caller starts a new view with them.
