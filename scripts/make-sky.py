@@ -3,7 +3,7 @@
 (+y up, its middle looking along -z, as igi's --environment reads it) with a
 blue-to-white sky above the horizon, brown ground below, and a sun 5 degrees
 across at 3,000 W/(m^2 sr), 40 degrees up, 0.6 rad in longitude from -z.
-The map of tests/bench/RESULTS.md, "Environment maps":
+The map of tests/bench/history/RESULTS-to-2026-12-05.md, "Environment maps":
     python3 scripts/make-sky.py sky.hdr"""
 import math
 import sys

@@ -53,7 +53,7 @@ inline constexpr float kMaxCausticRadius = 0.25f;
 }  // namespace photons
 
 // The defaults of anti-aliasing, clamp and compensation: README, "Defaults";
-// their measurements in tests/bench/RESULTS.md, "Convergence".
+// their measurements in tests/bench/history/RESULTS-to-2026-12-05.md, "Convergence".
 struct RenderSettings {
   MethodKind method = MethodKind::Igi;
   // Path lengths, in surface interactions after the camera or the light; 0 = unbounded.
@@ -63,7 +63,7 @@ struct RenderSettings {
   // Instant radiosity / IGI.
   // N: N x N VPL sets, pixel set = (x mod N) + N (y mod N). Six: 36 sets
   // of M paths, 4x the VPLs of 3 x 3 for the same shadow rays a pixel, so a
-  // building's rooms are lit in one pass (tests/bench/RESULTS.md, "Six VPL
+  // building's rooms are lit in one pass (tests/bench/history/RESULTS-to-2026-12-05.md, "Six VPL
   // sets by default"); ir sums all of them at every pixel.
   int interleave = 6;
   int paths_per_set = 16;      // M: light paths started per VPL set
@@ -91,7 +91,7 @@ struct RenderSettings {
   // no effect without a clamp. On by default since the clamp is a fraction of
   // the mean chord: its rays are short, so it costs 1.1-1.2x a frame, and it
   // takes the corner scene's 16-pass mean from 0.958 to 0.981 of pt
-  // (tests/bench/RESULTS.md, "Convergence").
+  // (tests/bench/history/RESULTS-to-2026-12-05.md, "Convergence").
   int compensation_samples = 4;
   // Discontinuity buffer (igi).
   bool filter = true;
@@ -121,7 +121,7 @@ struct RenderSettings {
   // by default: in a building of many rooms it puts the paths in the rooms
   // the camera sees (rooms-10 at one pass: FLIP 0.09 against 0.18); with one
   // light it is skipped, and elsewhere it costs a few thousand short paths
-  // a frame. pt and lightcuts ignore it (tests/bench/RESULTS.md, "Light
+  // a frame. pt and lightcuts ignore it (tests/bench/history/RESULTS-to-2026-12-05.md, "Light
   // importance by default").
   int importance_paths = 4096;
   float importance_floor = 0.2f;  // share of the light paths still started by power (no light starved)

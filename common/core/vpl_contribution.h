@@ -74,7 +74,7 @@ struct VplShading {
         // GGX VPL's lobe times G is bounded by what a white Lambertian VPL
         // gives at most. On `glossy` the floor's VPLs lit the walls' feet
         // with spots at their lobes' peaks; on `courtyard`, the metal ball's
-        // lit the ground (tests/bench/RESULTS.md, "Glossy VPLs clamped").
+        // lit the ground (tests/bench/history/RESULTS-to-2026-12-05.md, "Glossy VPLs clamped").
         if (v.kind == VplKind::Surface && scene.materials[v.material].type == MaterialType::Conductor)
           emitted *= glossy_lobe_clamp(max_component(vpl_bsdf(v, -wi, glm::vec3(1.0f))), g_term, clamp_bound);
       } else {

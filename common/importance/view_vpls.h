@@ -35,7 +35,7 @@ namespace igi::importance {
 // the suite's cameras: the corridor 7 %; rooms and rooms-10 43-48 % (by
 // power 6 % and 0 %: there auto turns it on too); the Cornell box, the lit
 // corner, glossy and glass 55-75 %. Elsewhere light paths alone are sharper
-// at one pass (tests/bench/RESULTS.md, "Bidirectional IR by view"). The
+// at one pass (tests/bench/history/RESULTS-to-2026-12-05.md, "Bidirectional IR by view"). The
 // probe costs up to kViewProbes x (about 5 kProbePaths) shadow rays a frame.
 inline constexpr uint32_t kViewProbes = 64;
 inline constexpr int kProbePaths = 32;

@@ -66,7 +66,7 @@ inline bool receives_vpls(const Material& m, float glossy_threshold) {
 // bright squares on the ground beside the courtyard's metal ball, dark
 // streaks at the foot of the glossy scene's walls, and an image that
 // converged to the widened lobe (glossy at 64 passes: FLIP 0.069 by VPLs,
-// 0.048 by photons; tests/bench/RESULTS.md, "Sharp glossy light as caustics").
+// 0.048 by photons; tests/bench/history/RESULTS-to-2026-12-05.md, "Sharp glossy light as caustics").
 inline bool focuses_light(const Material& m, float glossy_threshold) {
   return m.is_specular() || is_gathered_glossy(m, glossy_threshold);
 }

@@ -163,7 +163,7 @@ int accumulate_shadow_packet(const ShadowPacket& packet, size_t first, PixelBatc
 // 16-pixel tiles differed from the whole frame in 4 of 36 runs (a few pixels
 // each, by about 1e-5), never with single rays; RTC_SCENE_FLAG_ROBUST did not
 // help. The cost is 1.1-1.3x an igi frame, 0.9x on cornell-blob
-// (tests/bench/RESULTS.md, "Shadow rays one at a time").
+// (tests/bench/history/RESULTS-to-2026-12-05.md, "Shadow rays one at a time").
 void trace_shadow_lanes(const Accel& accel, RTCIntersectContext& context, ShadowPacket& packet) {
   RTCRay ray;
   for (int k = 0; k < 16; ++k) {
