@@ -49,7 +49,10 @@ void PixelBatch::pad() {
 namespace {
 
 // Diffuse-to-diffuse lanes: G = min(cos_x cos_y / r^2, bound), visible side only.
-// Written as independent lanes over restrict pointers so it vectorises.
+// Written as independent lanes over restrict pointers so it vectorises. Each
+// operation is VplShading::contribution's, in its order (a division where it
+// divides), so a lane gives the scalar rule's value bit for bit
+// (ctest -R VplShading.FastLanes).
 void fill_fast_lanes(const PixelBatch& b, size_t first, const Vpl& vpl, float bound, float* __restrict g_out,
                      RTCRay16& rays) {
   const float vx = vpl.position.x, vy = vpl.position.y, vz = vpl.position.z;
@@ -74,8 +77,7 @@ void fill_fast_lanes(const PixelBatch& b, size_t first, const Vpl& vpl, float bo
     const float dx = vx - px[k], dy = vy - py[k], dz = vz - pz[k];
     const float dist2 = dx * dx + dy * dy + dz * dz;
     const float dist = std::sqrt(dist2);
-    const float inv = 1.0f / dist;
-    const float wx = dx * inv, wy = dy * inv, wz = dz * inv;
+    const float wx = dx / dist, wy = dy / dist, wz = dz / dist;
     const float cos_x = wx * nx[k] + wy * ny[k] + wz * nz[k];
     const float side = wx * gx[k] + wy * gy[k] + wz * gz[k];
     const float cos_y = -(wx * mx + wy * my + wz * mz);
@@ -87,8 +89,7 @@ void fill_fast_lanes(const PixelBatch& b, size_t first, const Vpl& vpl, float bo
     // The ray aims from the nudged origin at the VPL itself (scene/surface.h shadow_ray).
     const float rx = vx - ox[k], ry = vy - oy[k], rz = vz - oz[k];
     const float length = std::sqrt(rx * rx + ry * ry + rz * rz);
-    const float inv_length = 1.0f / length;
-    dir_x[k] = rx * inv_length; dir_y[k] = ry * inv_length; dir_z[k] = rz * inv_length;
+    dir_x[k] = rx / length; dir_y[k] = ry / length; dir_z[k] = rz / length;
     tfar[k] = length * (1.0f - kShadowEpsilon);
   }
   std::copy_n(b.ox.data() + first, 16, rays.org_x);
@@ -113,8 +114,11 @@ void fill_shadow_packet(const PixelBatch& batch, size_t first, const Vpl& vpl, c
   alignas(64) float g[16];
   if (fast_vpl) {
     fill_fast_lanes(batch, first, vpl, shading.clamp_bound, g, packet.rays);
-    // Radiance per unit G leaving the VPL, times the receiver's 1/pi (albedo 1).
-    const glm::vec3 i = (vpl.kind == VplKind::Area ? vpl.flux : vpl.albedo * vpl.flux * kInvPi) * kInvPi;
+    // The receiver's BSDF (1/pi: albedo 1) times what leaves the VPL per unit G,
+    // as the scalar rule multiplies them: a Lambertian VPL's own BSDF (any
+    // direction: it has none) times its flux.
+    const glm::vec3 emitted = vpl.kind == VplKind::Area ? vpl.flux : shading.vpl_bsdf(vpl, vpl.normal) * vpl.flux;
+    const glm::vec3 i = glm::vec3(kInvPi) * emitted;
     for (int k = 0; k < 16; ++k) {
       packet.r[k] = i.x * g[k];
       packet.g[k] = i.y * g[k];
