@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/direct_lights.h"
 #include "lightcuts/light_contribution.h"
 #include "lightcuts/light_sampler.h"
 #include "lightcuts/light_tree.h"
@@ -34,7 +35,8 @@ struct SamplerScene {
     vpls = generate_vpls(prepared.context(), s, 9);
     tree = build_light_tree(make_light_leaves(prepared.scene, vpls), prepared.scene.bounds().diagonal(), 9);
   }
-  LightingContext lighting() const { return {prepared.scene, vpls.vpls, INFINITY}; }
+  std::vector<Vpl> lights = exact_lights(prepared.scene);
+  LightingContext lighting() const { return {prepared.scene, vpls, lights, INFINITY}; }
   LightSampler sampler() const {
     const float d = 1e-4f * prepared.scene.bounds().diagonal();
     return LightSampler(tree, INFINITY, d * d);

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/direct_lights.h"
 #include "lightcuts/cluster_bound.h"
 #include "lightcuts/light_contribution.h"
 #include "lightcuts/light_tree.h"
@@ -131,7 +132,8 @@ void expect_bounds_hold(const Scene& scene, float clamp, int samples_per_pixel) 
   const LightTree tree = tree_of(p, 12, 9, &vpls);
   float clamp_bound = INFINITY;
   if (clamp > 0.0f) clamp_bound = 1.0f / std::pow(clamp * p.scene.bounds().diagonal(), 2.0f);
-  const LightingContext lighting{p.scene, vpls.vpls, clamp_bound};
+  const std::vector<Vpl> lights = exact_lights(p.scene);
+  const LightingContext lighting{p.scene, vpls, lights, clamp_bound};
   const FrameSetup frame = p.frame(20, 15);
   const GatherPointTracer tracer(*p.accel, frame, samples_per_pixel, 16);
   RayCounts rays;

@@ -1,7 +1,12 @@
 #pragma once
-// Unoccluded light from one VPL to one G-buffer sample, demodulated (the
-// BSDF at the shading point is evaluated with albedo 1; the caller multiplies
-// the filtered result by the albedo once). See core/vpl.h for the terms.
+// The one VPL shading rule: unoccluded light from one VPL (or one exact
+// light, as a Vpl of its kind: core/direct_lights.h) to one shading point,
+// demodulated (the BSDF at the shading point is evaluated with albedo 1; ir
+// and igi multiply the filtered result by the albedo once, lightcuts each
+// term). Every VPL method shades through it: ir and igi (the general lanes;
+// the vectorised diffuse lanes of methods/shadow_batch.cpp equal it bit for
+// bit), lightcuts (lightcuts/light_contribution.h), bidirectional IR, bias
+// compensation and the light tree's draws. See core/vpl.h for the terms.
 #include <cmath>
 
 #include "core/clamp.h"
@@ -27,11 +32,10 @@ struct VplShading {
   // BSDF at the shading point with albedo 1: bsdf_eval's rule, the path
   // tracer's, for every material (light and viewer on the geometric side and
   // above the shading normal; shadow_batch's fast lanes test the same).
-  static glm::vec3 demodulated_bsdf(const GSample& g, glm::vec3 wi) {
-    const SurfacePoint& sp = g.surface;
+  static glm::vec3 demodulated_bsdf(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi) {
     SurfacePoint white = sp;
     white.albedo = glm::vec3(1.0f);
-    return bsdf_eval(white, g.wo, wi);
+    return bsdf_eval(white, wo, wi);
   }
 
   // BSDF at a surface VPL, light arriving from v.incident and leaving along
@@ -49,9 +53,11 @@ struct VplShading {
     return ggx_reflection(v.normal, v.incident, out, albedo, std::max(m.alpha, min_emitter_alpha));
   }
 
-  // Returns the contribution (zero when none) and fills the shadow ray.
+  // Returns the contribution at `sp`, seen from `wo` (zero when none), and fills the shadow ray.
   glm::vec3 contribution(const GSample& g, const Vpl& v, ShadowQuery& q) const {
-    const SurfacePoint& sp = g.surface;
+    return contribution(g.surface, g.wo, v, q);
+  }
+  glm::vec3 contribution(const SurfacePoint& sp, glm::vec3 wo, const Vpl& v, ShadowQuery& q) const {
     glm::vec3 wi, emitted;
     float g_term, distance;
     if (v.kind == VplKind::Directional) {
@@ -82,7 +88,7 @@ struct VplShading {
         emitted = v.kind == VplKind::Spot ? v.flux * spot_attenuation(scene.lights[v.light], -wi) : v.flux;
       }
     }
-    glm::vec3 f = demodulated_bsdf(g, wi);
+    glm::vec3 f = demodulated_bsdf(sp, wo, wi);
     const bool clamped = v.kind == VplKind::Surface || v.kind == VplKind::Area;
     if (clamped && sp.material->type == MaterialType::Conductor)
       f *= glossy_lobe_clamp(max_component(f), g_term, clamp_bound);

@@ -38,6 +38,7 @@ bool vpl_leaf(const Scene& scene, const Vpl& v, uint32_t index, float inv_sets, 
 LightLeaf punctual_leaf(const PunctualLight& light, uint32_t index) {
   LightLeaf leaf;
   leaf.source = index;
+  leaf.scene_light = true;
   leaf.intensity = light.intensity;
   leaf.weight = max_component(light.intensity);
   switch (light.type) {

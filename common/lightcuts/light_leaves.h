@@ -43,6 +43,7 @@ struct LightLeaf {
   float spread = 0.0f;        // Glossy: pi/2; spot: outer cone; point: pi (emission around `normal`)
   uint32_t source = 0;        // VplSets::vpls index (every VPL leaf), Scene::lights index (the scene's lights)
   LightClass light_class = LightClass::Cosine;
+  bool scene_light = false;   // one of the scene's lights (source: a Scene::lights index), not a VPL
 };
 
 // Leaves with zero weight (black VPLs, black lights) are left out: they add

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "core/clamp.h"
+#include "core/direct_lights.h"
 #include "lightcuts/lightcuts_settings.h"
 #include "lightcuts/reconstruction.h"
 #include "sampling/content_hash.h"
@@ -20,6 +21,7 @@ void LightcutsMethod::begin_frame(const FrameSetup& frame) {
   frame_ = frame;
   clamp_bound_ = clamp_bound(settings_.clamp, context_.accel.mean_chord(), frame.sample_begin);
   vpls_ = generate_vpls(context_, settings_, frame.seed);
+  scene_lights_ = exact_lights(context_.scene);
   tree_ = build_light_tree(make_light_leaves(context_.scene, vpls_), context_.scene.bounds().diagonal(), frame.seed);
   state_hash_ = combine_content_hashes(vpls_.hash, tree_.hash);
   for (auto* counter : {&cuts_, &cut_nodes_, &reused_, &interpolated_, &reconstructed_, &blocked_}) counter->store(0);
@@ -37,7 +39,7 @@ CutStats LightcutsMethod::stats() const {
 }
 
 CutEngine LightcutsMethod::engine() const {
-  const LightingContext lighting{context_.scene, vpls_.vpls, clamp_bound_};
+  const LightingContext lighting{context_.scene, vpls_, scene_lights_, clamp_bound_, settings_.glossy_threshold};
   return CutEngine(tree_, lighting, context_.accel, CutSettings{settings_.lightcuts_error, settings_.lightcuts_max_cut});
 }
 

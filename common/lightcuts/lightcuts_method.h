@@ -48,6 +48,7 @@ class LightcutsMethod final : public Method {
   RenderSettings settings_;
   FrameSetup frame_;
   VplSets vpls_;
+  std::vector<Vpl> scene_lights_;  // the leaves of the scene's lights shade as these (core/direct_lights.h)
   LightTree tree_;
   float clamp_bound_ = INFINITY;
   uint64_t state_hash_ = 0;

@@ -68,7 +68,7 @@ glm::vec3 CausticMap::radiance(const GSample& g) const {
     grid.for_each_within(sp.position, [&](const Photon& p, float d2) {
       if (glm::dot(p.normal, n) < kNormalCos) return;
       const float t = 1.0f - d2 * inv_r2;
-      sum += (lambert ? p.flux : VplShading::demodulated_bsdf(g, p.incident) * p.flux) * (t * t);
+      sum += (lambert ? p.flux : VplShading::demodulated_bsdf(sp, g.wo, p.incident) * p.flux) * (t * t);
     });
     return sum * (3.0f * kInvPi * inv_r2);
   };
