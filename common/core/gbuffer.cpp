@@ -2,10 +2,9 @@
 
 #include <algorithm>
 
-#include "core/subpixel.h"
+#include "core/camera_front_end.h"
 #include "material/bsdf.h"
 #include "sampling/hash.h"
-#include "scene/camera_rays.h"
 
 namespace igi {
 
@@ -128,9 +127,8 @@ void follow_specular_chain(const Accel& accel, Ray ray, Hit hit, uint32_t seed, 
 namespace {
 
 // One 4x4 block of one layer as a 16-wide packet.
-void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis& camera, glm::vec2 offset,
-                 int bx, int by, int k, int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays,
-                 RayLog* log) {
+void trace_block(const Accel& accel, const CameraFrontEnd& camera, int bx, int by, int k, int glass_branches,
+                 int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log) {
   const Region& region = out.region;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -139,8 +137,9 @@ void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis&
   for (int i = 0; i < 16; ++i) {
     const int x = bx + (i & 3), y = by + (i >> 2);
     valid[i] = x < region.width && y < region.height ? -1 : 0;
-    glm::vec3 d = glm::normalize(camera.direction(float(region.x0 + x) + offset.x, float(region.y0 + y) + offset.y));
-    set_rtc_lane(packet.ray, i, Ray{camera.origin, d, 0.0f, INFINITY, kCameraRayMask});
+    Ray ray = camera.pixel_ray(region.x0 + x, region.y0 + y, k);
+    ray.tfar = INFINITY;
+    set_rtc_lane(packet.ray, i, ray);
     packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
     packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     rays.primary += valid[i] ? 1 : 0;
@@ -162,10 +161,11 @@ void trace_block(const Accel& accel, const FrameSetup& frame, const CameraBasis&
       g.emitted = accel.scene().sky(direction);  // black without one
       continue;
     }
-    Ray ray{camera.origin, {packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]}, 0.0f, 1e30f, kCameraRayMask};
+    Ray ray{{packet.ray.org_x[i], packet.ray.org_y[i], packet.ray.org_z[i]},
+            {packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]}, 0.0f, 1e30f, kCameraRayMask};
     Hit hit{packet.ray.tfar[i], accel.triangle_index(packet.hit.instID[0][i], packet.hit.geomID[i], packet.hit.primID[i]),
             {packet.hit.u[i], packet.hit.v[i]}};
-    const uint32_t seed = hash(hash(uint32_t(region.x0 + x), uint32_t(region.y0 + y), frame.seed), uint32_t(k));
+    const uint32_t seed = camera.chain_seed(region.x0 + x, region.y0 + y, k);
     // Branch 0 into its layer; further branches on the stack, then into
     // layers of their own, which the region gets when a pixel first needs one.
     const size_t pixel = size_t(y) * region.width + x;
@@ -192,14 +192,11 @@ void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& re
   // reset here: trace_block writes every one of their samples.
   const size_t layer_pixels = size_t(samples) * region.pixels();
   if (out.layers.size() < size_t(glass_branches) * layer_pixels) out.layers.resize(size_t(glass_branches) * layer_pixels);
-  const CameraBasis camera(frame.camera, frame.width, frame.height);
-  const int side = subpixel_side(samples);
-  for (int k = 0; k < samples; ++k) {
-    const glm::vec2 offset = subpixel_offset(k, side, frame.jitter_x, frame.jitter_y);
+  const CameraFrontEnd camera(frame, samples);
+  for (int k = 0; k < samples; ++k)
     for (int by = 0; by < region.height; by += 4)
       for (int bx = 0; bx < region.width; bx += 4)
-        trace_block(accel, frame, camera, offset, bx, by, k, glass_branches, specular_depth, out, rays, log);
-  }
+        trace_block(accel, camera, bx, by, k, glass_branches, specular_depth, out, rays, log);
 }
 
 }  // namespace igi

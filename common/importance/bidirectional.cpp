@@ -84,7 +84,7 @@ class Builder {
         shading_{context.scene, clamp_bound(settings.clamp, context.accel.mean_chord(), frame.sample_begin),
                  settings.glossy_threshold},
         gathering_{context.scene, INFINITY, settings.glossy_threshold},
-        exact_(exact_lights(context.scene)), camera_(frame.camera, frame.width, frame.height),
+        exact_(exact_lights(context.scene)), camera_(frame),
         camera_seed_(hash(frame.seed, kCameraTag)),
         camera_paths_(settings.bidir_camera_paths > 0 ? settings.bidir_camera_paths : settings.paths_per_set),
         max_depth_(depth_limit(settings.light_depth)) {
@@ -164,7 +164,7 @@ class Builder {
     std::vector<CameraPoint> points(static_cast<size_t>(camera_paths_));
     for (int i = 0; i < camera_paths_; ++i) {
       CameraPoint& p = points[size_t(i)];
-      p.x = trace_camera_point(context_.accel, camera_, frame_, uint32_t(k * camera_paths_ + i), camera_seed_,
+      p.x = trace_camera_point(context_.accel, camera_, uint32_t(k * camera_paths_ + i), camera_seed_,
                                depth_limit(settings_.specular_depth), rays);
       if (!p.x.valid()) continue;
       const SurfacePoint& s = p.x.surface;
@@ -355,7 +355,7 @@ class Builder {
   const VplShading gathering_;  // reverse VPLs as receivers: unclamped (see gather())
   const std::vector<Vpl> exact_;
   std::vector<uint32_t> exact_entry_;
-  const CameraBasis camera_;
+  const CameraFrontEnd camera_;
   const uint32_t camera_seed_;
   const int camera_paths_;
   const int max_depth_;

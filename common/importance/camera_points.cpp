@@ -5,12 +5,11 @@
 
 namespace igi::importance {
 
-GSample trace_camera_point(const Accel& accel, const CameraBasis& camera, const FrameSetup& frame, uint32_t index,
-                           uint32_t seed, int specular_depth, RayCounts& rays) {
+GSample trace_camera_point(const Accel& accel, const CameraFrontEnd& camera, uint32_t index, uint32_t seed,
+                           int specular_depth, RayCounts& rays) {
   GSample g;
   const glm::vec2 film = sample_2d(index, 0, seed);
-  Ray ray = camera.ray(film.x * float(frame.width), film.y * float(frame.height));
-  ray.mask = kCameraRayMask;
+  const Ray ray = camera.ray(film.x * float(camera.frame().width), film.y * float(camera.frame().height));
   ++rays.primary;
   Hit hit;
   if (accel.intersect(ray, hit)) follow_specular_chain(accel, ray, hit, hash(seed, index), specular_depth, g, rays);

@@ -11,16 +11,16 @@
 // stratified net over the film (Sobol).
 #include <cstdint>
 
+#include "core/camera_front_end.h"
 #include "core/frame.h"
 #include "core/gbuffer.h"
 #include "scene/accel.h"
-#include "scene/camera_rays.h"
 
 namespace igi::importance {
 
 // Invalid (GSample::valid() false) when the ray leaves the scene or its
 // specular chain ends elsewhere.
-GSample trace_camera_point(const Accel& accel, const CameraBasis& camera, const FrameSetup& frame, uint32_t index,
-                           uint32_t seed, int specular_depth, RayCounts& rays);
+GSample trace_camera_point(const Accel& accel, const CameraFrontEnd& camera, uint32_t index, uint32_t seed,
+                           int specular_depth, RayCounts& rays);
 
 }  // namespace igi::importance

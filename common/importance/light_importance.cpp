@@ -93,10 +93,8 @@ class Estimator {
     local_.resize(proxies_.size());
   }
 
-  void trace(const CameraBasis& camera, const FrameSetup& frame, uint32_t index, std::vector<double>& credit,
-             RayCounts& rays) {
-    GSample g = trace_camera_point(context_.accel, camera, frame, index, seed_, depth_limit(settings_.specular_depth),
-                                   rays);
+  void trace(const CameraFrontEnd& camera, uint32_t index, std::vector<double>& credit, RayCounts& rays) {
+    GSample g = trace_camera_point(context_.accel, camera, index, seed_, depth_limit(settings_.specular_depth), rays);
     if (!g.valid()) return;
     SurfacePoint sp = g.surface;
     glm::vec3 wo = g.wo, throughput = g.throughput;
@@ -208,7 +206,7 @@ std::vector<float> selection_weights(const std::vector<float>& contribution, con
 LightSelection estimate_light_importance(const SceneContext& context, const RenderSettings& settings,
                                          const FrameSetup& frame, RayCounts& rays) {
   const uint32_t seed = hash(frame.seed, 0x6c677469u /* "lgti" */);
-  const CameraBasis camera(frame.camera, frame.width, frame.height);
+  const CameraFrontEnd camera(frame);
   const size_t lights = context.lights.lights().size();
   // Chunks of a fixed number of paths, summed in chunk order: the sums do not
   // depend on how many threads ran them.
@@ -225,7 +223,7 @@ LightSelection estimate_light_importance(const SceneContext& context, const Rend
     part.credit.assign(lights, 0.0);
     Estimator estimator(context, settings, seed);
     for (int i = c * kChunk; i < std::min(paths, (c + 1) * kChunk); ++i)
-      estimator.trace(camera, frame, uint32_t(i), part.credit, part.rays);
+      estimator.trace(camera, uint32_t(i), part.credit, part.rays);
     part.credited = estimator.credited();
   });
   std::vector<double> credit(lights, 0.0);

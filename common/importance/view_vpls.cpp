@@ -26,12 +26,11 @@ float light_path_reach(const SceneContext& context, const RenderSettings& settin
   std::vector<Vpl> lights = generate_vpls(context, one_set, kProbeSeed, options).vpls;
   for (const Vpl& v : exact_lights(context.scene)) lights.push_back(v);
   const VplShading shading{context.scene, INFINITY};
-  const CameraBasis camera(frame.camera, frame.width, frame.height);
+  const CameraFrontEnd camera(frame);
   uint32_t surfaces = 0;
   double seen = 0.0;  // sum over the points of the share of `lights` each sees
   for (uint32_t i = 0; i < kViewProbes; ++i) {
-    const GSample g = trace_camera_point(context.accel, camera, frame, i, kProbeSeed,
-                                         depth_limit(settings.specular_depth), rays);
+    const GSample g = trace_camera_point(context.accel, camera, i, kProbeSeed, depth_limit(settings.specular_depth), rays);
     if (!g.valid()) continue;
     ++surfaces;
     uint32_t visible = 0;

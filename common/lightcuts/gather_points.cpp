@@ -1,23 +1,16 @@
 #include "lightcuts/gather_points.h"
 
-#include <cmath>
-
 #include "core/gbuffer.h"
-#include "core/subpixel.h"
-#include "sampling/hash.h"
 
 namespace igi::lightcuts {
 
 GatherPointTracer::GatherPointTracer(const Accel& accel, const FrameSetup& frame, int samples_per_pixel,
                                      int specular_depth)
-    : accel_(accel), camera_(frame.camera, frame.width, frame.height), frame_(frame),
-      side_(std::max(1, int(std::lround(std::sqrt(double(samples_per_pixel)))))), specular_depth_(specular_depth) {}
+    : accel_(accel), camera_(frame, samples_per_pixel), specular_depth_(specular_depth) {}
 
 GatherPoint GatherPointTracer::trace(int x, int y, int k, RayCounts& rays) const {
   GatherPoint g;
-  const glm::vec2 offset = subpixel_offset(k, side_, frame_.jitter_x, frame_.jitter_y);
-  const Ray ray{camera_.origin, glm::normalize(camera_.direction(float(x) + offset.x, float(y) + offset.y)), 0.0f,
-                1e30f, kCameraRayMask};
+  const Ray ray = camera_.pixel_ray(x, y, k);
   ++rays.primary;
   Hit hit;
   if (!accel_.intersect(ray, hit)) {
@@ -25,8 +18,7 @@ GatherPoint GatherPointTracer::trace(int x, int y, int k, RayCounts& rays) const
     return g;
   }
   GSample chain;
-  follow_specular_chain(accel_, ray, hit, hash(hash(uint32_t(x), uint32_t(y), frame_.seed), uint32_t(k)),
-                        specular_depth_, chain, rays);
+  follow_specular_chain(accel_, ray, hit, camera_.chain_seed(x, y, k), specular_depth_, chain, rays);
   return gather_point(chain);
 }
 

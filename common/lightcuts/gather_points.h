@@ -14,12 +14,12 @@
 
 #include <glm/glm.hpp>
 
+#include "core/camera_front_end.h"
 #include "core/frame.h"
 #include "core/gbuffer.h"
 #include "lightcuts/bounds.h"
 #include "sampling/warp.h"
 #include "scene/accel.h"
-#include "scene/camera_rays.h"
 #include "scene/surface.h"
 
 namespace igi::lightcuts {
@@ -53,9 +53,7 @@ class GatherPointTracer {
 
  private:
   const Accel& accel_;
-  CameraBasis camera_;
-  FrameSetup frame_;
-  int side_;
+  CameraFrontEnd camera_;
   int specular_depth_;
 };
 

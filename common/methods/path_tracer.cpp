@@ -2,11 +2,11 @@
 
 #include <cmath>
 
+#include "core/camera_front_end.h"
 #include "material/bsdf.h"
 #include "sampling/hash.h"
 #include "sampling/sobol.h"
 #include "sampling/warp.h"
-#include "scene/camera_rays.h"
 #include "scene/surface.h"
 
 namespace igi {
@@ -23,7 +23,7 @@ PathTracer::PathTracer(const SceneContext& context, const RenderSettings& settin
 void PathTracer::begin_frame(const FrameSetup& frame) { frame_ = frame; }
 
 void PathTracer::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const {
-  CameraBasis camera(frame_.camera, frame_.width, frame_.height);
+  const CameraFrontEnd camera(frame_);
   for (int y = job.y; y < job.y + job.h; ++y)
     for (int x = job.x; x < job.x + job.w; ++x) {
       const uint32_t pixel_seed = hash(uint32_t(x), uint32_t(y), frame_.seed);
@@ -31,7 +31,7 @@ void PathTracer::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCo
       for (uint32_t i = 0; i < frame_.sample_count; ++i) {
         const uint32_t index = frame_.sample_begin + i;
         glm::vec2 jitter = sample_2d(index, 0, pixel_seed);
-        Ray ray = camera.ray(float(x) + jitter.x, float(y) + jitter.y);
+        const Ray ray = camera.ray(float(x) + jitter.x, float(y) + jitter.y);
         ++rays.primary;
         sum += glm::dvec3(radiance(ray, index, pixel_seed, rays));
       }
