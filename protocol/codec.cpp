@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <type_traits>
 
 #include "protocol/wire.h"
 
@@ -84,70 +85,61 @@ void check_camera(Reader& r, const Camera& camera) {
 
 // ---- Shared parts.
 
+// Every field of RenderSettings once, in the wire's order: write() and read()
+// both walk this list, so the two cannot drift apart.
+template <class Settings, class Field>
+void settings_fields(Settings& s, Field&& field) {
+  field("settings.method", s.method);
+  field("settings.path_depth", s.path_depth);
+  field("settings.light_depth", s.light_depth);
+  field("settings.specular_depth", s.specular_depth);
+  field("settings.interleave", s.interleave);
+  field("settings.paths_per_set", s.paths_per_set);
+  field("settings.vpl_draws", s.vpl_draws);
+  field("settings.aa_samples", s.aa_samples);
+  field("settings.glossy_threshold", s.glossy_threshold);
+  field("settings.glossy_rays", s.glossy_rays);
+  field("settings.clamp", s.clamp);
+  field("settings.compensation_samples", s.compensation_samples);
+  field("settings.filter", s.filter);
+  field("settings.filter_normal_cos", s.filter_normal_cos);
+  field("settings.filter_depth_ratio", s.filter_depth_ratio);
+  field("settings.wavelet_levels", s.wavelet_levels);
+  field("settings.lightcuts_error", s.lightcuts_error);
+  field("settings.lightcuts_max_cut", s.lightcuts_max_cut);
+  field("settings.lightcuts_spacing", s.lightcuts_spacing);
+  field("settings.lightcuts_samples", s.lightcuts_samples);
+  field("settings.glass_branches", s.glass_branches);
+  field("settings.caustics", s.caustics);
+  field("settings.caustic_photons", s.caustic_photons);
+  field("settings.caustic_radius", s.caustic_radius);
+  field("settings.importance_paths", s.importance_paths);
+  field("settings.importance_floor", s.importance_floor);
+  field("settings.bidir_vpls", s.bidir_vpls);
+  field("settings.bidir_camera_paths", s.bidir_camera_paths);
+  field("settings.lightcuts_block", s.lightcuts_block);
+}
+
 void write(Writer& w, const RenderSettings& s) {
-  w.u8(static_cast<uint8_t>(s.method));
-  w.i32(s.path_depth);
-  w.i32(s.light_depth);
-  w.i32(s.specular_depth);
-  w.i32(s.interleave);
-  w.i32(s.paths_per_set);
-  w.i32(s.vpl_draws);
-  w.i32(s.aa_samples);
-  w.f32(s.glossy_threshold);
-  w.i32(s.glossy_rays);
-  w.f32(s.clamp);
-  w.i32(s.compensation_samples);
-  w.boolean(s.filter);
-  w.f32(s.filter_normal_cos);
-  w.f32(s.filter_depth_ratio);
-  w.i32(s.wavelet_levels);
-  w.f32(s.lightcuts_error);
-  w.i32(s.lightcuts_max_cut);
-  w.i32(s.lightcuts_spacing);
-  w.i32(s.lightcuts_samples);
-  w.i32(s.glass_branches);
-  w.boolean(s.caustics);
-  w.i32(s.caustic_photons);
-  w.f32(s.caustic_radius);
-  w.i32(s.importance_paths);
-  w.f32(s.importance_floor);
-  w.i32(s.bidir_vpls);
-  w.i32(s.bidir_camera_paths);
-  w.i32(s.lightcuts_block);
+  settings_fields(s, [&](const char*, const auto& v) {
+    using T = std::decay_t<decltype(v)>;
+    if constexpr (std::is_same_v<T, MethodKind>) w.u8(static_cast<uint8_t>(v));
+    else if constexpr (std::is_same_v<T, bool>) w.boolean(v);
+    else if constexpr (std::is_same_v<T, float>) w.f32(v);
+    else w.i32(v);
+  });
 }
 
 // RenderSettings in write()'s order, then the one check of them all
 // (core/settings.h): the wire knows the fields, not each method's rules.
 void read(Reader& r, RenderSettings& s) {
-  s.method = static_cast<MethodKind>(r.u8("settings.method"));
-  s.path_depth = r.i32("settings.path_depth");
-  s.light_depth = r.i32("settings.light_depth");
-  s.specular_depth = r.i32("settings.specular_depth");
-  s.interleave = r.i32("settings.interleave");
-  s.paths_per_set = r.i32("settings.paths_per_set");
-  s.vpl_draws = r.i32("settings.vpl_draws");
-  s.aa_samples = r.i32("settings.aa_samples");
-  s.glossy_threshold = r.f32("settings.glossy_threshold");
-  s.glossy_rays = r.i32("settings.glossy_rays");
-  s.clamp = r.f32("settings.clamp");
-  s.compensation_samples = r.i32("settings.compensation_samples");
-  s.filter = r.boolean("settings.filter");
-  s.filter_normal_cos = r.f32("settings.filter_normal_cos");
-  s.filter_depth_ratio = r.f32("settings.filter_depth_ratio");
-  s.wavelet_levels = r.i32("settings.wavelet_levels");
-  s.lightcuts_error = r.f32("settings.lightcuts_error");
-  s.lightcuts_max_cut = r.i32("settings.lightcuts_max_cut");
-  s.lightcuts_spacing = r.i32("settings.lightcuts_spacing");
-  s.lightcuts_samples = r.i32("settings.lightcuts_samples");
-  s.glass_branches = r.i32("settings.glass_branches");
-  s.caustics = r.boolean("settings.caustics");
-  s.caustic_photons = r.i32("settings.caustic_photons");
-  s.caustic_radius = r.f32("settings.caustic_radius");
-  s.importance_paths = r.i32("settings.importance_paths");
-  s.importance_floor = r.f32("settings.importance_floor");
-  s.bidir_vpls = r.i32("settings.bidir_vpls");
-  s.bidir_camera_paths = r.i32("settings.bidir_camera_paths");
-  s.lightcuts_block = r.i32("settings.lightcuts_block");
+  settings_fields(s, [&](const char* name, auto& v) {
+    using T = std::decay_t<decltype(v)>;
+    if constexpr (std::is_same_v<T, MethodKind>) v = static_cast<MethodKind>(r.u8(name));
+    else if constexpr (std::is_same_v<T, bool>) v = r.boolean(name);
+    else if constexpr (std::is_same_v<T, float>) v = r.f32(name);
+    else v = r.i32(name);
+  });
   if (!r.ok()) return;
   if (auto error = check_settings(s)) r.fail(("settings." + error->field).c_str(), error->message);
 }
