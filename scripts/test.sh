@@ -3,10 +3,10 @@
 #   scripts/test.sh [ctest args]   the suite in the Release build (build/), e.g. -R Sampler
 #   scripts/test.sh --all          what CI runs (.ci/run), each build and each suite a timed stage:
 #                                  the whole suite in Release (build/); under ASan + UBSan
-#                                  (build-asan/) every test but the statistical accuracy ones
-#                                  (ctest label accuracy); each fuzz target for 30 s; under TSan
-#                                  (build-tsan/) the tests that start threads or processes (label
-#                                  threads). Labels and timeouts: tests/CMakeLists.txt.
+#                                  (build-asan/) the unit and threaded tests but the two longest
+#                                  (ctest labels unit, threads, not long); each fuzz target for
+#                                  30 s; under TSan (build-tsan/) the tests that start threads or
+#                                  processes (labels threads, long). Labels, timeouts: tests/CMakeLists.txt.
 # With --all every stage runs even when an earlier one failed; the exit status
 # is non-zero when any failed, and the summary names the stages and the tests
 # and ends with each stage's time. Builds compile through ccache (CMakeLists.txt).
@@ -62,10 +62,10 @@ stage() {
 all_start=$SECONDS
 stage "release suite" build bash -c "cd build && ctest --output-on-failure -j2 ${retry[*]}"
 stage "asan+ubsan build" - scripts/test-sanitizers.sh asan --build-only
-stage "asan+ubsan suite" build-asan scripts/test-sanitizers.sh asan -LE accuracy "${retry[@]}"
+stage "asan+ubsan suite" build-asan scripts/test-sanitizers.sh asan -LE "accuracy|tool|long" "${retry[@]}"
 stage "fuzzing (30 s a target)" - scripts/fuzz.sh 30
 stage "tsan build" - scripts/test-sanitizers.sh tsan --build-only
-stage "tsan suite" build-tsan scripts/test-sanitizers.sh tsan -L threads "${retry[@]}"
+stage "tsan suite" build-tsan scripts/test-sanitizers.sh tsan -L "threads|long" "${retry[@]}"
 for t in "${flaky_tests[@]}"; do echo "=== flaky (failed, then passed when run again): $t"; done
 echo "=== stage times"
 for t in "${stage_times[@]}"; do echo "=== $t"; done
