@@ -16,6 +16,7 @@
 #include "material/bsdf.h"
 #include "scene/builtin_scenes.h"
 #include "scene/load_scene.h"
+#include "scene/suite_scenes.h"
 #include "support/image_compare.h"
 #include "support/process.h"
 #include "support/render_fixture.h"
@@ -393,6 +394,70 @@ TEST(SingleSided, CulledForTheCameraOpaqueToLight) {
     const double mean = luminance(image.mean());
     std::printf("[single-sided] %s: floor under the sheet %.4f (unshadowed 0.354)\n", method_name(kind), mean);
     EXPECT_LT(mean, 0.06) << method_name(kind) << ": light leaks through the back of a single-sided face";
+  }
+}
+
+// Glass refracts on the way out as on the way in, whatever doubleSided says
+// (issue 47): exporters write single-sided glass, and a camera ray that
+// refracted into a sphere whose back faces it skipped left it unbent, a milky
+// disc. With every glass material single-sided the glass scene renders as
+// with every one double-sided, bit for bit, in every method.
+TEST(SingleSided, GlassRefractsOutOfASingleSidedSphereAsOutOfADoubleSidedOne) {
+  Scene single = make_glass_cornell(), twofold = make_glass_cornell();
+  int glass = 0;
+  for (Material& m : single.materials)
+    if (m.type == MaterialType::Glass) m.double_sided = false, ++glass;
+  for (Material& m : twofold.materials)
+    if (m.type == MaterialType::Glass) m.double_sided = true;
+  ASSERT_GT(glass, 0);
+  const test::Prepared a(std::move(single)), b(std::move(twofold));
+  for (MethodKind kind : {MethodKind::PathTracer, MethodKind::Igi, MethodKind::Lightcuts}) {
+    RenderSettings settings = vpl_settings(kind, 8);
+    const int samples = kind == MethodKind::PathTracer ? 4 : 1;
+    const Image one = a.render(settings, 40, 40, samples), two = b.render(settings, 40, 40, samples);
+    EXPECT_TRUE(test::images_identical(std::string("glass-single-sided-") + method_name(kind), one, two))
+        << method_name(kind) << ": single-sided glass renders otherwise than double-sided";
+  }
+}
+
+// A camera ray through a single-sided glass ball (ior 1.5, smooth normals)
+// leaves it deviated by the closed form 2 (theta_i - theta_t) towards the
+// axis, sin theta_i = b / R, sin theta_t = sin theta_i / 1.5: it refracted
+// on the way out too. Through the centre it passes straight.
+TEST(SingleSided, ARayThroughASingleSidedGlassBallBendsAsTheClosedFormSays) {
+  Scene s;
+  Material wall;
+  const uint32_t wall_id = add_material(s, wall);
+  Material glass;
+  glass.type = MaterialType::Glass;
+  glass.ior = 1.5f;
+  glass.base_color = glm::vec3(1.0f);
+  glass.double_sided = false;
+  const uint32_t glass_id = add_material(s, glass);
+  add_quad(s, {-20, -20, -6}, {20, -20, -6}, {20, 20, -6}, {-20, 20, -6}, wall_id);  // facing +z, the ball
+  const uint32_t first_sphere_vertex = uint32_t(s.positions.size());
+  add_bumpy_sphere(s, glm::vec3(0.0f), 1.0f, 96, [](float, float) { return 1.0f; }, glass_id);
+  s.normals.assign(s.positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
+  for (uint32_t v = first_sphere_vertex; v < s.positions.size(); ++v) s.normals[v] = glm::normalize(s.positions[v]);
+  const test::Prepared p(std::move(s));
+  for (float b : {0.0f, 0.3f, 0.6f}) {
+    const Ray ray{{b, 0.0001f, 5.0f}, {0.0f, 0.0f, -1.0f}, 0.0f, 1e30f, kCameraRayMask};
+    Hit hit;
+    ASSERT_TRUE(p.accel->intersect(ray, hit));
+    GSample out[kMaxGlassBranches];
+    GSample* branches[kMaxGlassBranches];
+    for (int i = 0; i < kMaxGlassBranches; ++i) branches[i] = &out[i];
+    RayCounts rays;
+    follow_specular_tree(*p.accel, ray, hit, 1, 16, kMaxGlassBranches, branches, rays);
+    const GSample& refracted = out[0];  // branch 0 refracts at every split
+    ASSERT_TRUE(refracted.valid()) << "b = " << b;
+    ASSERT_LT(refracted.surface.position.z, -5.9f) << "b = " << b << ": the chain ends on the wall";
+    const double theta_i = std::asin(double(b)), theta_t = std::asin(double(b) / 1.5);
+    const double expected = 2.0 * (theta_i - theta_t);
+    const glm::vec3 out_dir = -refracted.wo;
+    const double deviation = std::atan2(-double(out_dir.x), -double(out_dir.z));
+    std::printf("[glass ball] b = %.1f: deviation %.5f rad, closed form %.5f\n", b, deviation, expected);
+    EXPECT_NEAR(deviation, expected, 2e-3) << "b = " << b;
   }
 }
 

@@ -259,7 +259,7 @@ void Accel::add_group(const std::vector<uint32_t>& triangles, RTCBuildQuality qu
   std::vector<uint32_t> lists[3];  // by Filters
   for (uint32_t t : triangles) {
     const Material& m = scene_.materials[scene_.triangle_material[t]];
-    const Filters filters = m.alpha_mask ? Filters::AllHits : m.double_sided ? Filters::None : Filters::CameraHits;
+    const Filters filters = m.alpha_mask ? Filters::AllHits : m.culls_back_faces() ? Filters::CameraHits : Filters::None;
     lists[int(filters)].push_back(t);
   }
   for (int f = 0; f < 3; ++f) {
@@ -329,7 +329,7 @@ Accel::~Accel() {
 bool Accel::rejects(uint32_t triangle, glm::vec2 b, glm::vec3 direction, bool camera_ray) const {
   const Material& m = scene_.materials[scene_.triangle_material[triangle]];
   const glm::uvec3& t = scene_.triangles[triangle];
-  if (!m.double_sided && camera_ray) {
+  if (m.culls_back_faces() && camera_ray) {
     if (glm::dot(triangle_cross(scene_, triangle), direction) > 0.0f) return true;  // the back of a single-sided face
   }
   if (m.alpha_mask) {

@@ -20,7 +20,8 @@
 //
 // Single-sided faces: glTF's doubleSided is about display, so only camera
 // rays (and the mirror and glass chains they pass through) skip the back of a
-// single-sided face. Shadow rays, light paths and diffuse bounces find it
+// single-sided face, and never of glass (Material::culls_back_faces): a ray
+// that refracted into a single-sided glass sphere must refract out of it. Shadow rays, light paths and diffuse bounces find it
 // opaque like any other face, or light would leak through the walls of
 // interiors, which exporters write single-sided. A ray says which it is by
 // its mask (Embree passes it to the filter): kCameraRayMask culls,

@@ -47,6 +47,10 @@ struct Material {
   glm::vec3 emission{0.0f};        // front-face radiance, W/(m^2 sr)
 
   bool is_specular() const { return type == MaterialType::Mirror || type == MaterialType::Glass; }
+  // Whether camera rays skip the back of its faces: single-sided, and not
+  // glass, which refracts on the way out as on the way in (a closed
+  // refractive surface has two sides whatever an exporter's doubleSided says).
+  bool culls_back_faces() const { return !double_sided && type != MaterialType::Glass; }
   bool is_emissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
 };
 
