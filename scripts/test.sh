@@ -3,10 +3,11 @@
 #   scripts/test.sh [ctest args]   the suite in the Release build (build/), e.g. -R Sampler
 #   scripts/test.sh --all          what CI runs (.ci/run), each build and each suite a timed stage:
 #                                  the whole suite in Release (build/); under ASan + UBSan
-#                                  (build-asan/) the unit and threaded tests but the two longest
-#                                  (ctest labels unit, threads, not long); each fuzz target for
-#                                  30 s; under TSan (build-tsan/) the tests that start threads or
-#                                  processes (labels threads, long). Labels, timeouts: tests/CMakeLists.txt.
+#                                  (build-asan/) the unit tests (ctest label unit) and each fuzz
+#                                  target for 30 s; under TSan (build-tsan/) the tests that start
+#                                  threads or processes (labels threads, long). Every test runs in
+#                                  Release and under one sanitizer at most. Labels, timeouts:
+#                                  tests/CMakeLists.txt.
 # With --all every stage runs even when an earlier one failed; the exit status
 # is non-zero when any failed, and the summary names the stages and the tests
 # and ends with each stage's time. Builds compile through ccache (CMakeLists.txt).
@@ -62,7 +63,7 @@ stage() {
 all_start=$SECONDS
 stage "release suite" build bash -c "cd build && ctest --output-on-failure -j2 ${retry[*]}"
 stage "asan+ubsan build" - scripts/test-sanitizers.sh asan --build-only
-stage "asan+ubsan suite" build-asan scripts/test-sanitizers.sh asan -LE "accuracy|tool|long" "${retry[@]}"
+stage "asan+ubsan suite" build-asan scripts/test-sanitizers.sh asan -L unit "${retry[@]}"
 stage "fuzzing (30 s a target)" - scripts/fuzz.sh 30
 stage "tsan build" - scripts/test-sanitizers.sh tsan --build-only
 stage "tsan suite" build-tsan scripts/test-sanitizers.sh tsan -L "threads|long" "${retry[@]}"
