@@ -23,6 +23,20 @@ struct FrameSetup {
   // progressive passes move it to antialias.
   float jitter_x = 0.5f, jitter_y = 0.5f;
   ScenePose pose;  // the scene's animation time and moved lights in this frame
+  // Each TileResult also carries its pixels' surfaces (PixelSurface): the
+  // master's reprojection asks for them (master/view_history.h).
+  bool want_surfaces = false;
+};
+
+// The first surface the camera ray through a pixel's centre meets: what the
+// master needs to carry the pixel's history into a new view. Plain bytes on
+// the wire, 8 a pixel.
+struct PixelSurface {
+  static constexpr uint8_t kViewDependent = 1;  // glossy, mirror or glass: its colour changes with the view
+  float depth = 0.0f;            // distance along the ray; 0: the ray leaves the scene
+  int8_t normal[3] = {0, 0, 0};  // shading normal facing the ray, snorm8 (x 127)
+  uint8_t flags = 0;             // kViewDependent or 0
+  bool operator==(const PixelSurface&) const = default;
 };
 
 // A rectangle of the image, rendered with `border` extra pixels on each side
