@@ -15,6 +15,7 @@ namespace igi::protocol {
 namespace {
 
 constexpr size_t kHeaderBytes = 8;
+constexpr size_t kSurfaceBytes = 8;  // PixelSurface on the wire: f32 depth, 3 x i8 normal, u8 flags
 constexpr int64_t kMaxThreads = 4096;
 // Settings are checked by core/settings.h's check_settings(); liveness and
 // credits are messages.h's, which the master's command line checks too.
@@ -273,6 +274,7 @@ void write(Writer& w, const FrameSetupMsg& m) {
   w.f32(f.jitter_y);
   w.f64(f.pose.time);
   w.vec3(f.pose.light_offset);
+  w.boolean(f.want_surfaces);
   write(w, m.settings);
 }
 
@@ -302,6 +304,7 @@ void read(Reader& r, FrameSetupMsg& m) {
     r.fail("frame.pose.time", std::to_string(f.pose.time) + ", expected a finite time within +-1e9 s");
   f.pose.light_offset = r.vec3("frame.pose.light_offset");
   check_finite(r, "frame.pose.light_offset", f.pose.light_offset);
+  f.want_surfaces = r.boolean("frame.want_surfaces");
   read(r, m.settings);
 }
 
@@ -333,6 +336,42 @@ void write(Writer& w, const TileResult& m) {
   static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
   if (m.pixel_format == PixelFormat::Float16) w.halves(&m.pixels.data()->x, 3 * m.pixels.size());
   else w.floats(&m.pixels.data()->x, 3 * m.pixels.size());
+  w.u32(static_cast<uint32_t>(m.surfaces.size()));
+  w.reserve(m.surfaces.size() * kSurfaceBytes);
+  for (const PixelSurface& s : m.surfaces) {
+    w.f32(s.depth);
+    for (int8_t n : s.normal) w.u8(static_cast<uint8_t>(n));
+    w.u8(s.flags);
+  }
+}
+
+PixelSurface read_surface(Reader& r) {
+  PixelSurface s;
+  s.depth = r.f32("surfaces.depth");
+  for (int8_t& n : s.normal) n = static_cast<int8_t>(r.u8("surfaces.normal"));
+  s.flags = r.u8("surfaces.flags");
+  return s;
+}
+
+// The surfaces block: none, or one per pixel, each checked. Returns its bytes.
+std::span<const uint8_t> read_surface_block(Reader& r, const TileResult& m) {
+  const uint32_t n = r.count("surfaces", kSurfaceBytes, size_t(kMaxTileSide) * kMaxTileSide);
+  const size_t expected = size_t(m.tile.w) * size_t(m.tile.h);
+  if (r.ok() && n != 0 && n != expected)
+    r.fail("surfaces", std::to_string(n) + " surfaces, expected 0 or " + std::to_string(expected));
+  if (!r.ok() || n == 0) return {};
+  const std::span<const uint8_t> block = r.span("surfaces", size_t(n) * kSurfaceBytes);
+  Reader each(block);
+  for (uint32_t i = 0; i < n && r.ok(); ++i) {
+    const PixelSurface s = read_surface(each);
+    if (!(std::isfinite(s.depth) && s.depth >= 0.0f))
+      r.fail("surfaces", "surface " + std::to_string(i) + " has depth " + show(s.depth) +
+                             ", expected a finite number >= 0");
+    else if (s.flags & ~PixelSurface::kViewDependent)
+      r.fail("surfaces", "surface " + std::to_string(i) + " has flags " + std::to_string(s.flags) +
+                             ", expected 0 or " + std::to_string(PixelSurface::kViewDependent));
+  }
+  return r.ok() ? block : std::span<const uint8_t>{};
 }
 
 // Everything but the pixels themselves (the master copies those straight into its frame).
@@ -367,6 +406,7 @@ std::span<const uint8_t> read_pixel_block(Reader& r, const TileResult& m) {
 void read(Reader& r, TileResult& m) {
   read_fields(r, m);
   const std::span<const uint8_t> block = read_pixel_block(r, m);
+  const std::span<const uint8_t> surfaces = read_surface_block(r, m);
   // Trailing bytes before finiteness: the order decode_tile_result + copy_tile_pixels check them in.
   if (r.ok() && r.remaining() != 0)
     r.fail("TileResult: " + std::to_string(r.remaining()) + " trailing bytes after the payload");
@@ -382,7 +422,14 @@ void read(Reader& r, TileResult& m) {
       r.fail("pixels", "pixel " + std::to_string(i) + " is (" + show(p.x) + ", " + show(p.y) + ", " + show(p.z) +
                            "), expected finite values");
   }
+  Reader each(surfaces);
+  m.surfaces.resize(surfaces.size() / kSurfaceBytes);
+  for (PixelSurface& s : m.surfaces) s = read_surface(each);
 }
+
+void write(Writer& w, const CancelFrame& m) { w.u64(m.frame_id); }
+
+void read(Reader& r, CancelFrame& m) { m.frame_id = r.u64("frame_id"); }
 
 void write(Writer&, const Heartbeat&) {}
 
@@ -423,7 +470,7 @@ std::optional<MessageType> read_header(Reader& r) {
   if (version != kVersion)
     r.fail("protocol version " + std::to_string(version) + ", this build speaks " + std::to_string(kVersion));
   uint8_t type = r.u8("type");
-  if (type < uint8_t(MessageType::Hello) || type > uint8_t(MessageType::Bye))
+  if (type < uint8_t(MessageType::Hello) || type > uint8_t(MessageType::CancelFrame))
     r.fail("unknown message type " + std::to_string(type));
   uint8_t flags = r.u8("flags");
   if (r.ok() && flags != 0)
@@ -451,6 +498,7 @@ Message read_payload(Reader& r, MessageType type) {
     case MessageType::TileResult: return read_message<TileResult>(r);
     case MessageType::Heartbeat: return read_message<Heartbeat>(r);
     case MessageType::Bye: return read_message<Bye>(r);
+    case MessageType::CancelFrame: return read_message<CancelFrame>(r);
   }
   r.fail("unknown message type " + std::to_string(int(type)));  // read_header let it through: a bug
   return Heartbeat{};
@@ -501,6 +549,7 @@ std::optional<TileResultView> decode_tile_result(std::span<const uint8_t> bytes,
     r.begin(message_name(MessageType::TileResult));
     read_fields(r, view.fields);
     view.pixel_bytes = read_pixel_block(r, view.fields);
+    view.surface_bytes = read_surface_block(r, view.fields);
     if (r.ok() && r.remaining() != 0)
       r.fail("TileResult: " + std::to_string(r.remaining()) + " trailing bytes after the payload");
   }

@@ -14,6 +14,7 @@ const char* message_name(MessageType type) {
     case MessageType::TileResult: return "TileResult";
     case MessageType::Heartbeat: return "Heartbeat";
     case MessageType::Bye: return "Bye";
+    case MessageType::CancelFrame: return "CancelFrame";
   }
   return "Unknown";
 }
@@ -30,6 +31,7 @@ struct TypeOf {
   MessageType operator()(const TileResult&) const { return MessageType::TileResult; }
   MessageType operator()(const Heartbeat&) const { return MessageType::Heartbeat; }
   MessageType operator()(const Bye&) const { return MessageType::Bye; }
+  MessageType operator()(const CancelFrame&) const { return MessageType::CancelFrame; }
 };
 }  // namespace
 

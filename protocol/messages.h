@@ -13,6 +13,8 @@
 //   master -> worker  SceneData
 //   master -> worker  FrameSetup, TileJob... (jobs up to the worker's credits)
 //   worker -> master  TileResult...          (one per job; returns a credit)
+//   master -> worker  CancelFrame            (the view left the frame behind: the
+//                                             worker drops its queued jobs of it)
 //   both ways         Heartbeat              (every heartbeat interval)
 //   either way        Bye                    (leaving; the peer forgets the other)
 #include <cstdint>
@@ -40,8 +42,9 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // pass the clamp relaxes with (core/clamp.h). 10: settings carry the wavelet
 // filter's levels. 11: Welcome carries the scene's environment (a constant sky, or a map
 // that workers ask for by hash as they ask for the scene). 12: settings carry vpl_draws.
-// 13: settings carry lightcuts_block.
-inline constexpr uint16_t kVersion = 13;
+// 13: settings carry lightcuts_block. 14: FrameSetup carries want_surfaces and
+// TileResult its pixels' surfaces (the window's reprojection); CancelFrame.
+inline constexpr uint16_t kVersion = 14;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;
@@ -69,6 +72,7 @@ enum class MessageType : uint8_t {
   TileResult = 8,
   Heartbeat = 9,
   Bye = 10,
+  CancelFrame = 11,
 };
 
 const char* message_name(MessageType type);
@@ -141,6 +145,9 @@ struct TileResult {
   // tile.w * tile.h, row-major, linear RGB, finite; as Float16 each is a half
   // value (encode() rounds to nearest even; protocol::wire_pixels prepares them).
   std::vector<glm::vec3> pixels;
+  // None, or tile.w * tile.h as the pixels (when the frame wants them): depth
+  // finite and >= 0, flags only PixelSurface::kViewDependent. 8 bytes each.
+  std::vector<PixelSurface> surfaces;
 };
 
 struct Heartbeat {};
@@ -156,8 +163,15 @@ struct Bye {
   ByeKind kind = ByeKind::Leaving;
 };
 
+// The view left the frame behind (the window's camera moved on): its jobs
+// still queued are dropped; tiles already rendering are sent as usual and
+// the master ignores them.
+struct CancelFrame {
+  uint64_t frame_id = 0;
+};
+
 using Message = std::variant<Hello, Welcome, Refuse, SceneRequest, SceneData, FrameSetupMsg, TileJobMsg,
-                             TileResult, Heartbeat, Bye>;
+                             TileResult, Heartbeat, Bye, CancelFrame>;
 
 MessageType type_of(const Message& message);
 

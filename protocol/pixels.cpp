@@ -82,4 +82,16 @@ std::string copy_tile_pixels(const TileResultView& view, uint8_t* dst, size_t ds
   return {};
 }
 
+void copy_tile_surfaces(const TileResultView& view, PixelSurface* dst, size_t dst_row_pixels) {
+  const int w = view.fields.tile.w;
+  const uint8_t* bytes = view.surface_bytes.data();
+  for (int y = 0; y < view.fields.tile.h; ++y)
+    for (int x = 0; x < w; ++x, bytes += 8) {
+      PixelSurface& s = dst[size_t(y) * dst_row_pixels + size_t(x)];
+      std::memcpy(&s.depth, bytes, 4);  // little-endian on the wire and on every machine this builds for
+      for (int k = 0; k < 3; ++k) s.normal[k] = static_cast<int8_t>(bytes[4 + k]);
+      s.flags = bytes[7];
+    }
+}
+
 }  // namespace igi::protocol

@@ -28,4 +28,9 @@ uint32_t wire_pixels(std::span<glm::vec3> pixels, PixelFormat format);
 // same bytes; the rows copied by then are garbage the caller must not use.
 std::string copy_tile_pixels(const TileResultView& view, uint8_t* dst, size_t dst_row_bytes);
 
+// The view's surfaces (decode_tile_result checked them), to `dst`: the
+// surface of the tile's top-left pixel in a frame `dst_row_pixels` wide.
+// The view must have surfaces.
+void copy_tile_surfaces(const TileResultView& view, PixelSurface* dst, size_t dst_row_pixels);
+
 }  // namespace igi::protocol

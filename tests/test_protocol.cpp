@@ -67,7 +67,7 @@ bool same(const FrameSetupMsg& a, const FrameSetupMsg& b) {
          same(f.camera.forward, g.camera.forward) && same(f.camera.up, g.camera.up) &&
          same(f.camera.vfov, g.camera.vfov) && f.width == g.width && f.height == g.height && f.seed == g.seed &&
          f.sample_begin == g.sample_begin && f.sample_count == g.sample_count && same(f.jitter_x, g.jitter_x) &&
-         same(f.jitter_y, g.jitter_y) && same(a.settings, b.settings);
+         same(f.jitter_y, g.jitter_y) && f.want_surfaces == g.want_surfaces && same(a.settings, b.settings);
 }
 bool same(const TileJobMsg& a, const TileJobMsg& b) {
   return a.frame_id == b.frame_id && a.job_id == b.job_id && same(a.tile, b.tile);
@@ -78,10 +78,11 @@ bool same(const TileResult& a, const TileResult& b) {
   return pixels && a.frame_id == b.frame_id && a.job_id == b.job_id && same(a.tile, b.tile) &&
          same(a.render_seconds, b.render_seconds) && a.frame_state_hash == b.frame_state_hash &&
          a.rays.primary == b.rays.primary && a.rays.shadow == b.rays.shadow && a.rays.secondary == b.rays.secondary &&
-         a.nonfinite_pixels == b.nonfinite_pixels && a.pixel_format == b.pixel_format;
+         a.nonfinite_pixels == b.nonfinite_pixels && a.pixel_format == b.pixel_format && a.surfaces == b.surfaces;
 }
 bool same(const Heartbeat&, const Heartbeat&) { return true; }
 bool same(const Bye& a, const Bye& b) { return a.reason == b.reason && a.kind == b.kind; }
+bool same(const CancelFrame& a, const CancelFrame& b) { return a.frame_id == b.frame_id; }
 bool same(const Message& a, const Message& b) {
   if (a.index() != b.index()) return false;
   return std::visit([&b](const auto& x) { return same(x, std::get<std::decay_t<decltype(x)>>(b)); }, a);
@@ -92,6 +93,8 @@ bool same(const Message& a, const Message& b) {
 TileResult sample_tile_result() {
   TileResult m{9, 77, {64, 32, 8, 8, 1}, 0.125f, 0xa5a5a5a5deadbeefull, {100, 200, 300}, 3, PixelFormat::Float32, {}};
   for (int i = 0; i < 64; ++i) m.pixels.push_back({0.5f * float(i), -0.0f, 1e-3f * float(i * i)});
+  for (int i = 0; i < 64; ++i)
+    m.surfaces.push_back({0.25f * float(i), {int8_t(i), int8_t(-i), 127}, uint8_t(i % 3 == 0 ? 1 : 0)});
   return m;
 }
 
@@ -122,11 +125,12 @@ std::vector<Message> samples() {
       Refuse{"build id mismatch: worker abc, master def"},
       SceneRequest{0xdeadbeefcafef00dull},
       SceneData{0x0123456789abcdefull, "scene.glb", scene},
-      FrameSetupMsg{FrameSetup{42, camera, 640, 480, 7, 16, 4, 0.25f, 0.75f}, frame_settings()},
+      FrameSetupMsg{FrameSetup{42, camera, 640, 480, 7, 16, 4, 0.25f, 0.75f, {}, true}, frame_settings()},
       TileJobMsg{9, 77, {64, 32, 16, 8, 2}},
       sample_tile_result(),
       Heartbeat{},
       Bye{"shutting down", ByeKind::Quarantined},
+      CancelFrame{0x0102030405060708ull},
   };
 }
 
@@ -252,7 +256,7 @@ TEST(Protocol, HeaderErrors) {
   };
   EXPECT_NE(error_with(0, 'X').find("magic"), std::string::npos);
   EXPECT_EQ(error_with(6, 0), "unknown message type 0");
-  EXPECT_EQ(error_with(6, 11), "unknown message type 11");
+  EXPECT_EQ(error_with(6, 12), "unknown message type 12");
   EXPECT_EQ(error_with(7, 1), "Heartbeat: flags 0x00000001, expected 0");
   EXPECT_NE(decode_copy({1, 2, 3}).error.find("shorter than the 8-byte header"), std::string::npos);
 }
@@ -338,6 +342,7 @@ TEST(Protocol, WorkersSendFinitePixelsInTheFormatsRange) {
   m.tile.w = 2;
   m.tile.h = 2;
   m.pixels = as_half;
+  m.surfaces.clear();
   EXPECT_TRUE(decode_copy(encode(m)).message) << "sendable as halves";
 }
 
@@ -352,6 +357,51 @@ TEST(Protocol, TileResultPixelsMustMatchTheTileAndBeFinite) {
     EXPECT_FALSE(d.message);
     EXPECT_NE(d.error.find("TileResult.pixels: pixel 13"), std::string::npos) << d.error;
   }
+}
+
+// The window's pixel surfaces: none or one a pixel, each with a finite depth
+// >= 0 and no flag but kViewDependent; the master's in-place path agrees.
+TEST(Protocol, TileResultSurfacesMatchTheTileAndHoldOnlyWhatTheyMayHold) {
+  TileResult m = sample_tile_result();
+  m.surfaces.clear();
+  EXPECT_TRUE(decode_copy(encode(m)).message) << "a frame that did not ask for surfaces";
+  const struct {
+    void (*change)(TileResult&);
+    const char* error;
+  } cases[] = {
+      {[](TileResult& r) { r.surfaces.resize(37); }, "TileResult.surfaces: 37 surfaces, expected 0 or 64"},
+      {[](TileResult& r) { r.surfaces[5].depth = -1.0f; }, "TileResult.surfaces: surface 5 has depth -1, expected"},
+      {[](TileResult& r) { r.surfaces[6].depth = std::numeric_limits<float>::quiet_NaN(); },
+       "TileResult.surfaces: surface 6 has depth nan"},
+      {[](TileResult& r) { r.surfaces[7].flags = 2; }, "TileResult.surfaces: surface 7 has flags 2, expected 0 or 1"},
+  };
+  for (const auto& c : cases) {
+    m = sample_tile_result();
+    c.change(m);
+    const std::vector<uint8_t> bytes = encode(m);
+    const DecodeResult d = decode_copy(bytes);
+    EXPECT_FALSE(d.message) << c.error;
+    EXPECT_EQ(d.error.rfind(c.error, 0), 0u) << d.error;
+    std::string error;
+    EXPECT_FALSE(decode_tile_result(bytes, error)) << c.error;
+    EXPECT_EQ(error, d.error) << "the master's in-place path says the same";
+  }
+  m = sample_tile_result();
+  const std::vector<uint8_t> bytes = encode(m);
+  std::string error;
+  const std::optional<TileResultView> view = decode_tile_result(bytes, error);
+  ASSERT_TRUE(view) << error;
+  std::vector<PixelSurface> frame(16 * 10);  // the tile's 8 x 8 at (2, 1) of a 16-wide frame
+  copy_tile_surfaces(*view, &frame[1 * 16 + 2], 16);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) ASSERT_EQ(frame[size_t(y + 1) * 16 + size_t(x + 2)], m.surfaces[size_t(y) * 8 + x]);
+  EXPECT_EQ(frame[0], PixelSurface{}) << "nothing outside the tile";
+  // FrameSetup's want_surfaces is a boolean: header 8, id 8, camera 40, size 8, seed and samples 12, jitter 8,
+  // time 8, light offset 12 bytes before it.
+  std::vector<uint8_t> setup = encode(sample<FrameSetupMsg>());
+  ASSERT_EQ(setup[104], 1);
+  setup[104] = 2;
+  EXPECT_EQ(decode_copy(setup).error.rfind("FrameSetup.frame.want_surfaces", 0), 0u) << decode_copy(setup).error;
 }
 
 // Each change breaks one rule; the error must name the message and field.
@@ -502,7 +552,7 @@ TEST(Protocol, LimitsThemselvesAreAccepted) {
       frame_edited([](auto& f) { f.jitter_x = 0; f.jitter_y = 1; }),
       frame_edited([](auto& f) { f.width = kMaxImageSide; f.height = 1; }),
       edited<TileJobMsg>([](TileJobMsg& m) { m.tile = {kMaxImageSide - 1, 0, kMaxTileSide, 1, 64}; }),
-      edited<TileResult>([](TileResult& m) { m.tile = {0, 0, 1, 1, 0}; m.pixels.resize(1); m.nonfinite_pixels = 1; }),
+      edited<TileResult>([](TileResult& m) { m.tile = {0, 0, 1, 1, 0}; m.pixels.resize(1); m.surfaces.resize(1); m.nonfinite_pixels = 1; }),
       edited<Welcome>([](Welcome& m) { m.timeout_ms = kMinTimeoutMs; }),
       edited<Welcome>([](Welcome& m) { m.timeout_ms = kMaxTimeoutMs; m.pixel_format = PixelFormat::Float32; }),
   };
@@ -535,7 +585,7 @@ TEST(Protocol, HugeLengthsAndBadBytesAreRejectedBeforeUse) {
   EXPECT_EQ(patched(sample<TileResult>(), pixels_at, all_ones),
             "TileResult.pixels: count 4294967295 over the limit of 1048576");
   EXPECT_EQ(patched(sample_half_tile_result(), pixels_at, {0, 1, 0, 0}),
-            "TileResult.pixels: truncated: 256 elements of 6 bytes, 384 bytes left");
+            "TileResult.pixels: truncated: 256 elements of 6 bytes, 900 bytes left");  // 384 of pixels, 516 of surfaces
   Welcome welcome = sample<Welcome>();
   size_t method_at = 8 + 8 + 4 + welcome.scene_name.size() + 16 + 12;  // past the environment's 3 floats
   EXPECT_EQ(patched(welcome, method_at, {7}), "Welcome.settings.method: --method: expected pt, ir, igi or lightcuts (0..3), got 7");

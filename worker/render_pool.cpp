@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "core/pixel_surface.h"
 #include "methods/memory_check.h"
 #include "protocol/pixels.h"
 #include "scene/accel.h"
@@ -59,6 +60,12 @@ void RenderPool::add_job(const protocol::TileJobMsg& job) {
   wake_.notify_one();
 }
 
+void RenderPool::cancel_frame(uint64_t frame_id) {
+  std::lock_guard lock(mutex_);
+  std::erase_if(queue_, [&](const protocol::TileJobMsg& job) { return job.frame_id == frame_id; });
+  frames_.erase(frame_id);  // a tile rendering now keeps its state alive until it is done
+}
+
 std::string RenderPool::failure() const {
   std::lock_guard lock(mutex_);
   return failure_;
@@ -87,6 +94,10 @@ protocol::TileResult RenderPool::render(const protocol::TileJobMsg& job, FrameSt
   r.tile = job.tile;
   r.pixels.resize(size_t(job.tile.w) * job.tile.h);
   frame.method->render_tile(job.tile, r.pixels, r.rays);
+  if (frame.setup.want_surfaces) {  // the master's reprojection; its rays are counted with the camera's
+    r.surfaces.resize(r.pixels.size());
+    r.rays.primary += trace_pixel_surfaces(scene_.context().accel, frame.setup, job.tile, r.surfaces);
+  }
   r.pixel_format = format_;
   r.nonfinite_pixels = protocol::wire_pixels(r.pixels, format_);  // the master rejects non-finite pixels
   r.frame_state_hash = frame.method->frame_state_hash();

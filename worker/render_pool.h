@@ -40,6 +40,9 @@ class RenderPool {
   // forgotten once a newer one is added and they have no queued jobs.
   void add_frame(const FrameSetup& frame, const RenderSettings& settings);
   void add_job(const protocol::TileJobMsg& job);
+  // The master left the frame behind: its queued jobs are dropped and it is
+  // forgotten; a tile of it rendering now is finished and sent as usual.
+  void cancel_frame(uint64_t frame_id);
   std::vector<protocol::TileResult> take_results();
   // Why a frame could not be rendered here (its method threw: memory, a
   // setting this machine cannot hold); empty while all is well. The worker

@@ -234,7 +234,17 @@ std::optional<WorkerSession::Outcome> WorkerSession::handle(protocol::Message& m
     if (!welcome_) return std::nullopt;  // not ours to render yet
     if (loaded_ && loaded_->pool) feed_pool(m);
     else waiting_.push_back(std::move(m));
+  } else if (auto* cancel = std::get_if<protocol::CancelFrame>(&m)) {
+    if (loaded_ && loaded_->pool) loaded_->pool->cancel_frame(cancel->frame_id);
+    std::erase_if(waiting_, [&](const protocol::Message& w) { return frame_of(w) == cancel->frame_id; });
   }
+  return std::nullopt;
+}
+
+// The frame a waiting frame setup or job belongs to.
+std::optional<uint64_t> WorkerSession::frame_of(const protocol::Message& m) {
+  if (auto* f = std::get_if<protocol::FrameSetupMsg>(&m)) return f->frame.frame_id;
+  if (auto* j = std::get_if<protocol::TileJobMsg>(&m)) return j->frame_id;
   return std::nullopt;
 }
 

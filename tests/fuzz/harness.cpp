@@ -70,7 +70,7 @@ std::string check_loaded(const LoadedScene& loaded) {
 
 // The master's in-place path for TileResults (decode_tile_result, then
 // copy_tile_pixels into a frame) must accept exactly what decode() accepts,
-// with the same error, and copy the same pixels.
+// with the same error, and copy the same pixels and surfaces.
 static std::string check_tile_result_view(std::span<const uint8_t> bytes, const protocol::DecodeResult& decoded) {
   if (!protocol::is_tile_result(bytes)) return {};
   std::string error;
@@ -90,6 +90,13 @@ static std::string check_tile_result_view(std::span<const uint8_t> bytes, const 
         return std::memcmp(&a, &b, sizeof a) == 0;
       }))
     return "the copied pixels differ from the decoded ones";
+  const auto& surfaces = std::get<protocol::TileResult>(*decoded.message).surfaces;
+  if (view->surface_bytes.empty() != surfaces.empty()) return "the view and decode disagree on the surfaces' presence";
+  if (surfaces.empty()) return {};
+  std::vector<PixelSurface> copied(surfaces.size());
+  protocol::copy_tile_surfaces(*view, copied.data(), size_t(t.w));
+  if (std::memcmp(copied.data(), surfaces.data(), surfaces.size() * sizeof(PixelSurface)) != 0)
+    return "the copied surfaces differ from the decoded ones";
   return {};
 }
 

@@ -53,6 +53,14 @@ TileResult half_tile_result() {
   return m;
 }
 
+// The window's frames: pixels and the surfaces they show (a wall, a glossy pixel, the sky).
+TileResult surface_tile_result() {
+  TileResult m = half_tile_result();
+  m.surfaces = {{2.5f, {0, 0, 127}, 0}, {2.6f, {12, -5, 126}, 0}, {1.0f, {0, 127, 0}, PixelSurface::kViewDependent},
+                {0.0f, {0, 0, 0}, 0}};
+  return m;
+}
+
 FrameSetupMsg frame_setup() {
   FrameSetupMsg m;
   m.frame.frame_id = 3;
@@ -65,6 +73,7 @@ FrameSetupMsg frame_setup() {
   m.frame.jitter_x = 0.25f;
   m.frame.pose.time = 1.25;
   m.frame.pose.light_offset = {0.1f, 0.0f, -0.2f};
+  m.frame.want_surfaces = true;
   return m;
 }
 
@@ -183,6 +192,8 @@ std::vector<Seed> decode_seeds() {
       {"TileJob", job},
       {"TileResult", tile_result()},
       {"TileResult-half", half_tile_result()},
+      {"TileResult-surfaces", surface_tile_result()},
+      {"CancelFrame", CancelFrame{3}},
       {"Heartbeat", Heartbeat{}},
       {"Bye", Bye{"shutting down"}},
       {"Bye-quarantined", Bye{"VPL sets differ", ByeKind::Quarantined}},
