@@ -184,6 +184,7 @@ void MasterSession::add_frame(const FrameSetup& frame, const RenderSettings& set
   open.settings = settings;
   open.pixels = pool_.acquire(frame.width, frame.height, pixel_format_);
   open.record.frame_id = frame.frame_id;
+  if (frame.want_surfaces) open.surfaces.resize(size_t(frame.width) * size_t(frame.height));
   frames_[frame.frame_id] = std::move(open);
   const int border = tile_border(settings);
   if (tiles_.empty() || tiles_cut_ != std::tuple{frame.width, frame.height, border}) {  // cut once per size and border
@@ -193,6 +194,19 @@ void MasterSession::add_frame(const FrameSetup& frame, const RenderSettings& set
   }
   scheduler_.add_frame(frame.frame_id, tiles_);
   if (referee_) referee_->request(frame, settings);
+}
+
+void MasterSession::cancel_frame(uint64_t frame_id) {
+  if (!frames_.erase(frame_id)) return;
+  scheduler_.cancel_frame(frame_id);
+  for (auto& [identity, peer] : peers_)
+    if (peer.frames_sent.erase(frame_id)) send(identity, protocol::CancelFrame{frame_id});
+}
+
+std::vector<uint64_t> MasterSession::open_frames() const {
+  std::vector<uint64_t> ids;
+  for (const auto& entry : frames_) ids.push_back(entry.first);
+  return ids;
 }
 
 std::vector<CompletedFrame> MasterSession::pump(int timeout_ms) {
@@ -448,6 +462,11 @@ void MasterSession::use_result(const std::string& identity, Peer& peer, const pr
   FrameBuffer& pixels = *frame.pixels;
   const std::string error = protocol::copy_tile_pixels(view, pixels.pixel(r.tile.x, r.tile.y), pixels.row_bytes());
   if (!error.empty()) return on_bad_result(identity, r.job_id, error);
+  if (!frame.surfaces.empty()) {
+    if (view.surface_bytes.empty()) return on_bad_result(identity, r.job_id, "no pixel surfaces, which its frame asked for");
+    protocol::copy_tile_surfaces(view, &frame.surfaces[size_t(r.tile.y) * size_t(pixels.width) + size_t(r.tile.x)],
+                                 size_t(pixels.width));
+  }
   scheduler_.on_result(identity, r.job_id, r.frame_state_hash, Clock::now());
   ++frame.record.tiles;
   frame.record.rays += r.rays;
@@ -608,7 +627,7 @@ std::vector<CompletedFrame> MasterSession::take_completed() {
     f.record.verified = s.verified;
     f.record.failed_results = s.failed_results;
     f.record.quarantined = s.quarantined;
-    done.push_back(CompletedFrame{f.setup, std::move(f.pixels), std::move(f.record)});
+    done.push_back(CompletedFrame{f.setup, std::move(f.pixels), std::move(f.record), std::move(f.surfaces)});
     frames_.erase(frame_id);
     for (auto& [identity, peer] : peers_) peer.frames_sent.erase(frame_id);
   }

@@ -95,6 +95,7 @@ struct CompletedFrame {
   FrameSetup setup;
   std::shared_ptr<FrameBuffer> pixels;  // back to the session's pool when the last copy goes
   FrameRecord record;
+  std::vector<PixelSurface> surfaces;  // one a pixel when setup.want_surfaces, else none
 };
 
 // A worker as the window's cluster panel shows it.
@@ -128,6 +129,11 @@ class MasterSession {
   bool can_add_frame() const { return scheduler_.can_add_frame(); }
   void add_frame(const FrameSetup& frame);
   void add_frame(const FrameSetup& frame, const RenderSettings& settings);
+  // The view moved on: the frame is dropped and every worker that holds a
+  // job of it is told to drop its queued ones (CancelFrame); their credit
+  // comes back at once. The frame never completes.
+  void cancel_frame(uint64_t frame_id);
+  std::vector<uint64_t> open_frames() const;  // oldest first
   // Per-worker figures in each FrameRecord (on with --stats; the window turns them on).
   void set_detailed_stats(bool on) { detailed_stats_ = on; }
   // Which worker filled each tile, in each FrameRecord (the window's tile overlay).
@@ -176,6 +182,7 @@ class MasterSession {
     RenderSettings settings;
     std::shared_ptr<FrameBuffer> pixels;
     FrameRecord record;
+    std::vector<PixelSurface> surfaces;
     std::optional<Clock::time_point> started;
   };
 

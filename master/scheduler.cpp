@@ -131,6 +131,21 @@ std::vector<uint64_t> Scheduler::take_completed_frames() {
   return done;
 }
 
+std::set<WorkerId> Scheduler::cancel_frame(uint64_t frame_id) {
+  std::set<WorkerId> holders;
+  auto frame = frames_.find(frame_id);
+  if (frame == frames_.end()) return holders;
+  for (uint64_t job_id : frame->second.jobs) {
+    for (const Holder& h : jobs_.at(job_id).holders) {
+      holders.insert(h.worker);
+      if (auto w = workers_.find(h.worker); w != workers_.end()) take_back(w->second, h.worker, job_id);
+    }
+    jobs_.erase(job_id);  // its entries in unassigned_ and issued_ are skipped from now on
+  }
+  frames_.erase(frame);
+  return holders;
+}
+
 // ---- Handing out jobs.
 
 JobAssignment Scheduler::give(const WorkerId& id, uint64_t job_id, TimePoint now) {

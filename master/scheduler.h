@@ -146,6 +146,10 @@ class Scheduler {
   void judge_by_reference() { config_.master_reference = true; }
   void add_frame(uint64_t frame_id, const std::vector<TileJob>& tiles);
   bool can_add_frame() const { return int(frames_.size()) < config_.frames_in_flight; }
+  // The view moved on: the frame and its jobs are forgotten, and the credit
+  // of its copies out comes back at once (a result still on its way is
+  // Unknown: drop_result()). Returns the workers that held any of its jobs.
+  std::set<WorkerId> cancel_frame(uint64_t frame_id);
   size_t open_frames() const { return frames_.size(); }
 
   // Jobs for workers with free credit, as many as there are (in frame order).

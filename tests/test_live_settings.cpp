@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/pixel_surface.h"
 #include "image/metrics.h"
 #include "master_session.h"
 #include "scene/builtin_scenes.h"
@@ -84,6 +85,48 @@ TEST(LiveSettings, EachFrameIsRenderedWithItsOwnSettingsBySameWorkers) {
   EXPECT_EQ(r.workers.begin()->second.tiles, r.tiles);
   const std::vector<PeerView> peers = session.peer_views();
   EXPECT_TRUE(peers.empty()) << "closed: no peers left";
+}
+
+// The window's frames while the camera moves (issue 45): a frame the view
+// left behind is cancelled and never comes; frames that carry their pixels'
+// surfaces have the very pixels of one process, and the surfaces one process traces.
+TEST(LiveSettings, ACancelledFrameNeverComesAndSurfacesLeaveThePixelsAlone) {
+  const int port = test::free_port();
+  const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(port);
+  zmq::context_t context;
+  const MasterOptions o = parse_master_options({"--workers", "0", "--listen", endpoint, "--frames", "2", "--quiet",
+                                                "--no-write", "--size", "48x36", "--tile", "13", "--pixels", "float"});
+  MasterSession session(o, make_scene_source("cornell"), context);
+  const pid_t worker = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 2 --quiet");
+  const auto end = Clock::now() + std::chrono::duration<double>(30 * test::kSlowdown);
+  while (session.worker_count() == 0 && Clock::now() < end) session.pump(20);
+  ASSERT_EQ(session.worker_count(), 1u);
+
+  const RenderSettings settings = test::vpl_settings(MethodKind::Igi, 4, 0.1f, true);
+  const test::Prepared scene(load_scene("cornell"));
+  FrameSetup moving = scene.frame(48, 36, 5), still = scene.frame(48, 36, 6);
+  moving.frame_id = 0;
+  moving.want_surfaces = true;
+  still.frame_id = 1;
+  still.want_surfaces = true;
+  still.camera.position.x += 0.05f;
+  session.add_frame(moving, settings);
+  session.pump(0);  // its jobs go out
+  session.cancel_frame(0);
+  EXPECT_EQ(session.open_frames(), std::vector<uint64_t>{});
+  session.add_frame(still, settings);
+  std::vector<CompletedFrame> done;
+  while (done.empty() && Clock::now() < end + std::chrono::seconds(30))
+    for (CompletedFrame& f : session.pump(20)) done.push_back(std::move(f));
+  session.close("test done");
+  test::stop(worker);
+  ASSERT_EQ(done.size(), 1u);
+  EXPECT_EQ(done[0].setup.frame_id, 1u) << "the cancelled frame came after all";
+  EXPECT_EQ(max_abs_error(done[0].pixels->to_image(), render_here(scene, settings, still)), 0.0f);
+  std::vector<PixelSurface> here(size_t(48) * 36);
+  trace_pixel_surfaces(*scene.accel, still, TileJob{0, 0, 48, 36, 0}, here);
+  ASSERT_EQ(done[0].surfaces.size(), here.size());
+  EXPECT_TRUE(done[0].surfaces == here) << "the surfaces the worker traced differ from this process's";
 }
 
 }  // namespace

@@ -586,3 +586,32 @@ TEST(Scheduler, ForcedDuplicatesGoToAnotherWorker) {
 
 }  // namespace
 }  // namespace igi
+
+namespace igi {
+namespace {
+
+TEST(Scheduler, ACancelledFrameGivesItsCreditBackAndItsLateResultsAreUnknown) {
+  Scheduler s(2, 2);
+  s.add_worker("a");
+  s.add_worker("b");
+  s.add_frame(0, tiles(6));
+  s.add_frame(1, tiles(6));
+  const std::vector<JobAssignment> first = s.assign(at(0));
+  ASSERT_EQ(first.size(), 4u);
+  EXPECT_EQ(s.cancel_frame(0), (std::set<WorkerId>{"a", "b"}));
+  EXPECT_EQ(s.outstanding("a"), 0) << "its credit comes back at once";
+  EXPECT_TRUE(s.can_add_frame());
+  const std::vector<JobAssignment> next = s.assign(at(1));
+  ASSERT_EQ(next.size(), 4u);
+  for (const JobAssignment& j : next) EXPECT_EQ(j.frame_id, 1u) << "the cancelled frame's jobs never go out again";
+  const JobAssignment& late = first.front();
+  EXPECT_EQ(s.check_result(late.worker, late.job_id, late.frame_id, late.tile), ResultCheck::Unknown);
+  s.drop_result(late.worker, late.job_id);
+  EXPECT_EQ(s.outstanding(late.worker), 2) << "a late result takes back no credit twice";
+  answer(s, next, 7, at(2));
+  answer(s, s.assign(at(3)), 7, at(3));
+  EXPECT_EQ(s.take_completed_frames(), std::vector<uint64_t>{1});
+}
+
+}  // namespace
+}  // namespace igi
