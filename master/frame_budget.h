@@ -1,0 +1,73 @@
+#pragma once
+// --frame-budget-ms: what a frame renders at while the view changes, so that
+// a moving camera still gets a frame every budget or so.
+//
+// Levels, finest first: the full frame (level 0, the only one while the view
+// is still), then previews: the same camera over fewer pixels (the image
+// over a whole divisor of both sides, the long side never under
+// kMinLongSide pixels, as Cycles' viewport) with cheaper settings (one
+// sub-sample a pixel, shaded by the light paths one sub-sample of a full
+// frame has, and no bias compensation). The first moving frame takes
+// the finest preview that the full frames' measured cost, scaled by pixels,
+// predicts to fit the budget. Then the level steps coarser when its frames
+// take more than the budget, and finer when they take at most kStepUp of it
+// and the finer level was never measured over the budget: measuring is the
+// only sure prediction (a frame's fixed costs do not scale with pixels), and
+// a level once over the budget is not tried again, so the level does not
+// flicker between two.
+//
+// Pure bookkeeping: the caller measures and says so (tests feed a cost model).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/settings.h"
+
+namespace igi {
+
+struct PreviewLevel {
+  int divisor = 1;     // the frame is width / divisor x height / divisor
+  bool cheap = false;  // preview settings (preview_settings())
+  bool operator==(const PreviewLevel&) const = default;
+};
+
+// The settings a preview level renders with.
+RenderSettings preview_settings(RenderSettings settings, const PreviewLevel& level);
+// What a frame of the level counts for in an accumulated image, against a
+// full frame's 1: its share of a full frame's samples (pixels over
+// divisor^2, sub-samples one of aa_samples), so previews seen while moving
+// hardly weigh once full frames come.
+double level_weight(const RenderSettings& full, const PreviewLevel& level);
+// "full", "preview 1/2", ...: what the read-out names.
+std::string level_name(const PreviewLevel& level);
+
+class FrameBudget {
+ public:
+  static constexpr int kMinLongSide = 128;
+  static constexpr double kStepUp = 0.7;
+
+  // budget_ms 0: no budget, every frame full.
+  FrameBudget(int width, int height, double budget_ms);
+  const std::vector<PreviewLevel>& levels() const { return levels_; }
+  double budget_ms() const { return budget_ms_; }
+  void set_budget_ms(double ms) { budget_ms_ = ms; }
+  // The panel's pin: this level index for every frame, moving or not (nullopt: the budget decides).
+  void pin(std::optional<int> level);
+  std::optional<int> pinned() const { return pinned_; }
+
+  // The level of the next frame: full while still (or without a budget).
+  int pick(bool moving);
+  // A frame of level index `level` took `seconds`, first job out to last result in.
+  void measured(int level, double seconds);
+  // The cost the budget expects of a level (seconds; 0 when nothing is measured yet).
+  double predicted(int level) const;
+
+ private:
+  std::vector<PreviewLevel> levels_;
+  std::vector<double> cost_;  // measured seconds, smoothed; 0: not yet
+  double budget_ms_;
+  std::optional<int> pinned_;
+  int moving_ = 0;  // the level moving frames take now (0: none chosen yet)
+};
+
+}  // namespace igi
