@@ -1,20 +1,22 @@
 // The window: the session runs on a thread of its own; this thread draws.
 //
-// The display thread owns the window and the camera; it publishes the camera
-// (with a generation that changes on every move) and takes completed frames.
-// The session thread plans frames for the latest camera (pass p: seed + p and
-// a new sub-pixel position, for accumulation) with the latest settings (the
-// panel's; they travel in each FrameSetup), pumps the session, and hands
-// each finished frame over with the generation it was planned for. A camera
-// move or a settings change starts a new generation; frames of an old one are
-// dropped on arrival. The display thread accumulates, uploads floats and lets
-// the GPU apply exposure and sRGB; the session thread only moves frames. The hand-over queue is short: the
-// session adds no frame while the display has frames it has not taken.
+// The display thread owns the window and the camera; it publishes the view
+// (camera and settings, each with a generation bumped by every change) and
+// takes completed frames. The session thread plans frames for the latest
+// view (motion_planner.h: previews within --frame-budget-ms while the camera
+// moves, full frames once it is still), cancels the frames the view has left
+// behind, pumps the session, and hands each finished frame over. The display
+// thread shows every frame of the current settings, even one planned for a
+// camera the user has since moved (so a drag shows frames as they come),
+// carrying the accumulated image into each frame's view (view_history.h);
+// a frame of older settings is dropped. It uploads floats and lets the GPU
+// apply exposure and sRGB; the session thread only moves frames. The
+// hand-over queue is short: the session adds no frame while the display has
+// frames it has not taken.
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
 #include <deque>
-#include <map>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -23,18 +25,21 @@
 #include "camera_bookmark.h"
 #include "display/interactive_window.h"
 #include "display/window_panel.h"
-#include "frame_plan.h"
-#include "render/accumulator.h"
+#include "frame_rate.h"
+#include "motion_planner.h"
 #include "run_modes.h"
 #include "scene/animation.h"
 #include "stats_writer.h"
+#include "view_history.h"
 
 namespace igi {
 namespace {
 
 struct Shown {
   CompletedFrame frame;
-  uint64_t generation = 0;
+  PlannedFrame planned;
+  std::string level;  // the read-out's name of its level
+  double weight = 1.0;  // what it counts for in the accumulated image
   size_t workers = 0;  // when it completed (the display thread must not ask the session)
   std::vector<PeerView> peers;
 };
@@ -42,13 +47,7 @@ struct Shown {
 // What the two threads share, under one mutex.
 class Handover {
  public:
-  struct View {
-    Camera camera;
-    RenderSettings settings;
-    uint64_t generation = 0;
-    glm::vec3 light_offset{0.0f};  // where the keys moved the lights
-    bool follow_camera = false;    // an animated camera the user has not placed: frames take the animation's
-  };
+  using View = MovingView;
   void publish(const View& view) {
     std::lock_guard lock(mutex_);
     view_ = view;
@@ -100,53 +99,42 @@ class Handover {
   std::string error_;
 };
 
-void session_loop(const MasterOptions& o, const Scene& scene, MasterSession& session, Handover& handover) {
-  std::map<uint64_t, uint64_t> generation_of_frame;  // open frames only
-  uint64_t generation = ~uint64_t(0), next_id = 0;
-  int pass = 0, animation_frame = 0;
-  const bool animated = scene.animation && scene.animation->animated();
+void session_loop(const MasterOptions& o, const Scene& scene, MasterSession& session, Handover& handover,
+                  double budget_ms) {
+  MotionPlanner planner(o, scene, budget_ms);
   try {
-    while (!handover.stopped()) {
-      const Handover::View view = handover.view();
-      if (view.generation != generation) {  // the camera moved or the settings changed: start over
-        generation = view.generation;
-        pass = 0;
-      }
-      if (session.can_add_frame() && handover.waiting() < 2) {
-        RenderOptions render = o.render;
-        render.settings = view.settings;  // pt's samples per pass depend on the method
-        // An animation's frame k stands at its own time, as headless frame k: nothing accumulates.
-        FrameSetup f = plan_frame(render, o.camera_path, scene, animated ? animation_frame++ : pass++, true);
-        f.pose.light_offset = o.render.light_offset + view.light_offset;
-        f.frame_id = next_id++;
-        if (!view.follow_camera) f.camera = view.camera;  // else where the animation puts it at the frame's time
-        generation_of_frame[f.frame_id] = generation;
-        session.add_frame(f, view.settings);
-      }
-      for (CompletedFrame& f : session.pump(5)) {
-        const uint64_t g = generation_of_frame[f.setup.frame_id];
-        generation_of_frame.erase(f.setup.frame_id);
-        handover.deliver({std::move(f), g, session.worker_count(), session.peer_views()});
-      }
-    }
+    while (!handover.stopped())
+      for (MovedFrame& f : planner.turn(session, handover.view(), handover.waiting() < 2, 5))
+        handover.deliver({std::move(f.frame), f.planned, level_name(f.level), f.weight, session.worker_count(),
+                          session.peer_views()});
   } catch (const std::exception& e) {
     handover.stop(e.what());
   }
 }
 
-std::string status_line(const CompletedFrame& f, size_t workers, int accumulated, double fps, bool animated) {
-  char text[192];
+std::string waiting_line(double seconds) {
+  char text[96];
+  std::snprintf(text, sizeof text, "waiting for a frame (%.1f s)", seconds);
+  return text;
+}
+
+// "12.3 fps  preview 1/4  38 ms/frame ...": frames a second over the last
+// second, the level of the frame shown, and what waits.
+std::string status_line(const Shown& shown, double accumulated, double fps, bool animated) {
+  const CompletedFrame& f = shown.frame;
+  char text[224];
   const double s = f.record.seconds;
-  const int n = std::snprintf(text, sizeof text, "%.1f fps  %.0f ms/frame  %.1f Mrays/s  %zu workers  ", fps, 1e3 * s,
-                              s > 0 ? f.record.rays.total() * 1e-6 / s : 0.0, workers);
+  const int n = std::snprintf(text, sizeof text, "%.1f fps  %s  %.0f ms/frame  %.1f Mrays/s  %zu workers  ", fps,
+                              shown.level.c_str(), 1e3 * s, s > 0 ? f.record.rays.total() * 1e-6 / s : 0.0,
+                              shown.workers);
   if (animated) std::snprintf(text + n, sizeof text - size_t(n), "t = %.2f s", f.setup.pose.time);
-  else std::snprintf(text + n, sizeof text - size_t(n), "%d frames accumulated", accumulated);
+  else std::snprintf(text + n, sizeof text - size_t(n), "%.1f frames accumulated", accumulated);
   return text;
 }
 
 // Camera file, or image files, named in the panel: a failure is shown there, the window goes on.
 std::string act(const PanelActions& a, const PanelOptions& p, CameraController& controller, float speed,
-                const Accumulator& accumulator, float exposure, int& shots) {
+                const ViewHistory& history, float exposure, int& shots) {
   try {
     if (a.save_camera) {
       write_camera_file(p.bookmark, controller.camera());
@@ -160,11 +148,12 @@ std::string act(const PanelActions& a, const PanelOptions& p, CameraController& 
     if (a.save_image) {
       char name[32];
       std::snprintf(name, sizeof name, "-%04d", shots++);
-      const Image image = accumulator.resolve();
+      const Image image = history.resolve();
       write_image(image, p.shot_prefix + name + ".exr");
       write_image(image, p.shot_prefix + name + ".png", exposure);
-      return "saved " + p.shot_prefix + name + ".exr and .png (" + std::to_string(int(accumulator.weight())) +
-             " frames accumulated)";
+      char frames[64];
+      std::snprintf(frames, sizeof frames, " (%.1f frames accumulated)", history.weight());
+      return "saved " + p.shot_prefix + name + ".exr and .png" + frames;
     }
   } catch (const std::exception& e) {
     return e.what();
@@ -178,36 +167,38 @@ PanelOptions panel_options(const MasterOptions& o) {
   p.help = o.help;
   p.overlay = *parse_overlay(o.overlay);  // checked with the options
   if (!o.render.camera_file.empty()) p.bookmark = o.render.camera_file;
+  const FrameBudget budget(o.render.width, o.render.height, 0.0);
+  for (const PreviewLevel& level : budget.levels()) p.preview_levels.push_back(level_name(level));
   return p;
 }
 
-// A frame the session rendered for the current view: into the accumulator,
+// A frame of the current settings: into the history (carried into its view),
 // the status line, the stats file and the panel.
 struct Shower {
   InteractiveWindow& window;
   WindowPanel& panel;
   CameraController& controller;
-  Accumulator& accumulator;
+  ViewHistory& history;
   std::optional<StatsWriter>& stats;
   bool animated, camera_animated;
   int shown_frames = 0;
-  std::chrono::steady_clock::time_point last_frame = std::chrono::steady_clock::now();
+  FrameRate rate;
 
   void show(Shown& shown) {
-    if (animated) accumulator.reset();  // each frame stands at its own time
+    if (animated) history.reset();  // each frame stands at its own time
     if (camera_animated) controller.follow(shown.frame.setup.camera);  // a first move starts from the view shown
     ++shown_frames;
-    accumulator.add(shown.frame.pixels->to_image(), 1.0);
+    history.add(shown.frame.pixels->to_image(), shown.frame.surfaces, shown.frame.setup.camera, shown.weight);
     shown.frame.pixels.reset();  // back to the pool
-    const auto now = std::chrono::steady_clock::now();
-    const double fps = 1.0 / std::max(1e-6, std::chrono::duration<double>(now - last_frame).count());
-    last_frame = now;
-    window.set_status(status_line(shown.frame, shown.workers, int(accumulator.weight()), fps, animated));
+    const auto now = FrameRate::Clock::now();
+    rate.shown(now);
+    const double fps = rate.fps(now);
+    window.set_status(status_line(shown, history.weight(), fps, animated));
     FrameRecord& record = shown.frame.record;
     std::vector<TileSource> sources = std::move(record.tile_sources);  // the overlay's, not the file's
     if (stats) stats->add(record);
     record.tile_sources = std::move(sources);
-    panel.frame_shown(record, std::move(shown.peers), fps);
+    panel.frame_shown(record, std::move(shown.peers), fps, shown.level);
   }
 };
 
@@ -220,43 +211,54 @@ void window_loop(const MasterOptions& o, const Scene& scene, MasterSession& sess
   const bool animated = scene.animation && scene.animation->animated();
   const bool camera_animated = animated && scene.camera && scene.animation->camera_node >= 0;
   CameraController controller(scene_camera(scene, o.render.time), speed);
-  Accumulator accumulator(o.render.width, o.render.height);
-  uint64_t generation = 0, camera_generation = controller.generation();
+  ViewHistory history(o.render.width, o.render.height, o.history_frames);
+  uint64_t camera_generation = 0, settings_generation = 0, seen_camera = controller.generation();
+  glm::vec3 light_offset = controller.light_offset();
   auto view = [&] {
-    return Handover::View{controller.camera(), panel.settings().settings(), generation, controller.light_offset(),
-                          camera_animated && !controller.placed()};
+    return Handover::View{controller.camera(), panel.settings().settings(), camera_generation, settings_generation,
+                          controller.light_offset(), camera_animated && !controller.placed(), panel.options().preview};
   };
   handover.publish(view());
-  std::thread session_thread([&] { session_loop(o, scene, session, handover); });
+  const double budget_ms = o.frame_budget_ms >= 0.0 ? o.frame_budget_ms : kWindowFrameBudgetMs;
+  std::thread session_thread([&] { session_loop(o, scene, session, handover, budget_ms); });
   auto last_draw = std::chrono::steady_clock::now();
   bool edited = !o.test_panel_settings;  // the test hook edits once, after the first frame shown
   int shots = 0;
-  Shower shower{window, panel, controller, accumulator, stats, animated, camera_animated};
+  Shower shower{window, panel, controller, history, stats, animated, camera_animated, 0, {}};
   while (window.poll(controller) && !interrupted && !handover.stopped()) {
-    if (controller.generation() != camera_generation || panel.settings().take_change()) {
-      camera_generation = controller.generation();
-      accumulator.reset();
-      ++generation;
+    const bool lights_moved = controller.light_offset() != light_offset;
+    if (panel.settings().take_change() || lights_moved) {  // the image starts over
+      light_offset = controller.light_offset();
+      ++settings_generation;
+      history.reset();
+      handover.publish(view());
+    } else if (controller.generation() != seen_camera) {  // the history is carried
+      ++camera_generation;
+      handover.publish(view());
+    } else if (panel.options().preview != handover.view().preview) {
       handover.publish(view());
     }
+    seen_camera = controller.generation();
     bool fresh = false;
     for (Shown& shown : handover.take(std::chrono::milliseconds(5))) {
-      if (shown.generation != generation) continue;  // rendered for an old camera or old settings
+      if (shown.planned.settings_generation != settings_generation) continue;  // rendered with old settings
       shower.show(shown);
       fresh = true;
     }
     const auto now = std::chrono::steady_clock::now();
     if (!fresh && now - last_draw < std::chrono::milliseconds(50)) continue;  // redraw for the panel at 20 Hz
     last_draw = now;
-    if (fresh) window.upload(accumulator.resolve());
+    if (fresh) window.upload(history.resolve());
+    if (!fresh && shower.rate.waiting(now) > 1.0) window.set_status(waiting_line(shower.rate.waiting(now)));
+    if (!fresh) panel.set_waiting(shower.rate.waiting(now));
     window.draw(panel.settings().exposure());
-    const PanelActions actions = panel.draw(int(accumulator.weight()));
+    const PanelActions actions = panel.draw(int(history.weight()));
     window.set_input_captured(panel.wants_mouse(), panel.wants_keyboard());
-    if (std::string m = act(actions, panel.options(), controller, speed, accumulator, panel.settings().exposure(), shots);
+    if (std::string m = act(actions, panel.options(), controller, speed, history, panel.settings().exposure(), shots);
         !m.empty())
       panel.set_message(m);
-    if (actions.load_camera) camera_generation = ~controller.generation();  // a new controller: a new view
-    const int settled = animated ? shower.shown_frames : int(accumulator.weight());  // an animation never accumulates
+    if (actions.load_camera) seen_camera = ~controller.generation();  // a new controller: a new view
+    const int settled = animated ? shower.shown_frames : int(history.weight());  // an animation never accumulates
     if (fresh && edited && !o.render.screenshot.empty() && settled >= o.screenshot_after) {
       window.screenshot(o.render.screenshot);
       interrupted = true;

@@ -94,6 +94,7 @@ int run(igi::MasterOptions o) {
     extra = {"--scene-dir", std::filesystem::absolute(o.render.scene).parent_path().string()};
   workers.start(o.workers, local_endpoint(session.endpoint()), threads, extra, curve ? &curve->local_workers : nullptr);
   arm_test_hooks(o, session, workers);
+  if (!o.motion.empty()) return igi::run_motion(o, scene, session, workers, g_interrupted);
   if (o.frames > 0) return igi::run_headless(o, scene, session, workers, g_interrupted);
   return igi::run_interactive(o, scene, session, workers, g_interrupted);
 }

@@ -93,6 +93,30 @@ void add_run_options(CLI::App& app, MasterOptions& o) {
          "--panel", [&o](const std::string& v) { o.panel = v == "on"; },
          "window: the settings panel and the frame rate over the image at start (Tab toggles them) [on]")
       ->check(cli::one_of({"on", "off"}))->group(group)->type_name("on|off");
+  app.add_option("--frame-budget-ms", o.frame_budget_ms,
+                 "window: while the camera or settings change, render previews (fewer pixels, cheaper settings) "
+                 "that take about this long; 0 = full frames only [" + std::to_string(int(kWindowFrameBudgetMs)) + "]")
+      ->check(cli::non_negative_number())->check(cli::bounded_number(10000.0))->group(group)->type_name("MS");
+  app.add_option_function<std::string>(
+         "--reproject", [&o](const std::string& v) { o.reproject = v == "on"; },
+         "window: carry the accumulated image through camera moves where the surface is the same [on]")
+      ->check(cli::one_of({"on", "off"}))->group(group)->type_name("on|off");
+  app.add_option("--history-frames", o.history_frames,
+                 "window: frames of history a carried pixel keeps at most [16]")
+      ->check(integer(1, 1 << 20))->group(group)->type_name("K");
+  app.add_option("--motion", o.motion, "headless: a scripted user moves the camera (drag turns it 30 degrees a second aside and "
+                 "back, walk holds W) for --motion-seconds, then holds still for --still-seconds; frames shown are logged "
+                 "in --motion-out (the motion benchmark)")
+      ->check(cli::one_of({"drag", "walk"}))->group(group)->type_name("drag|walk");
+  app.add_option("--motion-out", o.motion_out, "--motion: the folder for its log, images and cameras [motion]")
+      ->group(group)->type_name("DIR");
+  app.add_option("--motion-seconds", o.motion_seconds, "--motion: seconds of motion [2]")
+      ->check(cli::non_negative_number())->check(cli::bounded_number(600.0))->group(group)->type_name("S");
+  app.add_option("--still-seconds", o.still_seconds, "--motion: seconds still after it [4]")
+      ->check(cli::non_negative_number())->check(cli::bounded_number(600.0))->group(group)->type_name("S");
+  app.add_flag("--motion-legacy", o.motion_legacy,
+               "--motion: as before motion was handled (no budget, stale frames dropped, history thrown away)")
+      ->group(group);
   app.add_option("--overlay", o.overlay, "window: tint tiles by the worker that rendered them: off, tint, solid [off]")
       ->check(cli::one_of({"off", "tint", "solid"}))->group(group)->type_name("off|tint|solid");
 }

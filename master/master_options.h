@@ -37,6 +37,17 @@ struct MasterOptions {
   bool panel = true;              // window: the panel and the frame rate shown at start (Tab toggles)
   bool help = false;              // window: the keys' help shown at start (F1 toggles; a test hook)
   std::string overlay = "off";    // window: tile overlay at start: off, tint or solid (F2 cycles)
+  // Window: while the view changes, frames at a preview level that fits this
+  // many ms (frame_budget.h); 0: every frame full. Negative: the default
+  // (kWindowFrameBudgetMs in the window, off headless).
+  double frame_budget_ms = -1.0;
+  bool reproject = true;          // window: carry the accumulated image through camera moves (view_history.h)
+  int history_frames = 16;        // window: a carried pixel keeps at most this many frames of history
+  // Headless motion benchmark (motion_run.cpp): a scripted user.
+  std::string motion;             // "", drag or walk
+  std::string motion_out = "motion";  // its log, shown images and reference cameras
+  double motion_seconds = 2.0, still_seconds = 4.0;
+  bool motion_legacy = false;     // as before motion was handled: no budget, no cancel, no reprojection
   // Test hooks.
   int kill_worker_after = 0;      // SIGKILL local worker 0 after this many results (once all have joined)
   int force_duplicates = 0;       // hand this many jobs to two workers on purpose
@@ -45,6 +56,8 @@ struct MasterOptions {
   // Window: after the first frame shown, these settings go through the panel's commit (as if edited there).
   std::optional<RenderSettings> test_panel_settings;
 };
+
+inline constexpr double kWindowFrameBudgetMs = 40.0;
 
 // The pixel format of the session: --pixels, or for "auto" float when the
 // output is a float file (.exr, .hdr, .pfm, .tif) and half otherwise (PNG, the window).

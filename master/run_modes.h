@@ -14,6 +14,9 @@ namespace igi {
 // Returns the exit status: 0 when every frame was written.
 int run_headless(const MasterOptions& options, const Scene& scene, MasterSession& session, LocalWorkers& workers,
                  const std::atomic<bool>& interrupted);
+// --motion: the motion benchmark's scripted user (motion_run.cpp).
+int run_motion(const MasterOptions& options, const Scene& scene, MasterSession& session, LocalWorkers& workers,
+               const std::atomic<bool>& interrupted);
 int run_interactive(const MasterOptions& options, const Scene& scene, MasterSession& session, LocalWorkers& workers,
                     std::atomic<bool>& interrupted);
 

@@ -22,6 +22,12 @@ InteractiveWindow::InteractiveWindow(int width, int height, const std::string& t
   glfwMakeContextCurrent(window_);
   glfwSwapInterval(0);
   last_time_ = glfwGetTime();
+  glfwGetCursorPos(window_, &last_x_, &last_y_);
+  // Set before the panel's (gui.cpp), which calls these after its own.
+  glfwSetWindowUserPointer(window_, this);
+  glfwSetKeyCallback(window_, on_key);
+  glfwSetMouseButtonCallback(window_, on_button);
+  glfwSetCursorPosCallback(window_, on_cursor);
   try {
     view_ = std::make_unique<ImageView>();
   } catch (...) {
@@ -37,24 +43,51 @@ InteractiveWindow::~InteractiveWindow() {
   glfwTerminate();
 }
 
+void InteractiveWindow::on_key(GLFWwindow* window, int key, int, int action, int) {
+  auto* self = static_cast<InteractiveWindow*>(glfwGetWindowUserPointer(window));
+  if (action == GLFW_PRESS && !self->keyboard_captured_) {
+    self->held_.insert(key);
+    self->tapped_.insert(key);
+  } else if (action == GLFW_RELEASE) {
+    self->held_.erase(key);
+  }
+}
+
+void InteractiveWindow::on_button(GLFWwindow* window, int button, int action, int) {
+  auto* self = static_cast<InteractiveWindow*>(glfwGetWindowUserPointer(window));
+  if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+  if (action == GLFW_PRESS) self->dragging_ = !self->mouse_captured_;  // a press on the panel is the panel's
+  else if (action == GLFW_RELEASE) self->dragging_ = false;
+}
+
+void InteractiveWindow::on_cursor(GLFWwindow* window, double x, double y) {
+  auto* self = static_cast<InteractiveWindow*>(glfwGetWindowUserPointer(window));
+  if (self->dragging_) {
+    self->look_x_ += x - self->last_x_;
+    self->look_y_ += y - self->last_y_;
+  }
+  self->last_x_ = x;
+  self->last_y_ = y;
+}
+
+float InteractiveWindow::axis(int plus, int minus) const {
+  auto down = [&](int key) { return held_.count(key) || tapped_.count(key) ? 1.0f : 0.0f; };
+  return down(plus) - down(minus);
+}
+
 bool InteractiveWindow::poll(CameraController& camera) {
   glfwPollEvents();
   const double now = glfwGetTime(), dt = now - last_time_;
   last_time_ = now;
-  auto key = [&](int k) { return !keyboard_captured_ && glfwGetKey(window_, k) == GLFW_PRESS ? 1.0f : 0.0f; };
-  if (key(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(window_, GLFW_TRUE);
-  if (key(GLFW_KEY_R)) camera.reset();
-  camera.move(key(GLFW_KEY_W) - key(GLFW_KEY_S), key(GLFW_KEY_D) - key(GLFW_KEY_A), key(GLFW_KEY_E) - key(GLFW_KEY_Q),
-              float(dt));
-  camera.move_lights(key(GLFW_KEY_L) - key(GLFW_KEY_J), key(GLFW_KEY_O) - key(GLFW_KEY_U),
-                     key(GLFW_KEY_K) - key(GLFW_KEY_I), float(dt));
-  double x, y;
-  glfwGetCursorPos(window_, &x, &y);
-  const bool pressed = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && (dragging_ || !mouse_captured_);
-  if (pressed && dragging_) camera.look(float(x - last_x_), float(y - last_y_));
-  dragging_ = pressed;
-  last_x_ = x;
-  last_y_ = y;
+  if (keyboard_captured_) held_.clear();  // the panel took the keys: nothing stays held behind its back
+  if (tapped_.count(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(window_, GLFW_TRUE);
+  if (tapped_.count(GLFW_KEY_R)) camera.reset();
+  camera.move(axis(GLFW_KEY_W, GLFW_KEY_S), axis(GLFW_KEY_D, GLFW_KEY_A), axis(GLFW_KEY_E, GLFW_KEY_Q), float(dt));
+  camera.move_lights(axis(GLFW_KEY_L, GLFW_KEY_J), axis(GLFW_KEY_O, GLFW_KEY_U), axis(GLFW_KEY_K, GLFW_KEY_I),
+                     float(dt));
+  if (look_x_ != 0.0 || look_y_ != 0.0) camera.look(float(look_x_), float(look_y_));
+  look_x_ = look_y_ = 0.0;
+  tapped_.clear();
   return !glfwWindowShouldClose(window_);
 }
 

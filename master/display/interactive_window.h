@@ -1,8 +1,13 @@
 #pragma once
 // The master's window: shows the latest (accumulated) frame, turns keyboard
 // and mouse into camera moves, and shows a status line in its title bar.
+// Input is read as events (GLFW callbacks), not as the state at each poll:
+// a key pressed and released between two polls still moves the camera for
+// one poll, a drag turns the camera by every motion the cursor made, and a
+// press that lands on the panel never turns it, wherever the drag goes.
 // The image goes up as floats; the GPU applies exposure and sRGB (image_view.h).
 #include <memory>
+#include <set>
 #include <string>
 
 #include "display/camera_controller.h"
@@ -33,9 +38,16 @@ class InteractiveWindow {
   void screenshot(const std::string& path);
 
  private:
+  static void on_key(GLFWwindow* window, int key, int scancode, int action, int mods);
+  static void on_button(GLFWwindow* window, int button, int action, int mods);
+  static void on_cursor(GLFWwindow* window, double x, double y);
+  float axis(int plus, int minus) const;  // -1, 0 or 1 from two keys
+
   GLFWwindow* window_ = nullptr;
   std::string title_;
   double last_time_ = 0.0, last_x_ = 0.0, last_y_ = 0.0;
+  double look_x_ = 0.0, look_y_ = 0.0;  // cursor motion while dragging, since the last poll
+  std::set<int> held_, tapped_;         // keys down now; keys pressed since the last poll
   bool dragging_ = false, mouse_captured_ = false, keyboard_captured_ = false;
   int width_, height_;
   std::unique_ptr<ImageView> view_;

@@ -49,9 +49,11 @@ float panel_width(float window_width) { return std::clamp(window_width / 3.0f, 2
 WindowPanel::WindowPanel(GLFWwindow* window, const RenderSettings& settings, float exposure, PanelOptions options)
     : gui_(window), settings_(settings, exposure), options_(std::move(options)) {}
 
-void WindowPanel::frame_shown(const FrameRecord& record, std::vector<PeerView> peers, double fps) {
+void WindowPanel::frame_shown(const FrameRecord& record, std::vector<PeerView> peers, double fps, std::string level) {
   graph_.add(1e3 * record.seconds);
   fps_ = fps;
+  waiting_ = 0.0;
+  level_ = std::move(level);
   ++frames_;
   last_ = record;
   peers_ = std::move(peers);
@@ -110,6 +112,7 @@ void WindowPanel::draw_panel(PanelActions& actions) {
   ImGui::Begin("igi-master (Tab hides, F1 help)", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::PushItemWidth(0.45f * width);  // the rest for labels of 15 characters
   settings_.draw();
+  draw_preview_choice();
   if (ImGui::CollapsingHeader("cluster")) {
     graph_.draw();
     draw_cluster_panel(peers_, last_);
@@ -123,12 +126,31 @@ void WindowPanel::draw_panel(PanelActions& actions) {
   ImGui::End();
 }
 
-// Bottom right: frame rate, frame time, frames shown and passes accumulated.
+// What frames take while the view changes: the budget's choice, or a level pinned.
+void WindowPanel::draw_preview_choice() {
+  if (options_.preview_levels.empty()) return;
+  std::string items = "budget (--frame-budget-ms)";
+  items.push_back('\0');
+  for (const std::string& name : options_.preview_levels) items += (name == "full" ? "full frames only" : name) + '\0';
+  int choice = options_.preview + 1;
+  ImGui::Combo("while moving", &choice, items.c_str());
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("what frames render at while the camera or settings change:\n"
+                      "the level the frame budget picks, or always this one");
+  options_.preview = choice - 1;
+}
+
+// Bottom right: frame rate over the last second, the level of the frame
+// shown, frame time, frames shown and passes accumulated; or how long the
+// window has waited for a frame.
 void WindowPanel::draw_readout(int accumulated) {
-  char text[128] = "waiting for the first frame";
-  if (frames_ > 0)
-    std::snprintf(text, sizeof text, "%.1f fps  %.0f ms  frame %llu  %d pass%s", fps_, 1e3 * last_.seconds,
-                  (unsigned long long)frames_, accumulated, accumulated == 1 ? "" : "es");
+  char text[160] = "waiting for the first frame";
+  if (frames_ > 0 && waiting_ > 1.0)
+    std::snprintf(text, sizeof text, "waiting for a frame: %.1f s  (last: %.0f ms, %s)", waiting_,
+                  1e3 * last_.seconds, level_.c_str());
+  else if (frames_ > 0)
+    std::snprintf(text, sizeof text, "%.1f fps  %s  %.0f ms  frame %llu  %d pass%s", fps_, level_.c_str(),
+                  1e3 * last_.seconds, (unsigned long long)frames_, accumulated, accumulated == 1 ? "" : "es");
   corner_text(text, ImVec2(1, 1));
 }
 

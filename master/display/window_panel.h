@@ -30,6 +30,9 @@ struct PanelOptions {
   std::string bookmark = "camera.json";
   std::string shot_prefix = "igi-shot";
   bool help = false;  // the keys' help
+  // While the view changes: "budget", then the levels' names (frame_budget.h), full first.
+  std::vector<std::string> preview_levels;
+  int preview = -1;  // -1: the frame budget picks the level; else the level index every frame takes
 };
 
 // What the user asked for in this frame of the panel.
@@ -40,8 +43,11 @@ struct PanelActions {
 class WindowPanel {
  public:
   WindowPanel(GLFWwindow* window, const RenderSettings& settings, float exposure, PanelOptions options);
-  // A frame the window shows now: its record, the workers when it completed, the frame rate.
-  void frame_shown(const FrameRecord& record, std::vector<PeerView> peers, double fps);
+  // A frame the window shows now: its record, the workers when it completed,
+  // the frame rate (over the last second) and its level ("full", "preview 1/4").
+  void frame_shown(const FrameRecord& record, std::vector<PeerView> peers, double fps, std::string level);
+  // No frame came for this long (the read-out says so past a second).
+  void set_waiting(double seconds) { waiting_ = seconds; }
   // Builds the panels and draws them into the back buffer (over the image): build() then render().
   PanelActions draw(int accumulated);
   PanelActions build(int accumulated);  // ImGui's lists only (CPU)
@@ -57,6 +63,7 @@ class WindowPanel {
   PanelActions read_keys();
   void draw_panel(PanelActions& actions);
   void draw_readout(int accumulated);
+  void draw_preview_choice();
   void draw_help();
   void draw_bookmarks(PanelActions& actions);
   Gui gui_;
@@ -66,7 +73,8 @@ class WindowPanel {
   FrameRecord last_;
   std::vector<PeerView> peers_;
   std::string message_;
-  double fps_ = 0.0;
+  double fps_ = 0.0, waiting_ = 0.0;
+  std::string level_;
   uint64_t frames_ = 0;  // shown
 };
 

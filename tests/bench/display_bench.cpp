@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
       record.tile_sources.push_back({{x, y, std::min(32, width - x), std::min(32, height - y), 1}, uint32_t(n % workers)});
   record.tiles = record.tile_sources.size();
   for (const igi::PeerView& p : peers) record.workers[p.name] = {record.tiles / workers, 0.3, 1000, 100};
-  panel.frame_shown(record, peers, 20.0);
+  panel.frame_shown(record, peers, 20.0, "full");
   for (int i = 0; i < 2; ++i) panel.draw(i);  // ImGui lays a new window out in its first frames
   time_frames(build, frames, [&](int i) { panel.build(i); });
   time_frames(render_plain, frames, [&](int i) {
