@@ -94,8 +94,8 @@ class WorkerSession {
   void start_loading(std::function<LoadResult()> work);
   std::optional<Outcome> poll_loading(zmq::socket_t& socket);
   void start_pool();
-  void feed_pool(protocol::Message& message);
-  static std::optional<uint64_t> frame_of(const protocol::Message& message);  // a frame or a job; a frame the pool refuses is a failure
+  void feed_pool(protocol::Message& message);  // a frame or a job; a frame the pool refuses is a failure
+  static std::optional<uint64_t> frame_of(const protocol::Message& message);
   std::optional<Outcome> check_failure(zmq::socket_t& socket);
   void send(zmq::socket_t& socket, const protocol::Message& message);
   void send_results(zmq::socket_t& socket);
