@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -18,6 +19,7 @@
 
 #include "photons/caustic_settings.h"
 #include "protocol/codec.h"
+#include "protocol/socket.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_writer.h"
 #include "scene/load_scene.h"
@@ -390,6 +392,65 @@ TEST(Distributed, LocalWorkersDieWithAKilledMaster) {
   for (int i = 0; i < 50 && std::any_of(workers.begin(), workers.end(), running); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   for (int w : workers) EXPECT_FALSE(running(w)) << "worker " << w << " outlived its master";
+}
+
+// CancelFrame (the window's camera moved on): the worker drops the frame's
+// jobs it has not started, whether they wait for the scene to load or for a
+// render thread, and renders the next frame's as before. The test is the master.
+TEST(Distributed, ACancelledFramesQueuedJobsAreNeverRendered) {
+  zmq::context_t context;
+  zmq::socket_t router(context, zmq::socket_type::router);
+  router.set(zmq::sockopt::linger, 0);
+  const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(test::free_port());
+  router.bind(endpoint);
+  const pid_t worker = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --quiet");
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(60 * test::kSlowdown);
+  std::string identity;
+  while (identity.empty() && std::chrono::steady_clock::now() < end)
+    if (auto r = protocol::receive(router, 100, true); r && r->message && std::holds_alternative<protocol::Hello>(*r->message))
+      identity = r->identity;
+  ASSERT_FALSE(identity.empty()) << "the worker says hello";
+  protocol::Welcome welcome;
+  welcome.session = 1;
+  welcome.scene_name = "cornell";
+  welcome.settings = test::vpl_settings(MethodKind::Igi, 8);
+  welcome.credits = protocol::kMaxCredits;
+  welcome.timeout_ms = 60000;
+  protocol::send_to(router, identity, welcome);
+
+  constexpr int kTile = 16, kFrameHeight = 64, kJobs = (kWidth / kTile) * (kFrameHeight / kTile);
+  FrameSetup frame = test::camera_frame(make_cornell_box(), kWidth, kFrameHeight);
+  frame.want_surfaces = true;
+  uint64_t job_id = 0;
+  auto send_frame = [&](uint64_t id) {
+    frame.frame_id = id;
+    protocol::send_to(router, identity, protocol::FrameSetupMsg{frame, welcome.settings});
+    for (int i = 0; i < kJobs; ++i)
+      protocol::send_to(router, identity,
+                        protocol::TileJobMsg{id, job_id++, {(i % (kWidth / kTile)) * kTile, (i / (kWidth / kTile)) * kTile,
+                                                            kTile, kTile, 2}});
+  };
+  std::map<uint64_t, int> results;
+  auto receive_frame = [&](uint64_t id) {
+    while (results[id] < kJobs && std::chrono::steady_clock::now() < end)
+      if (auto r = protocol::receive(router, 100, true); r && r->message)
+        if (auto* t = std::get_if<protocol::TileResult>(&*r->message)) {
+          ++results[t->frame_id];
+          EXPECT_EQ(t->surfaces.size(), size_t(kTile) * kTile) << "the tile's interior, not its border";
+        }
+  };
+  send_frame(0);
+  protocol::send_to(router, identity, protocol::CancelFrame{0});  // the scene is still loading
+  send_frame(1);
+  receive_frame(1);
+  send_frame(2);
+  protocol::send_to(router, identity, protocol::CancelFrame{2});  // the render thread holds one of its jobs
+  send_frame(3);
+  receive_frame(3);
+  test::stop(worker);
+  EXPECT_EQ(results[1], kJobs);
+  EXPECT_EQ(results[3], kJobs);
+  EXPECT_LE(results[0] + results[2], 4) << "only tiles already rendering when the cancel came";
 }
 
 }  // namespace
