@@ -24,13 +24,14 @@ std::vector<uint64_t> MotionPlanner::stale(const MovingView& view, const std::ve
   return out;
 }
 
-FrameSetup MotionPlanner::next(const MovingView& view, RenderSettings& settings) {
+FrameSetup MotionPlanner::next(const MovingView& view, RenderSettings& settings, Clock::time_point now) {
   if (view.settings_generation != settings_generation_) {  // new settings or lights: passes start over
     settings_generation_ = view.settings_generation;
     pass_ = 0;
     still_passes_ = 0;
   }
-  const bool moving = view.camera_generation != camera_generation_ && camera_generation_ != ~uint64_t(0);
+  if (view.camera_generation != camera_generation_ && camera_generation_ != ~uint64_t(0)) camera_moved_ = now;
+  const bool moving = camera_moved_ != Clock::time_point{} && now - camera_moved_ < kStillAfter;
   camera_generation_ = view.camera_generation;
   if (moving) still_passes_ = 0;
   budget_.pin(view.preview >= 0 ? std::optional<int>(view.preview) : std::nullopt);

@@ -8,13 +8,15 @@
 //    a settings change or a moved light starts them at 0. The clamp relaxes
 //    (FrameSetup.sample_begin) only with the passes since the camera last
 //    moved: a reprojected history holds no more than those of one view.
-//  - A frame is "moving" when the camera changed since the frame planned
-//    before it: it renders at the level FrameBudget picks; a still frame at
-//    full level.
+//  - A frame is "moving" when the camera changed within kStillAfter of it
+//    (a drag's events come every 10-50 ms: a frame planned between two of
+//    them is still part of the move): it renders at the level FrameBudget
+//    picks; a still frame at full level.
 //  - When the view moves on, open frames of an older view are cancelled,
 //    but for the oldest one if it is a preview (or there is no budget): it
 //    is about to come, and it is what the window shows while the camera
 //    moves. A frame of older settings is always cancelled.
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <vector>
@@ -61,7 +63,9 @@ class MotionPlanner {
   // Open frames (oldest first) that `view` has left behind: cancel them.
   std::vector<uint64_t> stale(const MovingView& view, const std::vector<uint64_t>& open) const;
   // The next frame for `view`, and the settings it renders with.
-  FrameSetup next(const MovingView& view, RenderSettings& settings);
+  using Clock = std::chrono::steady_clock;
+  static constexpr std::chrono::milliseconds kStillAfter{150};
+  FrameSetup next(const MovingView& view, RenderSettings& settings, Clock::time_point now = Clock::now());
   // A frame completed: its level's cost is measured. Returns what it was planned as.
   PlannedFrame completed(uint64_t frame_id, double seconds);
   // One turn of the session thread's loop (the window's and the motion
@@ -79,6 +83,7 @@ class MotionPlanner {
   uint64_t next_id_ = 0;
   uint64_t settings_generation_ = ~uint64_t(0), camera_generation_ = ~uint64_t(0);
   uint64_t seen_settings_ = ~uint64_t(0), seen_camera_ = ~uint64_t(0);  // the view turn() last cancelled for
+  Clock::time_point camera_moved_{};  // when next() last saw a new camera
   int pass_ = 0, still_passes_ = 0, animation_frame_ = 0;
 };
 

@@ -36,6 +36,7 @@ while [ $# -gt 0 ]; do
 done
 scripts/build.sh >/dev/null
 python="$(scripts/venv.sh)"
+source scripts/lib/results.sh  # results_set
 out=results/motion
 mkdir -p "$out/refs"
 embree=$(build/tests/igi-bench --scenes cornell --size 320x240 --frames 3 2>/dev/null |
@@ -61,5 +62,17 @@ for scene in ${scenes//,/ }; do
     "$python" scripts/charts/plot_motion.py --compare build/tests/igi-compare --refs "$out/refs" \
       --ref-prefix "$scene-$path-$size-$ref_spp" --budget-ms "$budget" --chart "$out/$scene-$path.png" \
       --title "$scene, $path" "$out/$scene-$path-new" "$out/$scene-$path-legacy"
+    # The RESULTS.md row of this scene and path, at the defaults only.
+    if [ "$size/$threads/$budget/$ref_spp" = 640x480/2/40/64 ]; then
+      results_set "motion-$scene-$path" "$(python3 - "$out/$scene-$path.json" <<'PY'
+import json, sys
+new, old = json.load(open(sys.argv[1]))
+print("%.1f fps moving (before: %.1f), %.0f %% in budget, longest wait %.0f ms; FLIP moving %.3f (one full "
+      "frame: %.3f); FLIP 0.05 %s s after the stop (before: %s s), 0.03 %s s (%s s)" % (
+      new["fps"], old["fps"], 100 * new["within"], 1e3 * new["gap"], new["moving_flip"], old["moving_flip"],
+      new["to05"], old["to05"], new["to03"], old["to03"]))
+PY
+)"
+    fi
   done
 done

@@ -15,6 +15,7 @@ packages=(
   libcli11-dev                         # command-line options of every program
   libgtest-dev
   xvfb xauth libgl1-mesa-dri
+  xdotool                              # the window test that drags the mouse as a user does
   python3-venv
   clang-14 libclang-rt-14-dev
   openssh-client openssh-server        # scripts/launch-ssh.sh, and its test's own sshd on loopback

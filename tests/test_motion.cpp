@@ -237,18 +237,21 @@ class MotionPlannerTest : public ::testing::Test {
 TEST_F(MotionPlannerTest, PassesCountOnThroughMovesAndStartOverWithNewSettings) {
   MotionPlanner planner(options, scene, 40.0);
   RenderSettings s;
-  const FrameSetup a = planner.next(view(0), s);
-  const FrameSetup b = planner.next(view(1), s);  // moved: a preview, the next pass
-  const FrameSetup c = planner.next(view(1), s);  // still again: full, the pass after
+  const auto t0 = MotionPlanner::Clock::now();
+  const FrameSetup a = planner.next(view(0), s, t0);
+  const FrameSetup b = planner.next(view(1), s, t0 + std::chrono::milliseconds(10));  // moved: a preview, the next pass
+  const FrameSetup b2 = planner.next(view(1), s, t0 + std::chrono::milliseconds(60));  // between two drag events
+  const FrameSetup c = planner.next(view(1), s, t0 + std::chrono::milliseconds(400));  // still again: full
   EXPECT_EQ(a.width, 640);
   EXPECT_LT(b.width, 640) << "a moving frame is a preview";
+  EXPECT_LT(b2.width, 640) << "a frame between two of a drag's events is still part of the move";
   EXPECT_EQ(s.aa_samples, RenderSettings{}.aa_samples) << "a still frame has the full settings";
   EXPECT_EQ(c.width, 640);
   EXPECT_EQ(b.seed, a.seed + 1);
-  EXPECT_EQ(c.seed, a.seed + 2) << "fresh VPL sets every frame, moving or not";
+  EXPECT_EQ(c.seed, a.seed + 3) << "fresh VPL sets every frame, moving or not";
   EXPECT_EQ(c.sample_begin, 1u) << "the clamp relaxes with the passes since the camera stopped";
   EXPECT_TRUE(c.want_surfaces);
-  const FrameSetup d = planner.next(view(1, 1), s);
+  const FrameSetup d = planner.next(view(1, 1), s, t0 + std::chrono::milliseconds(500));
   EXPECT_EQ(d.seed, a.seed) << "new settings: passes start over";
 }
 

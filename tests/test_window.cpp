@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 #include <filesystem>
@@ -13,6 +14,8 @@
 #include "image/image.h"
 #include "image/metrics.h"
 #include "support/image_compare.h"
+#include "support/process.h"
+#include "support/sanitizers.h"
 #include "support/stats_file.h"
 #include "support/xvfb.h"
 #include "display/tile_overlay.h"
@@ -179,6 +182,40 @@ TEST(Window, TileOverlayColoursMatchTheStatisticsTileCounts) {
     total += w["tiles"].get<uint64_t>();
   }
   EXPECT_EQ(total, 20u) << "5 x 4 tiles of 32 in 160x120";
+}
+
+}  // namespace
+}  // namespace igi
+
+namespace igi {
+namespace {
+
+// Issue 45: a user drags the mouse for 1.5 s. While the camera moves the
+// window shows preview frames as they come (the title, its status line,
+// names the level and changes), and after the stop full frames come back.
+TEST(Window, ADragShowsPreviewFramesAndTheStopFullOnes) {
+  IGI_NEED_XVFB();
+  if (std::system("command -v xdotool >/dev/null 2>&1") != 0) {
+    if (test::under_ci()) FAIL() << "xdotool not installed (scripts/setup.sh installs it)";
+    GTEST_SKIP() << "xdotool not installed";
+  }
+  const std::string command = "timeout -s KILL " + std::to_string(int(60 * test::kSlowdown)) +
+                              " xvfb-run -a -s '-screen 0 640x480x24' " +
+                              IGI_WINDOW_SCRIPTS_DIR + "/drag_test.sh " + std::to_string(test::kSlowdown) + " " +
+                              IGI_MASTER_BINARY + " 2>&1";
+  const test::RunResult r = test::run(command, int(90 * test::kSlowdown));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::map<std::string, std::string> titles;
+  std::istringstream lines(r.output);
+  for (std::string line; std::getline(lines, line);)
+    if (const size_t colon = line.find(": "); colon != std::string::npos) titles[line.substr(0, colon)] = line;
+  ASSERT_EQ(titles.count("before") + titles.count("drag-1") + titles.count("drag-3") + titles.count("after"), 4u)
+      << r.output;
+  EXPECT_NE(titles["before"].find(" full "), std::string::npos) << r.output;
+  for (const char* step : {"drag-1", "drag-2", "drag-3"})
+    EXPECT_NE(titles[step].find("preview"), std::string::npos) << step << " shows no preview frame\n" << r.output;
+  EXPECT_NE(titles["drag-1"], titles["drag-3"]) << "no new frame in the second half of the drag\n" << r.output;
+  EXPECT_NE(titles["after"].find(" full "), std::string::npos) << "no full frame after the stop\n" << r.output;
 }
 
 }  // namespace

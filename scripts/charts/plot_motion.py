@@ -7,7 +7,8 @@ row per run: frames shown a second while moving, the share of moving frames
 within the budget, the longest gap between frames shown while moving, the
 median FLIP of moving frames at the reference poses, the FLIP of the first
 frame after the stop and the time after the stop to FLIP 0.05 and 0.03.
-Draws FLIP against time after the stop, one line per run.
+Draws FLIP against time after the stop, one line per run (OUT.png), and
+writes the rows as JSON beside it (OUT.json).
 
   plot_motion.py --compare IGI_COMPARE --refs DIR --ref-prefix P --budget-ms B --chart OUT.png RUN [RUN ...]
 """
@@ -84,6 +85,8 @@ def main():
         print("%-28s %9.1f %7.0f%% %7.0fms %11.3f %11.3f %8ss %8ss" % (
             r["run"], r["fps"], 100 * r["within"], 1e3 * r["gap"], r["moving_flip"], r["first_still"], r["to05"],
             r["to03"]))
+    with open(os.path.splitext(args.chart)[0] + ".json", "w") as out:
+        json.dump([{k: v for k, v in r.items() if k != "after"} for r in rows], out, indent=1)
     fig, ax = plt.subplots(figsize=(6, 4))
     for r in rows:
         if r["after"]:

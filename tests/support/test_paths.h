@@ -13,6 +13,7 @@ extern const char* const kRenderBinary;
 extern const char* const kMasterBinary;
 extern const char* const kWorkerBinary;
 extern const char* const kSoakBinary;
+extern const char* const kWindowScriptsDir;
 }  // namespace igi::test::paths
 
 #define IGI_TEST_OUTPUT_DIR (::igi::test::paths::kTestOutputDir)
@@ -23,3 +24,4 @@ extern const char* const kSoakBinary;
 #define IGI_MASTER_BINARY (::igi::test::paths::kMasterBinary)
 #define IGI_WORKER_BINARY (::igi::test::paths::kWorkerBinary)
 #define IGI_SOAK_BINARY (::igi::test::paths::kSoakBinary)
+#define IGI_WINDOW_SCRIPTS_DIR (::igi::test::paths::kWindowScriptsDir)
