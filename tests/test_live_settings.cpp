@@ -46,19 +46,31 @@ Image render_here(const test::Prepared& scene, const RenderSettings& settings, c
   return render_frame(*method, frame, tile_border(settings), options, rays);
 }
 
-TEST(LiveSettings, EachFrameIsRenderedWithItsOwnSettingsBySameWorkers) {
-  const int port = test::free_port();
-  const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(port);
+// A master session on a free port of this host and one igi-worker of 2
+// threads; 48x36 frames in 13-pixel tiles, floats on the wire.
+struct Cluster {
+  const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(test::free_port());
   zmq::context_t context;
-  const MasterOptions o = parse_master_options({"--workers", "0", "--listen", endpoint, "--frames", "2", "--quiet",
-                                                "--no-write", "--size", "48x36", "--tile", "13", "--pixels", "float"});
-  MasterSession session(o, make_scene_source("cornell"), context);
+  MasterSession session{parse_master_options({"--workers", "0", "--listen", endpoint, "--frames", "2", "--quiet",
+                                              "--no-write", "--size", "48x36", "--tile", "13", "--pixels", "float"}),
+                        make_scene_source("cornell"), context};
+  const pid_t worker =
+      test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 2 --quiet");
+  ~Cluster() { test::stop(worker); }
+  // Waits for the worker to join.
+  bool joined() {
+    const auto end = Clock::now() + std::chrono::duration<double>(30 * test::kSlowdown);
+    while (session.worker_count() == 0 && Clock::now() < end) session.pump(20);
+    return session.worker_count() == 1;
+  }
+};
+
+TEST(LiveSettings, EachFrameIsRenderedWithItsOwnSettingsBySameWorkers) {
+  Cluster cluster;
+  MasterSession& session = cluster.session;
   session.set_detailed_stats(true);
   session.record_tile_sources(true);
-  const pid_t worker = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 2 --quiet");
-  const auto end = Clock::now() + std::chrono::duration<double>(30 * test::kSlowdown);
-  while (session.worker_count() == 0 && Clock::now() < end) session.pump(20);
-  ASSERT_EQ(session.worker_count(), 1u);
+  ASSERT_TRUE(cluster.joined());
 
   // Filter on (tiles with a border) then off, another method and path count: tiles are cut again.
   const RenderSettings a = test::vpl_settings(MethodKind::Igi, 4, 0.1f, true);
@@ -67,7 +79,6 @@ TEST(LiveSettings, EachFrameIsRenderedWithItsOwnSettingsBySameWorkers) {
   const FrameSetup frame = scene.frame(48, 36, 5);
   std::vector<CompletedFrame> done = render_frames(session, {a, b}, frame);
   session.close("test done");
-  test::stop(worker);
   ASSERT_EQ(done.size(), 2u);
 
   for (int i = 0; i < 2; ++i) {
@@ -91,16 +102,9 @@ TEST(LiveSettings, EachFrameIsRenderedWithItsOwnSettingsBySameWorkers) {
 // left behind is cancelled and never comes; frames that carry their pixels'
 // surfaces have the very pixels of one process, and the surfaces one process traces.
 TEST(LiveSettings, ACancelledFrameNeverComesAndSurfacesLeaveThePixelsAlone) {
-  const int port = test::free_port();
-  const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(port);
-  zmq::context_t context;
-  const MasterOptions o = parse_master_options({"--workers", "0", "--listen", endpoint, "--frames", "2", "--quiet",
-                                                "--no-write", "--size", "48x36", "--tile", "13", "--pixels", "float"});
-  MasterSession session(o, make_scene_source("cornell"), context);
-  const pid_t worker = test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 2 --quiet");
-  const auto end = Clock::now() + std::chrono::duration<double>(30 * test::kSlowdown);
-  while (session.worker_count() == 0 && Clock::now() < end) session.pump(20);
-  ASSERT_EQ(session.worker_count(), 1u);
+  Cluster cluster;
+  MasterSession& session = cluster.session;
+  ASSERT_TRUE(cluster.joined());
 
   const RenderSettings settings = test::vpl_settings(MethodKind::Igi, 4, 0.1f, true);
   const test::Prepared scene(load_scene("cornell"));
@@ -116,10 +120,10 @@ TEST(LiveSettings, ACancelledFrameNeverComesAndSurfacesLeaveThePixelsAlone) {
   EXPECT_EQ(session.open_frames(), std::vector<uint64_t>{});
   session.add_frame(still, settings);
   std::vector<CompletedFrame> done;
-  while (done.empty() && Clock::now() < end + std::chrono::seconds(30))
+  const auto end = Clock::now() + std::chrono::duration<double>(30 * test::kSlowdown);
+  while (done.empty() && Clock::now() < end)
     for (CompletedFrame& f : session.pump(20)) done.push_back(std::move(f));
   session.close("test done");
-  test::stop(worker);
   ASSERT_EQ(done.size(), 1u);
   EXPECT_EQ(done[0].setup.frame_id, 1u) << "the cancelled frame came after all";
   EXPECT_EQ(max_abs_error(done[0].pixels->to_image(), render_here(scene, settings, still)), 0.0f);
