@@ -30,7 +30,8 @@ struct TileCase {
 };
 
 // Every option that changes how a pixel is shaded, on a scene where it acts:
-// anti-aliasing, the glossy gather (glossy), exact spot light (corner),
+// anti-aliasing, the glossy gather (glossy), a 317k-triangle blob whose
+// shadow rays graze many edges (cornell-blob), exact spot light (corner),
 // bias compensation, glass branches and the caustic photon map (glass; on
 // glossy, the sharp floor's light as photons and sparse photons gathered wide), light
 // importance (rooms), bidirectional IR (corridor, by option and by view) and the sky's directional
@@ -68,6 +69,8 @@ std::vector<TileCase> tile_cases() {
   return {{"ir", "cornell", vpl_settings(MethodKind::InstantRadiosity, 4, 0.05f)},
           {"igi", "cornell", vpl_settings(MethodKind::Igi, 4, 0.05f)},
           {"igi_aa_glossy_compensation", "glossy", all},
+          {"igi_aa_blob_compensation", "cornell-blob", all},
+          {"ir_aa_blob", "cornell-blob", ir_all},
           {"ir_aa_glossy_compensation", "glossy", ir_all},
           {"igi_aa_spot", "corner", all},
           {"igi_aa_glass_caustics", "glass", caustics},
@@ -98,6 +101,9 @@ TEST_P(TileInvariance, TilesOfAnySizeAndOffsetMatchTheWholeFrameBitForBit) {
   EXPECT_TRUE(test::images_identical(name + "-8x8", render_tiled(*method, frame, border, 8, 8, 0, 0), whole));
   EXPECT_TRUE(test::images_identical(name + "-40x40", render_tiled(*method, frame, border, 40, 40, 0, 0), whole));
   EXPECT_TRUE(test::images_identical(name + "-37x23", render_tiled(*method, frame, border, 37, 23, 5, 11), whole));
+  // Odd sizes: no tile edge on the 4 x 4 grid of camera packets.
+  EXPECT_TRUE(test::images_identical(name + "-13x7", render_tiled(*method, frame, border, 13, 7, 3, 2), whole));
+  EXPECT_TRUE(test::images_identical(name + "-31x17", render_tiled(*method, frame, border, 31, 17, 0, 0), whole));
   // Threads and the frame renderer's own tiling.
   EXPECT_TRUE(test::images_identical(name + "-threads", p.render(settings, 83, 61, 1, 3, 2, 16), whole));
   EXPECT_TRUE(test::images_identical(name + "-1thread", p.render(settings, 83, 61, 1, 3, 1, 13), whole));
@@ -109,8 +115,9 @@ INSTANTIATE_TEST_SUITE_P(Igi, TileInvariance, ::testing::ValuesIn(tile_cases()),
 // Progressive passes, tiled and whole, on a few seeds: later passes put rays
 // where a single frame's do not, and a shadow ray that grazes an edge is
 // where Embree's 16-wide packets answered differently in differently cut
-// tiles (common/methods/shadow_batch.cpp). With packets, ir on the Cornell
-// box at seeds 1 and 3 differed in a few pixels (by about 1e-5).
+// tiles (common/methods/shadow_batch.cpp). With packets of 16 pixels cut from
+// each tile, ir on the Cornell box at seeds 1 and 3 differed in a few pixels
+// (by about 1e-5); a packet now holds one point's rays.
 TEST(TileInvarianceOverPasses, ProgressivePassesTiledEqualTheWholeFrameBitForBit) {
   for (const char* scene : {"cornell", "glossy-rough"}) {
     const test::Prepared p(load_scene(scene));

@@ -126,18 +126,22 @@ void follow_specular_chain(const Accel& accel, Ray ray, Hit hit, uint32_t seed, 
 
 namespace {
 
-// One 4x4 block of one layer as a 16-wide packet.
-void trace_block(const Accel& accel, const CameraFrontEnd& camera, int bx, int by, int k, int glass_branches,
-                 int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log) {
+// One 4x4 block of one layer as a 16-wide packet. Blocks lie on the image's
+// own grid (bx, by multiples of 4) and trace every lane inside the image,
+// those outside the region too (then dropped): a packet holds the same rays
+// whichever tile traces it, and Embree's answer for a ray can depend on the
+// other rays of its packet (methods/shadow_batch.cpp).
+void trace_block(const Accel& accel, const CameraFrontEnd& camera, int image_width, int image_height, int bx, int by,
+                 int k, int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log) {
   const Region& region = out.region;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   alignas(64) int valid[16];
   alignas(64) RTCRayHit16 packet;
   for (int i = 0; i < 16; ++i) {
-    const int x = bx + (i & 3), y = by + (i >> 2);
-    valid[i] = x < region.width && y < region.height ? -1 : 0;
-    Ray ray = camera.pixel_ray(region.x0 + x, region.y0 + y, k);
+    const int x = bx + (i & 3), y = by + (i >> 2);  // image coordinates
+    valid[i] = x < image_width && y < image_height ? -1 : 0;
+    Ray ray = camera.pixel_ray(x, y, k);
     ray.tfar = INFINITY;
     set_rtc_lane(packet.ray, i, ray);
     packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
@@ -152,8 +156,9 @@ void trace_block(const Accel& accel, const CameraFrontEnd& camera, int bx, int b
   rtcIntersect16(valid, accel.handle(), &context, &packet);
   GSample more[kMaxGlassBranches];  // reset by follow_specular_tree as it uses them
   for (int i = 0; i < 16; ++i) {
-    const int x = bx + (i & 3), y = by + (i >> 2);
-    if (!valid[i]) continue;
+    // Region coordinates from here on.
+    const int x = bx + (i & 3) - region.x0, y = by + (i >> 2) - region.y0;
+    if (!valid[i] || x < 0 || y < 0 || x >= region.width || y >= region.height) continue;
     if (packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
       const glm::vec3 direction{packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]};
       GSample& g = out.at(k, size_t(y) * region.width + x);
@@ -193,10 +198,11 @@ void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& re
   const size_t layer_pixels = size_t(samples) * region.pixels();
   if (out.layers.size() < size_t(glass_branches) * layer_pixels) out.layers.resize(size_t(glass_branches) * layer_pixels);
   const CameraFrontEnd camera(frame, samples);
+  const int x_end = region.x0 + region.width, y_end = region.y0 + region.height;
   for (int k = 0; k < samples; ++k)
-    for (int by = 0; by < region.height; by += 4)
-      for (int bx = 0; bx < region.width; bx += 4)
-        trace_block(accel, camera, bx, by, k, glass_branches, specular_depth, out, rays, log);
+    for (int by = region.y0 / 4 * 4; by < y_end; by += 4)
+      for (int bx = region.x0 / 4 * 4; bx < x_end; bx += 4)
+        trace_block(accel, camera, frame.width, frame.height, bx, by, k, glass_branches, specular_depth, out, rays, log);
 }
 
 }  // namespace igi

@@ -69,10 +69,11 @@ void fill_fast_lanes(const PixelBatch& b, size_t first, const Vpl& vpl, float bo
   const float* __restrict ox = b.ox.data() + first;
   const float* __restrict oy = b.oy.data() + first;
   const float* __restrict oz = b.oz.data() + first;
-  float* __restrict dir_x = rays.dir_x;
-  float* __restrict dir_y = rays.dir_y;
-  float* __restrict dir_z = rays.dir_z;
-  float* __restrict tfar = rays.tfar;
+  // Results go to local arrays first: GCC 12 does not take the restrict
+  // pointers into the packet as proof that nothing aliases, and without it
+  // (more than 10 run-time alias checks) the loop stayed scalar; profiled at
+  // 10 % of a Cornell box frame.
+  alignas(64) float dir_x[16], dir_y[16], dir_z[16], tfar[16], g_lane[16];
   for (int k = 0; k < 16; ++k) {
     const float dx = vx - px[k], dy = vy - py[k], dz = vz - pz[k];
     const float dist2 = dx * dx + dy * dy + dz * dz;
@@ -85,13 +86,18 @@ void fill_fast_lanes(const PixelBatch& b, size_t first, const Vpl& vpl, float bo
     // Bitwise &, not &&: no branches, so the loop vectorises. A VPL on the
     // point itself (dist2 0, unclamped) gives an infinite or NaN g: no light.
     const bool visible = (cos_x > 0.0f) & (side > 0.0f) & (cos_y > 0.0f) & (g <= FLT_MAX);
-    g_out[k] = visible ? g : 0.0f;
+    g_lane[k] = visible ? g : 0.0f;
     // The ray aims from the nudged origin at the VPL itself (scene/surface.h shadow_ray).
     const float rx = vx - ox[k], ry = vy - oy[k], rz = vz - oz[k];
     const float length = std::sqrt(rx * rx + ry * ry + rz * rz);
     dir_x[k] = rx / length; dir_y[k] = ry / length; dir_z[k] = rz / length;
     tfar[k] = length * (1.0f - kShadowEpsilon);
   }
+  std::copy_n(g_lane, 16, g_out);
+  std::copy_n(dir_x, 16, rays.dir_x);
+  std::copy_n(dir_y, 16, rays.dir_y);
+  std::copy_n(dir_z, 16, rays.dir_z);
+  std::copy_n(tfar, 16, rays.tfar);
   std::copy_n(b.ox.data() + first, 16, rays.org_x);
   std::copy_n(b.oy.data() + first, 16, rays.org_y);
   std::copy_n(b.oz.data() + first, 16, rays.org_z);

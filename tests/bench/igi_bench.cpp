@@ -14,6 +14,9 @@
 // time the process actually received (the machine is shared), "wall" by
 // elapsed time.
 #include <algorithm>
+#include <bit>
+#include <array>
+#include <map>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -78,7 +81,9 @@ Timing time_replay(const Accel& accel, RayLog& log, int frames,
   return {median(wall), median(cpu), rays};
 }
 
-// Replays the shadow packets one ray at a time: the packet gain in this scene.
+// Replays the shadow rays one at a time (as the renderer traces them), as
+// the packets they were logged in (16 pixels, one VPL), and as packets of
+// one point each: what packets would gain in this scene.
 void replay_breakdown(const Accel& accel, const RayLog& log) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);  // incoherent, as the renderer traces (scene/accel.h)
@@ -99,9 +104,46 @@ void replay_breakdown(const Accel& accel, const RayLog& log) {
       ++ns;
     }
   Clock t3 = Clock::now();
+  // The same rays in the one packet layout that no tiling can change: each
+  // point's own rays (one origin, its set's VPLs), 16 to a packet, points in
+  // the order the renderer first meets them.
+  std::vector<LoggedShadow> by_point;
+  {
+    std::map<std::array<uint32_t, 3>, size_t> point_of;  // origin bits -> index in rays_of
+    std::vector<std::vector<RTCRay>> rays_of;
+    for (const LoggedShadow& s : log.shadow)
+      for (int k = 0; k < 16; ++k) {
+        if (!s.valid[k]) continue;
+        const std::array<uint32_t, 3> key{std::bit_cast<uint32_t>(s.rays.org_x[k]), std::bit_cast<uint32_t>(s.rays.org_y[k]),
+                                          std::bit_cast<uint32_t>(s.rays.org_z[k])};
+        auto [it, fresh] = point_of.try_emplace(key, rays_of.size());
+        if (fresh) rays_of.emplace_back();
+        rays_of[it->second].push_back(RTCRay{s.rays.org_x[k], s.rays.org_y[k], s.rays.org_z[k], s.rays.tnear[k],
+                                             s.rays.dir_x[k], s.rays.dir_y[k], s.rays.dir_z[k], 0.0f, s.rays.tfar[k],
+                                             ~0u, 0u, 0u});
+      }
+    for (const std::vector<RTCRay>& rays : rays_of) {
+      for (size_t first = 0; first < rays.size(); first += 16) {
+        LoggedShadow& p = by_point.emplace_back();
+        for (size_t k = 0; k < 16; ++k) {
+          const RTCRay& r = rays[std::min(first + k, rays.size() - 1)];
+          p.valid[k] = first + k < rays.size() ? -1 : 0;
+          p.rays.org_x[k] = r.org_x; p.rays.org_y[k] = r.org_y; p.rays.org_z[k] = r.org_z;
+          p.rays.dir_x[k] = r.dir_x; p.rays.dir_y[k] = r.dir_y; p.rays.dir_z[k] = r.dir_z;
+          p.rays.tnear[k] = r.tnear; p.rays.tfar[k] = r.tfar; p.rays.mask[k] = r.mask;
+          p.rays.time[k] = 0.0f; p.rays.flags[k] = 0u;
+        }
+      }
+    }
+  }
+  Clock t4 = Clock::now();
+  for (LoggedShadow& s : by_point) rtcOccluded16(s.valid, accel.handle(), &context, &s.rays);
+  Clock t5 = Clock::now();
   for (const LoggedPrimary& p : log.primary) np += std::count(p.valid, p.valid + 16, -1);
-  std::printf("raw Embree per cpu-s: primary 16-wide %.1f Mrays/s, shadow 16-wide %.1f, shadow 1-wide %.1f\n",
-              np * 1e-6 / (t1 - t0).cpu, ns * 1e-6 / (t2 - t1).cpu, ns * 1e-6 / (t3 - t2).cpu);
+  std::printf("raw Embree per cpu-s: primary 16-wide %.1f Mrays/s, shadow 16-wide %.1f, shadow 1-wide %.1f, "
+              "shadow 16-wide of one point each %.1f (%.1f rays a packet)\n",
+              np * 1e-6 / (t1 - t0).cpu, ns * 1e-6 / (t2 - t1).cpu, ns * 1e-6 / (t3 - t2).cpu,
+              ns * 1e-6 / (t5 - t4).cpu, double(ns) / std::max<size_t>(1, by_point.size()));
 }
 
 // Paths per set that give about `target` VPLs per set in this scene.
