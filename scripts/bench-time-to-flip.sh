@@ -10,7 +10,9 @@
 # the table go to results/time-to-flip/ (references: shared with
 # bench-converge.sh, scripts/lib/bench-common.sh).
 #
-#   scripts/bench-time-to-flip.sh [--size WxH] [--ref-spp N] [--scenes a,b] [--target F] [--cap SECONDS]
+#   scripts/bench-time-to-flip.sh [--size WxH] [--ref-spp N] [--scenes a,b] [--settings a,b] [--target F] [--cap SECONDS]
+#
+# --settings: only these rows of the table below, by name (defaults always).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 size=128x128
@@ -18,11 +20,13 @@ ref_spp=1024
 scenes=cornell,corner,rooms,rooms-10,corridor,tilted-light,glossy,glossy-rough,glass
 target=0.1
 cap=30
+only=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --size) size=$2; shift 2 ;;
     --ref-spp) ref_spp=$2; shift 2 ;;
     --scenes) scenes=$2; shift 2 ;;
+    --settings) only=$2; shift 2 ;;
     --target) target=$2; shift 2 ;;
     --cap) cap=$2; shift 2 ;;
     *) echo "bench-time-to-flip.sh: unknown option '$1'" >&2; exit 2 ;;
@@ -41,6 +45,8 @@ settings=(
   "sets-8|--vpl-sets 8"
   "paths-64|--vpl-paths 64"
   "no-clamp|--clamp 0 --compensate 0"
+  "no-compensation|--compensate 0"
+  "aa-1|--aa 1"
   "power|--importance 0"
   "bidir|--vpl-paths 32 --bidir 32"
   "no-bidir|--bidir 0"
@@ -65,6 +71,7 @@ for scene in ${scenes//,/ }; do
   best=""; best_name=""; default_time=""
   for entry in "${settings[@]}"; do
     name=${entry%%|*}; options=${entry#*|}
+    [ -z "$only" ] || [ "$name" = defaults ] || [[ ",$only," == *",$name,"* ]] || continue
     p=1; t_prev=""; f_prev=""; reached=""
     while :; do
       img="$out/$scene-$name-$p.exr"

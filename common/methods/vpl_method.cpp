@@ -1,6 +1,7 @@
 #include "methods/vpl_method.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -17,6 +18,51 @@
 #include "wavelet/wavelet_filter.h"
 
 namespace igi {
+
+const char* frame_part_name(FramePart part) {
+  switch (part) {
+    case FramePart::Vpls: return "VPLs (light paths, importance, bidir)";
+    case FramePart::Caustics: return "caustic photons";
+    case FramePart::Camera: return "camera, mirrors, glass";
+    case FramePart::GlossyGather: return "glossy gather";
+    case FramePart::VplLight: return "VPL shadow rays";
+    case FramePart::ExactLights: return "exact lights";
+    case FramePart::Compensation: return "bias compensation";
+    case FramePart::Filter: return "filter and resolve";
+    case FramePart::Count: break;
+  }
+  return "?";
+}
+
+namespace {
+
+// Adds the time and rays from its making to its end to `parts` (if any).
+class PartTimer {
+ public:
+  PartTimer(FrameParts* parts, FramePart part, const RayCounts& rays)
+      : parts_(parts), part_(part), rays_(rays), before_(rays) {
+    if (parts_) start_ = std::chrono::steady_clock::now();
+  }
+  ~PartTimer() {
+    if (!parts_) return;
+    const size_t i = size_t(part_);
+    parts_->seconds[i] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    parts_->rays[i].primary += rays_.primary - before_.primary;
+    parts_->rays[i].shadow += rays_.shadow - before_.shadow;
+    parts_->rays[i].secondary += rays_.secondary - before_.secondary;
+  }
+  PartTimer(const PartTimer&) = delete;
+  PartTimer& operator=(const PartTimer&) = delete;
+
+ private:
+  FrameParts* parts_;
+  FramePart part_;
+  const RayCounts& rays_;
+  RayCounts before_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
 
 // Per-thread buffers: tiles come by the thousand, allocations would dominate.
 // Shading points are numbered l * P + p for G-buffer layer l (sub-sample k =
@@ -49,8 +95,14 @@ void VplMethod::begin_frame(const FrameSetup& frame) {
   clamp_bound_ = clamp_bound(settings_.clamp, context_.accel.mean_chord(), frame.sample_begin);
   wavelet_levels_ = wavelet_levels_at_pass(settings_.wavelet_levels, frame.sample_begin);
   setup_rays_ = RayCounts{};
-  vpls_ = importance::generate_view_vpls(context_, settings_, frame, setup_rays_);
-  if (caustics_) caustics_->build(frame.seed, 0, frame.sample_begin);
+  {
+    PartTimer timer(parts_, FramePart::Vpls, setup_rays_);
+    vpls_ = importance::generate_view_vpls(context_, settings_, frame, setup_rays_);
+  }
+  if (caustics_) {
+    PartTimer timer(parts_, FramePart::Caustics, setup_rays_);
+    caustics_->build(frame.seed, 0, frame.sample_begin);
+  }
   draws_.reset();
   if (settings_.vpl_draws > 0) draws_.emplace(context_.scene, vpls_, frame.seed);
   // A typical demodulated irradiance: one set's flux spread over the scene.
@@ -368,11 +420,23 @@ void VplMethod::resolve(const GBuffer& gbuffer, const Rect& core, const TileJob&
 void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const {
   thread_local Scratch scratch;
   GBuffer& gbuffer = scratch.gbuffer;
-  build_gbuffer(context_.accel, frame_, tile_region(job, frame_.width, frame_.height), settings_.aa_samples,
-                settings_.glass_branches, depth_limit(settings_.specular_depth), gbuffer, rays, log_);
-  trace_glossy_gather(context_.accel, context_.lights, gbuffer, settings_, frame_.seed, scratch.hits, rays);
-  shade_vpls(gbuffer, scratch.hits, scratch, rays);
-  shade_exact(gbuffer, job, scratch.hits, scratch, rays);
+  {
+    PartTimer timer(parts_, FramePart::Camera, rays);
+    build_gbuffer(context_.accel, frame_, tile_region(job, frame_.width, frame_.height), settings_.aa_samples,
+                  settings_.glass_branches, depth_limit(settings_.specular_depth), gbuffer, rays, log_);
+  }
+  {
+    PartTimer timer(parts_, FramePart::GlossyGather, rays);
+    trace_glossy_gather(context_.accel, context_.lights, gbuffer, settings_, frame_.seed, scratch.hits, rays);
+  }
+  {
+    PartTimer timer(parts_, FramePart::VplLight, rays);
+    shade_vpls(gbuffer, scratch.hits, scratch, rays);
+  }
+  {
+    PartTimer timer(parts_, FramePart::ExactLights, rays);
+    shade_exact(gbuffer, job, scratch.hits, scratch, rays);
+  }
   // The glossy gather joins the demodulated irradiance before the filter, so
   // a glossy surface averages its neighbours' gathers like its VPL light.
   combine(gbuffer, scratch.hits, scratch);
@@ -382,10 +446,14 @@ void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCou
   // (corner, 64x48, clamp 0.1, 4 samples, median of 3 seeds), relMSE
   // filtered / added after the filter: M=1 0.0709 / 0.0718, M=16 0.0091 /
   // 0.0094, M=64 0.0065 / 0.0068.
-  const VplShading shading{context_.scene, clamp_bound_, settings_.glossy_threshold};
-  const BiasCompensation compensation(context_.accel, shading, vpls_, exact_, interleaved(),
-                                      settings_.compensation_samples);
-  compensation.add(gbuffer, frame_.seed, scratch.value, rays);
+  {
+    PartTimer timer(parts_, FramePart::Compensation, rays);
+    const VplShading shading{context_.scene, clamp_bound_, settings_.glossy_threshold};
+    const BiasCompensation compensation(context_.accel, shading, vpls_, exact_, interleaved(),
+                                        settings_.compensation_samples);
+    compensation.add(gbuffer, frame_.seed, scratch.value, rays);
+  }
+  PartTimer timer(parts_, FramePart::Filter, rays);
   // The core: the tile and, with the wavelet filter, its footprint (in the region).
   const Region& region = gbuffer.region;
   const int grow = wavelet_footprint(wavelet_levels_);

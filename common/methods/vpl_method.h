@@ -22,7 +22,9 @@
 //  - with --caustics, the caustic photon map (photons/caustic_map.h): light
 //    that reached a diffuse surface through mirrors or glass, which no
 //    shadow ray can carry, added after the filter like the exact lights.
-// Shadow rays go out in 16-wide packets that share one VPL (coherent).
+// Shadow rays go one at a time (methods/shadow_batch.cpp says why); camera
+// rays in 16-wide packets on the image's 4 x 4 grid (core/gbuffer.cpp).
+#include <array>
 #include <optional>
 
 #include "core/gbuffer.h"
@@ -36,6 +38,26 @@
 #include "photons/caustic_map.h"
 
 namespace igi {
+
+// The parts of an ir or igi frame, for benchmarks that ask where its time
+// and rays go (igi-bench --defaults).
+enum class FramePart {
+  Vpls,          // begin_frame: light paths, importance probes, bidirectional VPLs
+  Caustics,      // begin_frame: the caustic photon map
+  Camera,        // camera rays and mirror and glass chains (the G-buffer)
+  GlossyGather,  // gather rays of sharp glossy sub-samples
+  VplLight,      // shadow rays to the VPLs and their shading
+  ExactLights,   // point, spot and directional lights
+  Compensation,  // bias compensation's hemisphere rays
+  Filter,        // discontinuity buffer, wavelet, resolve (caustic look-ups included)
+  Count
+};
+const char* frame_part_name(FramePart part);
+
+struct FrameParts {
+  std::array<double, size_t(FramePart::Count)> seconds{};  // thread time
+  std::array<RayCounts, size_t(FramePart::Count)> rays{};
+};
 
 class VplMethod final : public Method {
  public:
@@ -51,6 +73,9 @@ class VplMethod final : public Method {
   const RayCounts& setup_rays() const { return setup_rays_; }
   // Benchmarks only: record every packet traced from now on (one thread only).
   void record_rays(RayLog* log) { log_ = log; }
+  // Benchmarks only: add each part's time and rays to `parts` from now on
+  // (one thread only; the timing itself costs about 1 % of a frame).
+  void record_parts(FrameParts* parts) { parts_ = parts; }
 
  private:
   struct Scratch;
@@ -80,6 +105,7 @@ class VplMethod final : public Method {
   int wavelet_levels_ = 0;  // this pass's (wavelet_levels_at_pass)
   double fixed_scale_ = 0x1p32;
   RayLog* log_ = nullptr;
+  FrameParts* parts_ = nullptr;
 };
 
 }  // namespace igi

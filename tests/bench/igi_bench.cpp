@@ -2,7 +2,10 @@
 // rays, frames per second, border overhead. Prints figures; asserts nothing.
 //
 //   igi-bench [--size WxH] [--frames F] [--vpls-per-set V] [--scenes a,b] [--tile T]
+//   igi-bench --defaults [--scenes a,b] [--size WxH] [--frames F]
 //
+// --defaults: where the default frame's time and rays go, part by part
+// (bench_defaults). Without it:
 // Also: the same frame with 4x anti-aliasing by VPL groups (same VPLs), and
 // the cost of progress reporting on a multi-pass render (render_offline).
 // Tiles are T x T pixels, igi-render's and igi-master's default (64) unless
@@ -23,6 +26,7 @@
 
 #include "bench/bench_clock.h"
 #include "methods/vpl_method.h"
+#include "photons/caustic_settings.h"
 #include "render/offline_render.h"
 #include "render/frame_renderer.h"
 #include "scene/load_scene.h"
@@ -266,19 +270,94 @@ void bench_progress(const std::string& name, int width, int height, int frames) 
               width, height, median(quiet), median(reporting), median(reporting) / median(quiet));
 }
 
+// The default frame, part by part (--defaults): igi-render's defaults on
+// each scene (caustics where it has mirrors, glass or sharp GGX, as
+// igi-render chooses), one thread, F frames of one pass each (a new seed
+// each); each part's share of the frame's thread time, its rays a pixel,
+// and raw Embree's rate on this scene's logged rays beside them.
+void bench_defaults(const std::vector<std::string>& scenes, int width, int height, int frames, int tile) {
+  for (const std::string& name : scenes) {
+    Scene scene = load_scene(name);
+    Accel accel(scene);
+    LightSet lights(scene);
+    SceneContext ctx{scene, accel, lights};
+    RenderSettings settings;  // igi-render's defaults
+    settings.method = MethodKind::Igi;
+    settings.caustics = photons::has_specular_surfaces(scene, settings.glossy_threshold);
+    VplMethod method(ctx, settings);
+    FrameSetup frame;
+    frame.camera = scene.camera_or_auto();
+    frame.width = width;
+    frame.height = height;
+    const int border = tile_border(settings);
+    FrameOptions one;
+    one.threads = 1;
+    one.tile_size = tile;
+    // Unrecorded frames first: what the timers cost.
+    std::vector<double> plain;
+    for (int f = 0; f < frames; ++f) {
+      frame.seed = uint32_t(f + 1);
+      RayCounts rays;
+      Clock start = Clock::now();
+      method.begin_frame(frame);
+      render_frame(method, frame, border, one, rays);
+      plain.push_back((Clock::now() - start).cpu);
+    }
+    FrameParts parts;
+    method.record_parts(&parts);
+    RayCounts rays;
+    double total = 0.0;
+    for (int f = 0; f < frames; ++f) {
+      frame.seed = uint32_t(f + 1);
+      Clock start = Clock::now();
+      method.begin_frame(frame);
+      render_frame(method, frame, border, one, rays);
+      total += (Clock::now() - start).wall;
+    }
+    method.record_parts(nullptr);
+    const double pixels = double(width) * height * frames;
+    const RayCounts setup_rays = parts.rays[size_t(FramePart::Vpls)];
+    std::printf("\n== %s: igi defaults (aa %d, %d paths a set, compensation %d, caustics %s), %dx%d, 1 thread, %d frames\n",
+                name.c_str(), settings.aa_samples, settings.paths_per_set, settings.compensation_samples,
+                settings.caustics ? "on" : "off", width, height, frames);
+    std::printf("frame %.1f ms (%.1f ms with the part timers), %.1f rays a pixel (%.1f in the frame's tiles)\n",
+                median(plain) * 1e3, total / frames * 1e3, (rays.total() + setup_rays.total()) / pixels,
+                rays.total() / pixels);
+    std::printf("%-40s %9s %7s %12s %12s\n", "part", "ms/frame", "share", "rays/pixel", "Mrays/s");
+    double counted = 0.0;
+    for (size_t i = 0; i < size_t(FramePart::Count); ++i) {
+      const double sec = parts.seconds[i];
+      counted += sec;
+      const double r = double(parts.rays[i].total());
+      std::printf("%-40s %9.1f %6.1f%% %12.2f %12.2f\n", frame_part_name(FramePart(i)), sec / frames * 1e3,
+                  100.0 * sec / total, r / pixels, sec > 0.0 ? r * 1e-6 / sec : 0.0);
+    }
+    std::printf("%-40s %9.1f %6.1f%%\n", "the rest (scheduling, combine)", (total - counted) / frames * 1e3,
+                100.0 * (total - counted) / total);
+  }
+}
+
 }  // namespace
 }  // namespace igi
 
 int main(int argc, char** argv) {
   int width = 640, height = 480, frames = 5, vpls = 16, tile = 64;
   std::vector<std::string> scenes = {"cornell", "cornell-blob"};
-  for (int i = 1; i + 1 < argc; i += 2) {
-    std::string a = argv[i], v = argv[i + 1];
+  bool defaults = false, scenes_given = false;
+  std::vector<std::string> args;  // option, value, option, value ...
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--defaults") defaults = true;
+    else args.push_back(argv[i]);
+  }
+  for (size_t i = 0; i + 1 < args.size(); i += 2) {
+    const std::string& a = args[i];
+    const std::string& v = args[i + 1];
     if (a == "--size") std::sscanf(v.c_str(), "%dx%d", &width, &height);
     else if (a == "--frames") frames = std::stoi(v);
     else if (a == "--vpls-per-set") vpls = std::stoi(v);
     else if (a == "--tile") tile = std::stoi(v);
     else if (a == "--scenes") {
+      scenes_given = true;
       scenes.clear();
       for (size_t p = 0, q; p <= v.size(); p = q + 1) {
         q = v.find(',', p);
@@ -288,6 +367,11 @@ int main(int argc, char** argv) {
     }
   }
   igi::enable_flush_to_zero();
+  if (defaults) {
+    if (!scenes_given) scenes = {"cornell", "glossy", "rooms", "glass"};
+    igi::bench_defaults(scenes, width, height, frames, tile);
+    return 0;
+  }
   for (const std::string& s : scenes) igi::bench_scene(s, width, height, frames, vpls, tile);
   igi::bench_progress("cornell", width, height, frames);
   return 0;
