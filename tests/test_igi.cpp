@@ -117,7 +117,8 @@ INSTANTIATE_TEST_SUITE_P(Igi, TileInvariance, ::testing::ValuesIn(tile_cases()),
 // where Embree's 16-wide packets answered differently in differently cut
 // tiles (common/methods/shadow_batch.cpp). With packets of 16 pixels cut from
 // each tile, ir on the Cornell box at seeds 1 and 3 differed in a few pixels
-// (by about 1e-5); a packet now holds one point's rays.
+// (by about 1e-5); shadow rays now go one at a time, and camera packets lie
+// on the image's own 4 x 4 grid.
 TEST(TileInvarianceOverPasses, ProgressivePassesTiledEqualTheWholeFrameBitForBit) {
   for (const char* scene : {"cornell", "glossy-rough"}) {
     const test::Prepared p(load_scene(scene));

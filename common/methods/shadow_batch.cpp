@@ -174,6 +174,15 @@ int accumulate_shadow_packet(const ShadowPacket& packet, size_t first, PixelBatc
 // each, by about 1e-5), never with single rays; RTC_SCENE_FLAG_ROBUST did not
 // help. The cost is 1.1-1.3x an igi frame, 0.9x on cornell-blob
 // (tests/bench/history/RESULTS-to-2026-12-05.md, "Shadow rays one at a time").
+// Packets that no tiling can change were measured on 2026-12-06 and did not
+// pay: a point's own rays to its set's VPLs, 16 to a packet (the one layout
+// whose rays are the tile's business alone), replay at 1.35x single rays on
+// the Cornell box and 1.03x on cornell-blob (igi-bench), but in the renderer
+// a frame of 4 sub-samples (4 or 5 VPLs a group: a few lanes a packet) took
+// 1.4-1.6x as long on the Cornell box and 1.8x on cornell-blob, and one of
+// 1 sub-sample 0.85x and 1.2x; packets of one
+// VPL and 4 x 4 pixels on a grid that ignores tiles need the pixels of the
+// blocks a tile cuts, about 1.5x the shading at 6 x 6 sets.
 void trace_shadow_lanes(const Accel& accel, RTCIntersectContext& context, ShadowPacket& packet) {
   RTCRay ray;
   for (int k = 0; k < 16; ++k) {
