@@ -2,7 +2,7 @@
 // rays, frames per second, border overhead. Prints figures; asserts nothing.
 //
 //   igi-bench [--size WxH] [--frames F] [--vpls-per-set V] [--scenes a,b] [--tile T]
-//   igi-bench --defaults [--scenes a,b] [--size WxH] [--frames F]
+//   igi-bench --defaults [--scenes a,b] [--size WxH] [--frames F] [--aa S]
 //
 // --defaults: where the default frame's time and rays go, part by part
 // (bench_defaults). Without it:
@@ -289,7 +289,7 @@ void bench_progress(const std::string& name, int width, int height, int frames) 
 // igi-render chooses), one thread, F frames of one pass each (a new seed
 // each); each part's share of the frame's thread time, its rays a pixel,
 // and raw Embree's rate on this scene's logged rays beside them.
-void bench_defaults(const std::vector<std::string>& scenes, int width, int height, int frames, int tile) {
+void bench_defaults(const std::vector<std::string>& scenes, int width, int height, int frames, int tile, int aa) {
   for (const std::string& name : scenes) {
     Scene scene = load_scene(name);
     Accel accel(scene);
@@ -298,6 +298,7 @@ void bench_defaults(const std::vector<std::string>& scenes, int width, int heigh
     RenderSettings settings;  // igi-render's defaults
     settings.method = MethodKind::Igi;
     settings.caustics = photons::has_specular_surfaces(scene, settings.glossy_threshold);
+    if (aa > 0) settings.aa_samples = aa;
     VplMethod method(ctx, settings);
     FrameSetup frame;
     frame.camera = scene.camera_or_auto();
@@ -355,7 +356,7 @@ void bench_defaults(const std::vector<std::string>& scenes, int width, int heigh
 }  // namespace igi
 
 int main(int argc, char** argv) {
-  int width = 640, height = 480, frames = 5, vpls = 16, tile = 64;
+  int width = 640, height = 480, frames = 5, vpls = 16, tile = 64, aa = 0;
   std::vector<std::string> scenes = {"cornell", "cornell-blob"};
   bool defaults = false, scenes_given = false;
   std::vector<std::string> args;  // option, value, option, value ...
@@ -368,6 +369,7 @@ int main(int argc, char** argv) {
     const std::string& v = args[i + 1];
     if (a == "--size") std::sscanf(v.c_str(), "%dx%d", &width, &height);
     else if (a == "--frames") frames = std::stoi(v);
+    else if (a == "--aa") aa = std::stoi(v);
     else if (a == "--vpls-per-set") vpls = std::stoi(v);
     else if (a == "--tile") tile = std::stoi(v);
     else if (a == "--scenes") {
@@ -383,7 +385,7 @@ int main(int argc, char** argv) {
   igi::enable_flush_to_zero();
   if (defaults) {
     if (!scenes_given) scenes = {"cornell", "glossy", "rooms", "glass"};
-    igi::bench_defaults(scenes, width, height, frames, tile);
+    igi::bench_defaults(scenes, width, height, frames, tile, aa);
     return 0;
   }
   for (const std::string& s : scenes) igi::bench_scene(s, width, height, frames, vpls, tile);
