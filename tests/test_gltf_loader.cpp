@@ -18,6 +18,7 @@
 #include "io/file_bytes.h"
 #include "scene/gltf_json.h"
 #include "scene/gltf_loader.h"
+#include "scene/load_scene.h"
 #include "scene/gltf_pack.h"
 #include "support/image_compare.h"
 
@@ -474,6 +475,38 @@ TEST(GltfLoader, NonFiniteNormalIsReplacedByGeometricNormal) {
 
 TEST(GltfLoader, MissingFileIsAnError) {
   expect_scene_error(test_dir() / "absent.gltf", {"no such file"});
+}
+
+// A scene in another format, or a mistyped built-in name: the error says
+// what is read and what to do, not a JSON parse error or "no such file".
+TEST(GltfLoader, OtherFormatsAndMistypedBuiltInsSayWhatToDo) {
+  const fs::path obj = test_dir() / "cube.obj";
+  std::ofstream(obj) << "# a triangle\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  auto error_of = [](const std::string& name) -> std::string {
+    try {
+      load_scene(name);
+    } catch (const SceneError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const std::string on_obj = error_of(obj.string());
+  for (const char* fragment : {"cube.obj", "glTF 2.0", ".obj", "Blender", "File > Export"})
+    EXPECT_NE(on_obj.find(fragment), std::string::npos) << "'" << fragment << "' missing in: " << on_obj;
+  EXPECT_EQ(on_obj.find("parse error"), std::string::npos) << on_obj;
+  const fs::path blend = test_dir() / "scene.blend";
+  std::ofstream(blend) << "BLENDER";
+  const std::string on_blend = error_of(blend.string());
+  EXPECT_NE(on_blend.find("blender -b"), std::string::npos) << on_blend;
+  EXPECT_NE(on_blend.find("export_scene.gltf"), std::string::npos) << on_blend;
+  const std::string on_typo = error_of("cornel");
+  for (const char* fragment : {"cornel:", "no built-in scene", "glossy-rough", "Did you mean 'cornell'?"})
+    EXPECT_NE(on_typo.find(fragment), std::string::npos) << "'" << fragment << "' missing in: " << on_typo;
+  const std::string on_far = error_of("zzzzzzzz");
+  EXPECT_NE(on_far.find("Built-in scenes:"), std::string::npos) << on_far;
+  EXPECT_EQ(on_far.find("Did you mean"), std::string::npos) << on_far;  // nothing near: no guess
+  // A glTF path that is missing still says so.
+  EXPECT_NE(error_of((test_dir() / "absent.glb").string()).find("no such file"), std::string::npos);
 }
 
 TEST(GltfLoader, JsonSyntaxErrorIsAnError) {
