@@ -55,7 +55,7 @@ enum class FramePart {
 const char* frame_part_name(FramePart part);
 
 struct FrameParts {
-  std::array<double, size_t(FramePart::Count)> seconds{};  // thread time
+  std::array<double, size_t(FramePart::Count)> seconds{};  // elapsed (the bench renders on one thread)
   std::array<RayCounts, size_t(FramePart::Count)> rays{};
 };
 

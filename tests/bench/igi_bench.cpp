@@ -17,10 +17,10 @@
 // time the process actually received (the machine is shared), "wall" by
 // elapsed time.
 #include <algorithm>
-#include <bit>
 #include <array>
-#include <map>
+#include <bit>
 #include <cstdio>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -287,8 +287,8 @@ void bench_progress(const std::string& name, int width, int height, int frames) 
 // The default frame, part by part (--defaults): igi-render's defaults on
 // each scene (caustics where it has mirrors, glass or sharp GGX, as
 // igi-render chooses), one thread, F frames of one pass each (a new seed
-// each); each part's share of the frame's thread time, its rays a pixel,
-// and raw Embree's rate on this scene's logged rays beside them.
+// each); each part's share of the frame's time, its rays a pixel and rate,
+// and raw Embree's rate on the frame's camera and VPL shadow rays beside them.
 void bench_defaults(const std::vector<std::string>& scenes, int width, int height, int frames, int tile, int aa) {
   for (const std::string& name : scenes) {
     Scene scene = load_scene(name);
@@ -330,6 +330,13 @@ void bench_defaults(const std::vector<std::string>& scenes, int width, int heigh
       total += (Clock::now() - start).wall;
     }
     method.record_parts(nullptr);
+    // One more frame with its camera and VPL shadow rays logged: raw Embree's rate on them.
+    RayLog log;
+    method.record_rays(&log);
+    RayCounts logged;
+    render_frame(method, frame, border, one, logged);
+    method.record_rays(nullptr);
+    const Timing raw = time_replay(accel, log, 1, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, true);
     const double pixels = double(width) * height * frames;
     const RayCounts setup_rays = parts.rays[size_t(FramePart::Vpls)];
     std::printf("\n== %s: igi defaults (aa %d, %d paths a set, compensation %d, caustics %s), %dx%d, 1 thread, %d frames\n",
@@ -338,6 +345,8 @@ void bench_defaults(const std::vector<std::string>& scenes, int width, int heigh
     std::printf("frame %.1f ms (%.1f ms with the part timers), %.1f rays a pixel (%.1f in the frame's tiles)\n",
                 median(plain) * 1e3, total / frames * 1e3, (rays.total() + setup_rays.total()) / pixels,
                 rays.total() / pixels);
+    std::printf("raw Embree on the frame's camera and VPL shadow rays (shadow rays one at a time): %.2f Mrays/cpu-s\n",
+                raw.rays.total() * 1e-6 / raw.cpu);
     std::printf("%-40s %9s %7s %12s %12s\n", "part", "ms/frame", "share", "rays/pixel", "Mrays/s");
     double counted = 0.0;
     for (size_t i = 0; i < size_t(FramePart::Count); ++i) {
