@@ -568,7 +568,9 @@ void MasterSession::sweep(Clock::time_point now) {
   }
   declared_dead_ += dead.size();
   for (const std::string& identity : dead)
-    drop_peer(identity, "silent for " + std::to_string(options_.timeout_ms) + " ms: declared dead, its jobs go to others");
+    drop_peer(identity, "silent for " + std::to_string(options_.timeout_ms) +
+                            " ms: declared dead, its jobs go to others (a worker on a loaded machine can be this slow "
+                            "to answer: --timeout-ms gives it longer)");
   next_sweep_ = now + std::clamp(heartbeat / 4, std::chrono::milliseconds(5), std::chrono::milliseconds(100));
 }
 

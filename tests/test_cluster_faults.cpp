@@ -239,8 +239,8 @@ TEST(ClusterFaults, AChurnOfGhostsDoesNotFloodTheLog) {
 TEST(ClusterFaults, AResumedWorkersBacklogIsStaleNotBad) {
   zmq::context_t context;
   const MasterOptions o = parse_master_options({"--workers", "0", "--listen", "inproc://igi-resumed-peer", "--frames", "1",
-                                                "--heartbeat-ms", "10", "--timeout-ms", "100", "--quiet", "--no-write",
-                                                "--size", "64x48"});
+                                                "--heartbeat-ms", "10", "--timeout-ms", "100", "--no-write",
+                                                "--size", "64x48"});  // not --quiet: the log is checked
   MasterSession session(o, make_scene_source("cornell"), context);
   zmq::socket_t peer(context, zmq::socket_type::dealer);
   peer.set(zmq::sockopt::linger, 0);
@@ -249,8 +249,13 @@ TEST(ClusterFaults, AResumedWorkersBacklogIsStaleNotBad) {
   session.pump(20);
   ASSERT_EQ(session.worker_count(), 1u);
   const auto end = Clock::now() + std::chrono::seconds(int(5 * test::kSlowdown));
+  testing::internal::CaptureStderr();
   while (session.worker_count() == 1 && Clock::now() < end) session.pump(20);  // silent: declared dead
+  const std::string log = testing::internal::GetCapturedStderr();
   ASSERT_EQ(session.worker_count(), 0u);
+  // The line says what to change when the worker was only slow.
+  EXPECT_NE(log.find("silent for 100 ms: declared dead"), std::string::npos) << log;
+  EXPECT_NE(log.find("--timeout-ms gives it longer"), std::string::npos) << log;
   protocol::TileResult late;
   late.tile = {0, 0, 1, 1, 0};
   late.pixels.resize(1);
