@@ -60,6 +60,20 @@ Timing time_frames(const Method& method, const FrameSetup& frame, int border, in
   return {median(wall), median(cpu), rays};
 }
 
+// A logged packet's valid lanes, each as a ray of its own (rtcOccluded1), as
+// the renderer traces shadow rays (methods/shadow_batch.cpp). Returns the rays traced.
+size_t trace_one_at_a_time(const Accel& accel, RTCIntersectContext& context, const LoggedShadow& s) {
+  size_t traced = 0;
+  for (int k = 0; k < 16; ++k) {
+    if (!s.valid[k]) continue;
+    RTCRay r{s.rays.org_x[k], s.rays.org_y[k], s.rays.org_z[k], s.rays.tnear[k],
+             s.rays.dir_x[k], s.rays.dir_y[k], s.rays.dir_z[k], 0.0f, s.rays.tfar[k], ~0u, 0u, 0u};
+    rtcOccluded1(accel.handle(), &context, &r);
+    ++traced;
+  }
+  return traced;
+}
+
 // Replays the logged packets through Embree alone, on one thread: incoherent
 // as the renderer traces them (scene/accel.h), or with the coherent flag;
 // shadow rays as 16-wide packets of one VPL and 16 pixels, or one at a time
@@ -78,13 +92,7 @@ Timing time_replay(const Accel& accel, RayLog& log, int frames,
     Clock start = Clock::now();
     for (LoggedPrimary& p : primary) rtcIntersect16(p.valid, accel.handle(), &context, &p.rays);
     if (single_shadow)
-      for (const LoggedShadow& s : shadow)
-        for (int k = 0; k < 16; ++k) {
-          if (!s.valid[k]) continue;
-          RTCRay r{s.rays.org_x[k], s.rays.org_y[k], s.rays.org_z[k], s.rays.tnear[k],
-                   s.rays.dir_x[k], s.rays.dir_y[k], s.rays.dir_z[k], 0.0f, s.rays.tfar[k], ~0u, 0u, 0u};
-          rtcOccluded1(accel.handle(), &context, &r);
-        }
+      for (const LoggedShadow& s : shadow) trace_one_at_a_time(accel, context, s);
     else
       for (LoggedShadow& s : shadow) rtcOccluded16(s.valid, accel.handle(), &context, &s.rays);
     Clock d = Clock::now() - start;
@@ -110,14 +118,7 @@ void replay_breakdown(const Accel& accel, const RayLog& log) {
   Clock t1 = Clock::now();
   for (LoggedShadow& s : shadow) rtcOccluded16(s.valid, accel.handle(), &context, &s.rays);
   Clock t2 = Clock::now();
-  for (const LoggedShadow& s : log.shadow)
-    for (int k = 0; k < 16; ++k) {
-      if (!s.valid[k]) continue;
-      RTCRay r{s.rays.org_x[k], s.rays.org_y[k], s.rays.org_z[k], s.rays.tnear[k],
-               s.rays.dir_x[k], s.rays.dir_y[k], s.rays.dir_z[k], 0.0f, s.rays.tfar[k], ~0u, 0u, 0u};
-      rtcOccluded1(accel.handle(), &context, &r);
-      ++ns;
-    }
+  for (const LoggedShadow& s : log.shadow) ns += trace_one_at_a_time(accel, context, s);
   Clock t3 = Clock::now();
   // The same rays in the one packet layout that no tiling can change: each
   // point's own rays (one origin, its set's VPLs), 16 to a packet, points in
