@@ -25,8 +25,8 @@ namespace igi {
 // The side s of an S-sample grid, or 0 when S is not a square number >= 1.
 inline int subpixel_side(int samples) {
   if (samples < 1) return 0;
-  const int s = int(std::lround(std::sqrt(double(samples))));
-  return s * s == samples ? s : 0;
+  const long s = std::lround(std::sqrt(double(samples)));
+  return s * s == long(samples) ? int(s) : 0;  // 64-bit: 46341^2 overflows an int
 }
 
 // Film offset of sub-sample k inside its pixel, in [0, 1)^2.
