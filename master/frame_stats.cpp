@@ -14,14 +14,17 @@ nlohmann::ordered_json frame_json(const FrameRecord& f) {
           // The scheduler's counts are totals over the run, as of this frame.
           {"reissued_total", f.reissued}, {"duplicated_total", f.duplicated}, {"late_dropped_total", f.late_dropped},
           {"verified_total", f.verified}, {"failed_results_total", f.failed_results},
-          {"quarantined_total", f.quarantined}, {"nonfinite_pixels", f.nonfinite_pixels}, {"workers", workers}};
+          {"quarantined_total", f.quarantined}, {"own_tiles_total", f.own_tiles},
+          {"nonfinite_pixels", f.nonfinite_pixels}, {"workers", workers}};
 }
 
 nlohmann::ordered_json totals_json(const RunTotals& t, uint64_t tiles) {
-  return {{"complete", t.complete}, {"bad_messages", t.bad_messages}, {"refused_keys", t.refused_keys},
+  return {{"complete", t.complete}, {"outcome", t.outcome}, {"bad_messages", t.bad_messages},
+          {"refused_keys", t.refused_keys},
           {"failed_handshakes", t.failed_handshakes}, {"nonfinite_pixels", t.nonfinite_pixels},
           {"declared_dead", t.declared_dead},
-          {"quarantined", t.quarantined}, {"pixel_format", t.pixel_format}, {"io_threads", t.io_threads},
+          {"quarantined", t.quarantined}, {"own_tiles", t.own_tiles}, {"pixel_format", t.pixel_format},
+          {"io_threads", t.io_threads},
           {"master_cpu_seconds", t.master_cpu_seconds}, {"session_cpu_seconds", t.session_cpu_seconds},
           {"wall_seconds", t.wall_seconds}, {"tiles", tiles},
           {"master_cpu_us_per_tile", tiles ? 1e6 * t.master_cpu_seconds / double(tiles) : 0.0}};
@@ -41,6 +44,7 @@ RunTotals run_totals(const MasterSession& session, int io_threads, double cpu_st
   t.declared_dead = session.declared_dead();
   t.nonfinite_pixels = session.nonfinite_pixels();
   t.quarantined = session.quarantined();
+  t.own_tiles = session.own_tiles();
   t.master_cpu_seconds = process_cpu_seconds() - cpu_start;
   t.session_cpu_seconds = session.session_cpu_seconds();
   t.wall_seconds = wall_seconds;

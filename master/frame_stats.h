@@ -2,10 +2,11 @@
 // Per-frame statistics of a master run (--stats FILE), as JSON Lines: one
 // object a line, appended as the run goes on.
 //   {"frame": N, "seconds": ..., "tiles": ..., ..., "workers": {...}}   one per frame, in order
-//   {"complete": false, "bad_messages": ..., "tiles": ..., ...}         the run's totals so far
+//   {"complete": false, "outcome": "running", "bad_messages": ..., ...}  the run's totals so far
 // A totals line follows the frames now and then, so a master that is killed
 // leaves its figures; the last line of a run that ended is its totals with
-// "complete": true. A reader takes the frame lines in order and the last totals.
+// "complete": true and how it ended: "outcome" "done" (every frame written),
+// "interrupted" or "failed". A reader takes the frame lines in order and the last totals.
 #include <string>
 #include <vector>
 
@@ -22,12 +23,14 @@ struct RunTotals {
   uint64_t nonfinite_pixels = 0;   // pixels workers rendered NaN or infinite and sent as black
   uint64_t declared_dead = 0;      // workers silent past --timeout-ms (or not reading), their jobs given to others
   std::vector<std::string> quarantined;  // "worker-N: why"
+  uint64_t own_tiles = 0;          // jobs no worker's result passed for, rendered by the master
   double master_cpu_seconds = 0.0;   // process CPU (every thread) during the session loop
   double session_cpu_seconds = 0.0;  // the session thread's own CPU
   double wall_seconds = 0.0;
   std::string pixel_format;        // on the wire: float or half
   int io_threads = 0;
   bool complete = false;           // false while the run goes on
+  std::string outcome = "running"; // then: done, interrupted or failed
 };
 
 // The session's counts for the statistics file: CPU since `cpu_start`

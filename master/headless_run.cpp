@@ -152,10 +152,11 @@ class HeadlessRun {
   void print_summary() const {
     const SchedulerStats& s = session_.scheduler_stats();
     std::fprintf(stderr, "igi-master: %d frames; tiles copied %llu, reissued %llu, verification copies %llu, "
-                 "results failing validation %llu, workers quarantined %llu, declared dead %llu, non-finite pixels %llu\n", done_,
+                 "results failing validation %llu, tiles the master rendered %llu, workers quarantined %llu, "
+                 "declared dead %llu, non-finite pixels %llu\n", done_,
                  (unsigned long long)s.duplicated, (unsigned long long)s.reissued, (unsigned long long)s.verified,
-                 (unsigned long long)s.failed_results, (unsigned long long)s.quarantined,
-                 (unsigned long long)session_.declared_dead(),
+                 (unsigned long long)s.failed_results, (unsigned long long)session_.own_tiles(),
+                 (unsigned long long)session_.quarantined_count(), (unsigned long long)session_.declared_dead(),
                  (unsigned long long)session_.nonfinite_pixels());
   }
 
@@ -163,6 +164,7 @@ class HeadlessRun {
   int finish(LocalWorkers& workers, const std::string& failure) {
     RunTotals totals = totals_now();
     totals.complete = true;
+    totals.outcome = done_ == total_ ? "done" : failure.empty() ? "interrupted" : "failed";
     if (!o_.render.quiet) print_summary();
     session_.close(done_ == total_ ? "done" : failure.empty() ? "interrupted" : "failed");
     workers.stop_all();

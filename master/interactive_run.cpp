@@ -292,6 +292,7 @@ int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& s
     RunTotals t = run_totals(session, o.io_threads, cpu_start,
                              std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
     t.complete = true;
+    t.outcome = "done";
     stats->write_final(t);
   }
   if (const std::string error = handover.error(); !error.empty()) throw std::runtime_error(error);

@@ -173,7 +173,7 @@ size_t MasterSession::send(const std::string& identity, const protocol::Message&
 
 void MasterSession::judge_by(Scene scene) {
   scheduler_.judge_by_reference();
-  referee_ = std::make_unique<ReferenceHashes>(std::move(scene));
+  referee_ = std::make_unique<MasterRenderer>(std::move(scene));
 }
 
 void MasterSession::add_frame(const FrameSetup& frame) { add_frame(frame, options_.render.settings); }
@@ -235,6 +235,7 @@ void MasterSession::step(Clock::time_point now, std::vector<CompletedFrame>& don
   if (now >= next_sweep_) sweep(now);
   take_references();
   dispatch(scheduler_.assign(now));
+  render_own_jobs();
   take_quarantined();
   for (const std::string& identity : std::exchange(congested_, {}))
     if (peers_.count(identity)) {
@@ -467,7 +468,8 @@ void MasterSession::use_result(const std::string& identity, Peer& peer, const pr
     protocol::copy_tile_surfaces(view, &frame.surfaces[size_t(r.tile.y) * size_t(pixels.width) + size_t(r.tile.x)],
                                  size_t(pixels.width));
   }
-  scheduler_.on_result(identity, r.job_id, r.frame_state_hash, Clock::now());
+  const ResultVerdict verdict = scheduler_.on_result(identity, r.job_id, r.frame_state_hash, Clock::now());
+  if (verdict == ResultVerdict::Accepted || verdict == ResultVerdict::Held) count_failures_against_workers(r.job_id);
   ++frame.record.tiles;
   frame.record.rays += r.rays;
   if (r.nonfinite_pixels > 0) {
@@ -488,17 +490,90 @@ void MasterSession::use_result(const std::string& identity, Peer& peer, const pr
   if (on_accepted) on_accepted(accepted_);
 }
 
-// The job goes to another worker. A job that fails on every worker alike can
-// never complete its frame: the run ends with the reason rather than hang.
+// The job goes to another worker, or to the master's own renderer when every
+// worker that could take it failed it (render_own_jobs()).
 void MasterSession::on_bad_result(const std::string& identity, uint64_t job_id, const std::string& error) {
   Peer& peer = peers_.at(identity);
   if (++failures_logged_ <= kLogFirst)
-    log(peer.name + " sent a result that fails validation (" + error + "): its job goes to another worker");
-  if (scheduler_.on_bad_result(identity, job_id) && fatal_.empty())
-    fatal_ = "job " + std::to_string(job_id) + " failed validation on every worker that rendered it (last: " +
-             peer.name + ": " + error + "): its frame can never complete";
-  if (++peer.failed_results >= kMaxFailedResults)
-    quarantine_peer(identity, std::to_string(peer.failed_results) + " of its results failed validation");
+    log(peer.name + " sent a result for job " + std::to_string(job_id) + " that fails validation (" + error +
+        "): the job goes to another worker");
+  if (job_failures_.size() >= 4096) job_failures_.clear();  // jobs long done or cancelled
+  JobFailures& failures = job_failures_[job_id];
+  failures.workers.push_back(identity);
+  failures.text += (failures.text.empty() ? "" : ", ") + peer.name + " (" + error + ")";
+  scheduler_.on_bad_result(identity, job_id);
+  if (scheduler_.answered(job_id)) count_failures_against_workers(job_id);  // a straggler copy passed first
+}
+
+// Another worker's result for the job passed: each worker that failed it
+// was at fault, and one with three such results is quarantined.
+void MasterSession::count_failures_against_workers(uint64_t job_id) {
+  auto failed = job_failures_.find(job_id);
+  if (failed == job_failures_.end()) return;
+  const std::vector<std::string> workers = std::move(failed->second.workers);
+  job_failures_.erase(failed);
+  for (const std::string& identity : workers) {
+    auto peer = peers_.find(identity);
+    if (peer != peers_.end() && ++peer->second.failed_results >= kMaxFailedResults)
+      quarantine_peer(identity, std::to_string(peer->second.failed_results) +
+                                    " of its results failed validation where another worker's passed");
+  }
+}
+
+// Jobs whose results failed on every worker that could take them: the master
+// renders each as a worker would. Only when it cannot is the run over.
+void MasterSession::render_own_jobs() {
+  for (const JobAssignment& job : scheduler_.take_own_jobs()) {
+    auto f = frames_.find(job.frame_id);
+    if (f == frames_.end()) continue;
+    auto failed = job_failures_.find(job.job_id);
+    const std::string what = "job " + std::to_string(job.job_id) + " (frame " + std::to_string(job.frame_id) +
+                             ", tile " + describe(job.tile) + ") failed validation on " +
+                             (failed != job_failures_.end() ? failed->second.text : std::string("its workers"));
+    if (failed != job_failures_.end()) job_failures_.erase(failed);
+    if (!referee_) {
+      if (fatal_.empty()) fatal_ = what + ", and no other worker may take it: its frame can never complete";
+      return;
+    }
+    if (++own_logged_ <= kLogFirst || own_logged_ % 100 == 0)  // always said, never a flood
+      std::fprintf(stderr, "igi-master: %s: the master renders it itself (%llu so far)\n", what.c_str(),
+                   static_cast<unsigned long long>(own_logged_));
+    own_failures_[job.job_id] = what;
+    referee_->request_tile(f->second.setup, f->second.settings, job.job_id, job.tile, pixel_format_);
+  }
+}
+
+// The master's own tile goes through the checks a worker's does; it counts
+// whatever its frame's vote (the master is the judge).
+void MasterSession::use_own_result(const MasterRenderer::TileAnswer& answer) {
+  auto failed = own_failures_.find(answer.job_id);
+  const std::string what = failed != own_failures_.end() ? failed->second : "job " + std::to_string(answer.job_id);
+  if (failed != own_failures_.end()) own_failures_.erase(failed);
+  std::string error = answer.error;
+  std::optional<protocol::TileResultView> view;
+  if (error.empty()) view = protocol::decode_tile_result(answer.result, error);
+  auto frame = view ? frames_.find(view->fields.frame_id) : frames_.end();
+  if (view && frame == frames_.end()) return;  // the view moved on meanwhile
+  if (view) {
+    FrameBuffer& pixels = *frame->second.pixels;
+    const TileJob& t = view->fields.tile;
+    error = protocol::copy_tile_pixels(*view, pixels.pixel(t.x, t.y), pixels.row_bytes());
+    if (error.empty() && !frame->second.surfaces.empty())
+      protocol::copy_tile_surfaces(
+          *view, &frame->second.surfaces[size_t(t.y) * size_t(pixels.width) + size_t(t.x)], size_t(pixels.width));
+  }
+  if (!error.empty()) {
+    if (fatal_.empty()) fatal_ = what + ", and the master could not render it either (" + error + ")";
+    return;
+  }
+  if (!scheduler_.on_own_result(answer.job_id)) return;
+  ++own_tiles_;
+  ++frame->second.record.tiles;
+  frame->second.record.rays += view->fields.rays;
+  if (view->fields.nonfinite_pixels > 0) {
+    nonfinite_pixels_ += view->fields.nonfinite_pixels;
+    frame->second.record.nonfinite_pixels += view->fields.nonfinite_pixels;
+  }
 }
 
 void MasterSession::on_bad_message(const std::string& identity, const std::string& error) {
@@ -534,6 +609,7 @@ void MasterSession::quarantine_peer(const std::string& identity, const std::stri
   scheduler_.remove_worker(identity);
   peers_.erase(it);
   quarantined_ids_.insert(identity);
+  ++quarantined_count_;
   if (quarantined_names_.size() < kMaxQuarantinedNames) quarantined_names_.push_back(name + ": " + why);
 }
 
@@ -549,12 +625,13 @@ void MasterSession::take_quarantined() {
 // (the scene does not fit here, say) is left to a vote among the workers.
 void MasterSession::take_references() {
   if (!referee_) return;
-  for (const ReferenceHashes::Answer& a : referee_->take()) {
+  for (const MasterRenderer::Answer& a : referee_->take()) {
     if (!a.hash && ++referee_errors_ <= kLogFirst)
       log("frame " + std::to_string(a.frame_id) + ": the master cannot compute its VPL-set hash (" + a.error +
           "): its workers vote on it");
     scheduler_.set_reference(a.frame_id, a.hash);
   }
+  for (const MasterRenderer::TileAnswer& a : referee_->take_tiles()) use_own_result(a);
 }
 
 // Liveness and heartbeats, a few times per heartbeat interval: O(peers), not per message.
@@ -628,7 +705,8 @@ std::vector<CompletedFrame> MasterSession::take_completed() {
     f.record.late_dropped = s.late_dropped;
     f.record.verified = s.verified;
     f.record.failed_results = s.failed_results;
-    f.record.quarantined = s.quarantined;
+    f.record.quarantined = quarantined_count_;
+    f.record.own_tiles = own_tiles_;
     done.push_back(CompletedFrame{f.setup, std::move(f.pixels), std::move(f.record), std::move(f.surfaces)});
     frames_.erase(frame_id);
     for (auto& [identity, peer] : peers_) peer.frames_sent.erase(frame_id);

@@ -7,7 +7,9 @@
 // Reliability lives here and only here: heartbeats both ways, a peer silent
 // for timeout_ms is dead and its jobs are issued again, a result is checked
 // against the scheduler's own job before its pixels are used, a result that
-// fails validation sends its job to another worker, a worker whose VPL sets
+// fails validation sends its job to another worker (one that failed on every
+// worker that could take it, or on two, the master renders itself: no
+// failing peer can end the run), a worker whose VPL sets
 // differ from the master's own (judge_by()) or, without it, lose the vote is
 // quarantined (told so: it exits with status 5), and a frame is complete only
 // when every job id is back and its hash is decided.
@@ -43,7 +45,7 @@
 #include "protocol/messages.h"
 #include "protocol/monitor.h"
 #include "protocol/zap.h"
-#include "reference_hashes.h"
+#include "master_renderer.h"
 #include "scheduler.h"
 
 namespace igi {
@@ -89,6 +91,7 @@ struct FrameRecord {
   std::vector<TileSource> tile_sources;      // one per used result; only with record_tile_sources()
   // Session totals when the frame completed.
   uint64_t reissued = 0, duplicated = 0, late_dropped = 0, verified = 0, failed_results = 0, quarantined = 0;
+  uint64_t own_tiles = 0;  // jobs the master rendered itself
 };
 
 struct CompletedFrame {
@@ -107,7 +110,8 @@ struct PeerView {
   double round_trip_ms = 0.0;  // job sent to result back, smoothed; 0 before any (detailed statistics only)
 };
 
-// The run cannot go on (a job fails validation on every worker); what() says which and why.
+// The run cannot go on (a job failed validation on every worker that could
+// take it, and the master could not render it either); what() says which and why.
 struct SessionError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -121,8 +125,9 @@ class MasterSession {
   PixelFormat pixel_format() const { return pixel_format_; }
 
   // Judges every worker's VPL sets against the master's own, computed from
-  // `scene` as the workers load it (reference_hashes.h), instead of by a vote
-  // among workers. Before the first frame.
+  // `scene` as the workers load it (master_renderer.h), instead of by a vote
+  // among workers; and lets the master render a job no worker's result for
+  // passed validation. Before the first frame.
   void judge_by(Scene scene);
   // Queues a frame; jobs go out as workers have credit (at most two frames open).
   // Its settings travel with its FrameSetup (default: the options').
@@ -157,6 +162,8 @@ class MasterSession {
   uint64_t failed_handshakes() const { return failed_handshakes_; }    // peers without CURVE or the right master key
   uint64_t declared_dead() const { return declared_dead_; }            // workers silent past the timeout, or not reading
   uint64_t nonfinite_pixels() const { return nonfinite_pixels_; }
+  uint64_t own_tiles() const { return own_tiles_; }  // jobs the master rendered itself (no worker's result passed)
+  uint64_t quarantined_count() const { return quarantined_count_; }  // workers quarantined, for any reason
   const SchedulerStats& scheduler_stats() const { return scheduler_.stats(); }
   const std::vector<std::string>& quarantined() const { return quarantined_names_; }  // "worker-3: why"
   // Why no frame can complete now, when that is so (two workers disagree on a
@@ -204,6 +211,9 @@ class MasterSession {
   void quarantine_peer(const std::string& identity, const std::string& why);
   void take_quarantined();
   void take_references();
+  void render_own_jobs();
+  void count_failures_against_workers(uint64_t job_id);
+  void use_own_result(const MasterRenderer::TileAnswer& answer);
   void sweep(Clock::time_point now);
   void dispatch(const std::vector<JobAssignment>& jobs);
   void report_stall();
@@ -228,7 +238,7 @@ class MasterSession {
   std::unique_ptr<protocol::SocketMonitor> monitor_;  // after router_: it watches it
   std::string endpoint_;
   Scheduler scheduler_;
-  std::unique_ptr<ReferenceHashes> referee_;  // the master's own frame hashes; null: workers vote
+  std::unique_ptr<MasterRenderer> referee_;  // the master's own frame hashes and tiles; null: workers vote
   FrameBufferPool pool_;
   std::map<std::string, Peer> peers_;
   std::set<std::string> quarantined_ids_;        // their later messages are ignored
@@ -244,6 +254,18 @@ class MasterSession {
   int peer_lines_ = 0;
   uint64_t peer_lines_held_ = 0;
   std::vector<std::string> quarantined_names_;   // for the statistics (at most 1000)
+  uint64_t quarantined_count_ = 0;
+  // A job's failed results wait here until another worker's result for it
+  // passes (then they count against their workers: the fault was theirs) or
+  // every worker has failed it (then none does: the fault is the job's, or the
+  // path's, and the master renders it). At most 4096 jobs.
+  struct JobFailures {
+    std::vector<std::string> workers;  // identities
+    std::string text;                  // "worker-1 (why), ...": what the log names
+  };
+  std::map<uint64_t, JobFailures> job_failures_;
+  std::map<uint64_t, std::string> own_failures_;  // jobs the master renders: what it said of each
+  uint64_t own_tiles_ = 0;
   std::map<uint64_t, OpenFrame> frames_;
   std::vector<TileJob> tiles_;             // the tiles of a frame as tiles_cut_ says
   std::tuple<int, int, int> tiles_cut_{0, 0, 0};  // width, height, border of tiles_
@@ -253,7 +275,7 @@ class MasterSession {
   uint64_t accepted_ = 0;
   uint64_t bad_messages_ = 0;
   uint64_t refused_keys_ = 0, failed_handshakes_ = 0, declared_dead_ = 0;
-  uint64_t nonfinite_pixels_ = 0, nonfinite_logged_ = 0, failures_logged_ = 0, referee_errors_ = 0;
+  uint64_t nonfinite_pixels_ = 0, nonfinite_logged_ = 0, failures_logged_ = 0, referee_errors_ = 0, own_logged_ = 0;
   std::optional<uint64_t> stall_reported_;  // the frame whose split was logged
   std::string fatal_;
   double session_cpu_ = 0.0;

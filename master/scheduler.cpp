@@ -58,6 +58,11 @@ bool Scheduler::holds(const WorkerId& id, uint64_t job_id) const {
                                            [&](const Holder& h) { return h.worker == id; });
 }
 
+bool Scheduler::answered(uint64_t job_id) const {
+  auto job = jobs_.find(job_id);
+  return job != jobs_.end() && (job->second.done || job->second.held_by.has_value());
+}
+
 std::vector<WorkerId> Scheduler::take_quarantined() { return std::exchange(newly_quarantined_, {}); }
 
 // The worker no longer holds the job: its credit is free again.
@@ -89,7 +94,7 @@ void Scheduler::requeue(uint64_t job_id) {
   auto it = jobs_.find(job_id);
   if (it == jobs_.end()) return;
   Job& job = it->second;
-  if (job.done || job.held_by || !job.holders.empty() || job.queued) return;
+  if (job.done || job.held_by || !job.holders.empty() || job.queued || job.own) return;
   job.queued = true;
   unassigned_.push_front(job_id);
   ++stats_.reissued;
@@ -166,7 +171,23 @@ std::optional<uint64_t> Scheduler::front_unassigned() {
   while (!unassigned_.empty()) {
     auto it = jobs_.find(unassigned_.front());
     if (it != jobs_.end() && it->second.queued) return unassigned_.front();
-    unassigned_.pop_front();  // done, held or its frame gone since it was queued
+    unassigned_.pop_front();  // done, held, the caller's or its frame gone since it was queued
+  }
+  return std::nullopt;
+}
+
+// Not a job it failed, nor one it is rendering (a forced copy goes to another).
+bool Scheduler::may_take(const Job& job, const WorkerId& id) const {
+  return !job.failed_on.count(id) &&
+         std::none_of(job.holders.begin(), job.holders.end(), [&](const Holder& h) { return h.worker == id; });
+}
+
+// The first queued job the worker may take: almost always the front.
+std::optional<size_t> Scheduler::next_unassigned_for(const WorkerId& id) {
+  if (!front_unassigned()) return std::nullopt;
+  for (size_t i = 0; i < unassigned_.size(); ++i) {
+    auto it = jobs_.find(unassigned_[i]);
+    if (it != jobs_.end() && it->second.queued && may_take(it->second, id)) return i;
   }
   return std::nullopt;
 }
@@ -188,15 +209,14 @@ void Scheduler::assign_unassigned(TimePoint now, std::vector<JobAssignment>& out
     for (const auto& [held, worker] : round) {
       const WorkerId& id = *worker;
       if (!hungry_.count(id)) continue;
-      std::optional<uint64_t> job_id = front_unassigned();
-      if (!job_id) return;
-      const Job& job = jobs_.at(*job_id);
-      if (std::any_of(job.holders.begin(), job.holders.end(), [&](const Holder& h) { return h.worker == id; }))
-        continue;  // a forced copy: for another worker
-      unassigned_.pop_front();
-      out.push_back(give(id, *job_id, now));
+      if (!front_unassigned()) return;
+      std::optional<size_t> at = next_unassigned_for(id);
+      if (!at) continue;  // every queued job is one it failed, or a forced copy for another worker
+      const uint64_t job_id = unassigned_[*at];
+      unassigned_.erase(unassigned_.begin() + long(*at));
+      out.push_back(give(id, job_id, now));
       if (out.back().duplicate) ++stats_.duplicated;
-      if (forced_duplicates_ > 0 && !out.back().duplicate) force_copy(id, *job_id, now, out);
+      if (forced_duplicates_ > 0 && !out.back().duplicate) force_copy(id, job_id, now, out);
       progress = true;
     }
     if (!progress && level >= deepest) return;  // every hungry worker had its turn and took nothing
@@ -270,7 +290,8 @@ void Scheduler::assign_stragglers(TimePoint now, std::vector<JobAssignment>& out
     if (!is_outstanding(issue) || !straggler_eligible(issue, now)) continue;
     // A proven worker (one that has answered) first: a copy given to another
     // silent newcomer could be held as long as the original.
-    auto other = [&](const WorkerId& id) { return id != issue.worker; };
+    const Job& job = jobs_.at(issue.job_id);
+    auto other = [&](const WorkerId& id) { return id != issue.worker && !job.failed_on.count(id); };
     auto w = std::find_if(hungry_.begin(), hungry_.end(),
                           [&](const WorkerId& id) { return other(id) && workers_.at(id).answered > 0; });
     if (w == hungry_.end()) w = std::find_if(hungry_.begin(), hungry_.end(), other);
@@ -313,7 +334,9 @@ void Scheduler::assign_verifications(TimePoint now, std::vector<JobAssignment>& 
         if (voters.count(id)) return true;
       return false;
     };
-    auto w = std::find_if(hungry_.begin(), hungry_.end(), [&](const WorkerId& id) { return !voted(id); });
+    const Job& job = jobs_.at(frame.held.front());
+    auto w = std::find_if(hungry_.begin(), hungry_.end(),
+                          [&](const WorkerId& id) { return !voted(id) && !job.failed_on.count(id); });
     if (w == hungry_.end()) continue;
     const WorkerId id = *w;
     ++stats_.verified;
@@ -349,6 +372,7 @@ void Scheduler::reclaim_lost(TimePoint now) {
 std::vector<JobAssignment> Scheduler::assign(TimePoint now) {
   std::vector<JobAssignment> out;
   reclaim_lost(now);
+  hand_failed_jobs_to_caller();
   if (hungry_.empty()) return out;
   assign_unassigned(now, out);
   if (hungry_.empty() || front_unassigned()) return out;
@@ -399,19 +423,64 @@ void Scheduler::drop_result(const WorkerId& id, uint64_t job_id) {
   if (job != jobs_.end()) release_holder(job->second, id, TimePoint{}, false);
 }
 
-bool Scheduler::on_bad_result(const WorkerId& id, uint64_t job_id) {
+void Scheduler::on_bad_result(const WorkerId& id, uint64_t job_id) {
   ++stats_.failed_results;
   auto w = workers_.find(id);
   const bool standing = !config_.failures_need_standing || (w != workers_.end() && w->second.answered > 0);
   drop_result(id, job_id);
   auto it = jobs_.find(job_id);
-  if (it == jobs_.end()) return false;
+  if (it == jobs_.end()) return;
   Job& job = it->second;
-  requeue(job_id);
-  if (!standing) return false;  // a peer that never returned a result cannot condemn a job
-  ++job.failures;
   job.failed_on.insert(id);
-  return job.failures >= config_.max_failures || int(job.failed_on.size()) >= config_.max_failed_workers;
+  if (standing) job.counted_failers.insert(id);  // a peer that never returned a result only loses the job
+  requeue(job_id);
+  failing_.insert(job_id);
+  hand_failed_jobs_to_caller();
+}
+
+// A queued job that failed on every worker present (on the only one, say),
+// or on too many: no worker gets it again; the caller renders it itself.
+void Scheduler::hand_failed_jobs_to_caller() {
+  for (auto f = failing_.begin(); f != failing_.end();) {
+    auto it = jobs_.find(*f);
+    if (it == jobs_.end() || it->second.done || !it->second.queued) {
+      f = failing_.erase(f);  // done, gone, or out again (a new failure adds it back)
+      continue;
+    }
+    Job& job = it->second;
+    const bool too_many = int(job.counted_failers.size()) >= config_.max_failed_workers;
+    const bool nobody_else =
+        !workers_.empty() && std::all_of(workers_.begin(), workers_.end(),
+                                         [&](const auto& w) { return job.failed_on.count(w.first) > 0; });
+    if (!too_many && !nobody_else) {
+      ++f;
+      continue;
+    }
+    job.queued = false;  // its entry in unassigned_ is skipped from now on
+    job.own = true;
+    ++stats_.own_jobs;
+    own_jobs_.push_back(JobAssignment{WorkerId{}, *f, job.frame_id, job.tile, false});
+    f = failing_.erase(f);
+  }
+}
+
+std::vector<JobAssignment> Scheduler::take_own_jobs() { return std::exchange(own_jobs_, {}); }
+
+bool Scheduler::on_own_result(uint64_t job_id) {
+  auto it = jobs_.find(job_id);
+  if (it == jobs_.end() || !it->second.own) return false;
+  Job& job = it->second;
+  job.own = false;
+  Frame& frame = frames_.at(job.frame_id);
+  if (!job.done) complete(frame, job);
+  if (!frame.reference) try_decide(frame);  // the last job in: a lone voter may decide now
+  return true;
+}
+
+std::vector<WorkerId> Scheduler::failed_on(uint64_t job_id) const {
+  auto it = jobs_.find(job_id);
+  if (it == jobs_.end()) return {};
+  return {it->second.failed_on.begin(), it->second.failed_on.end()};
 }
 
 ResultVerdict Scheduler::on_result(const WorkerId& id, uint64_t job_id, uint64_t hash, TimePoint now) {

@@ -25,17 +25,20 @@
 //  - A copy still out when its frame completes gives its worker's credit back.
 //  - The first usable result for a job wins; later copies are dropped.
 //  - A result that fails validation (it does not decode, non-finite pixels,
-//    a rectangle that is not its job's) releases the job to the pool; a job whose results failed
-//    on `max_failed_workers` distinct workers, or `max_failures` times in all,
-//    fails deterministically and the caller must end the run. With
-//    `failures_need_standing` only failures from workers that have returned a
-//    result count (fresh identities that fail on purpose cannot end a run).
+//    a rectangle that is not its job's) releases the job to the pool, and the
+//    job never goes back to a worker that failed it. When every worker
+//    present has failed it, or `max_failed_workers` workers have, the caller
+//    renders it itself (take_own_jobs(), then on_own_result()): no one
+//    worker, nor two, can keep a frame from completing. With
+//    `failures_need_standing` only workers that have returned a result count
+//    towards that limit (fresh identities that fail on purpose only lose the
+//    job, and the caller renders a job only when the workers present failed it).
 //  - A worker declared dead gives its outstanding jobs back to the pool.
 //
 // The VPL-set hash (a frame's per-frame state, identical on every correct
 // worker) is the frame's reference, never whatever the first to answer says:
 //  - With `master_reference` (the master's default) the caller computes each
-//    frame's hash itself (reference_hashes.h) and hands it to set_reference();
+//    frame's hash itself (master_renderer.h) and hands it to set_reference();
 //    every worker is judged against it, so no number of agreeing peers can
 //    outvote it. Until it comes, results are held.
 //  - Otherwise, or for a frame whose hash the caller could not compute, the
@@ -80,8 +83,7 @@ struct SchedulerConfig {
   double straggler_factor = 3.0;       // late: older than this many median round trips...
   double min_straggler_seconds = 0.02; // ...and at least this old
   double duplicate_budget = 0.1;       // straggler copies per frame, as a fraction of its jobs (at least 1)
-  int max_failed_workers = 2;          // distinct workers whose result for a job failed validation
-  int max_failures = 3;                // failed results for one job, from any workers
+  int max_failed_workers = 2;          // distinct workers whose result for a job failed: the caller renders it
   bool failures_need_standing = false; // only failures from workers that have returned a result count
   bool master_reference = false;       // frames' hashes come from set_reference(), not from votes
   int first_credits = 0;               // a new worker's credits until it answers (0: all of them at once)
@@ -119,6 +121,7 @@ struct SchedulerStats {
   uint64_t late_dropped = 0;  // results that arrived after another copy answered
   uint64_t held = 0;          // results held until their frame's hash was decided
   uint64_t failed_results = 0;  // results that failed validation
+  uint64_t own_jobs = 0;        // jobs no worker could render, given to the caller (take_own_jobs)
   uint64_t quarantined = 0;   // workers quarantined for a hash that lost
 };
 
@@ -171,8 +174,16 @@ class Scheduler {
   // The result's job is unknown: only the worker's credit comes back.
   void drop_result(const WorkerId& id, uint64_t job_id);
   // The result failed validation: the worker no longer holds the job, which
-  // goes back to the pool. True when the job now fails deterministically.
-  bool on_bad_result(const WorkerId& id, uint64_t job_id);
+  // goes back to the pool for another worker, or to the caller's own.
+  void on_bad_result(const WorkerId& id, uint64_t job_id);
+  // Jobs that failed on every worker that could take them: the caller renders
+  // each itself and hands the result in with on_own_result(). `worker` is empty.
+  std::vector<JobAssignment> take_own_jobs();
+  // The caller's own result for a job from take_own_jobs(): it counts, whatever
+  // its frame's hash (the caller is the judge). False when the job is gone (its frame was cancelled).
+  bool on_own_result(uint64_t job_id);
+  // The workers whose results for the job failed validation, in no order.
+  std::vector<WorkerId> failed_on(uint64_t job_id) const;
 
   // Frames whose every job is back and counted, in frame order; removes them,
   // and gives workers back the credit of copies still out for them.
@@ -185,6 +196,7 @@ class Scheduler {
 
   int outstanding(const WorkerId& id) const;
   bool holds(const WorkerId& id, uint64_t job_id) const;  // the worker has this job and has not answered it
+  bool answered(uint64_t job_id) const;  // another copy's result is in (it counts, or is held for the hash)
   const SchedulerStats& stats() const { return stats_; }
   double median_round_trip() const;  // seconds; 0 before any
   // Test hook: hand the next `n` jobs out twice on purpose (the copy at once, to another worker, whatever its credit).
@@ -209,8 +221,9 @@ class Scheduler {
     uint64_t held_hash = 0;
     bool done = false;
     bool queued = false;  // in unassigned_
-    int failures = 0;
-    std::set<WorkerId> failed_on;
+    std::set<WorkerId> failed_on;    // every worker that failed it: it never goes back to them
+    std::set<WorkerId> counted_failers;  // those whose failures count (failures_need_standing)
+    bool own = false;                // the caller renders it (take_own_jobs)
   };
   struct Frame {
     std::vector<uint64_t> jobs;
@@ -240,6 +253,9 @@ class Scheduler {
   void assign_stragglers(TimePoint now, std::vector<JobAssignment>& out);
   void assign_verifications(TimePoint now, std::vector<JobAssignment>& out);
   std::optional<uint64_t> front_unassigned();
+  std::optional<size_t> next_unassigned_for(const WorkerId& id);  // index in unassigned_
+  bool may_take(const Job& job, const WorkerId& id) const;
+  void hand_failed_jobs_to_caller();
   bool is_outstanding(const Issue& issue) const;
   void trim_issued();
   bool straggler_eligible(const Issue& issue, TimePoint now) const;
@@ -269,6 +285,8 @@ class Scheduler {
   std::unordered_map<uint64_t, Job> jobs_;
   std::deque<uint64_t> unassigned_;  // in the order they should go out; stale entries skipped
   std::deque<Issue> issued_;         // copies in the order handed out; stale entries skipped
+  std::set<uint64_t> failing_;       // queued jobs that failed somewhere: may be the caller's now
+  std::vector<JobAssignment> own_jobs_;  // for the caller to render (take_own_jobs)
   std::vector<double> round_trips_;  // the latest kRoundTrips, as a ring
   size_t round_trip_next_ = 0;
   mutable std::optional<double> median_;  // of round_trips_, until the next sample

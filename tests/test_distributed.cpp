@@ -1,6 +1,9 @@
 // Headless tile-result tests: a master with local or extra workers gives the
 // very image the single-process renderer gives, whatever happens to workers.
 #include <algorithm>
+#include <atomic>
+#include <cstring>
+#include <limits>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -257,6 +260,120 @@ TEST(Distributed, LightImportanceAndBidirectionalMatchOneProcessWithAWorkerKille
     std::snprintf(name, sizeof name, "dist-importance-%04d.exr", f);
     EXPECT_TRUE(test::images_identical(name, read_image(test::output_path(name)), one));
   }
+}
+
+// A ZeroMQ proxy between workers and the master that puts a NaN into every
+// result for one tile of one frame, however often the tile is rendered: as a
+// faulty switch or a hostile hop would. Each worker connection gets a DEALER
+// of its own towards the master, so the master sees the workers as they are.
+class SpoilingProxy {
+ public:
+  SpoilingProxy(const std::string& master, uint64_t frame_id, int tile_x, int tile_y)
+      : master_(master), frame_id_(frame_id), tile_x_(tile_x), tile_y_(tile_y) {
+    front_.bind("tcp://127.0.0.1:0");
+    endpoint_ = front_.get(zmq::sockopt::last_endpoint);
+    thread_ = std::thread([this] { run(); });
+  }
+  ~SpoilingProxy() {
+    stop_ = true;
+    thread_.join();
+  }
+  const std::string& endpoint() const { return endpoint_; }
+  int spoiled() const { return spoiled_; }
+
+ private:
+  void run() {
+    std::map<std::string, zmq::socket_t> back;  // worker identity -> its DEALER to the master
+    while (!stop_) {
+      std::vector<zmq::pollitem_t> items{{front_.handle(), 0, ZMQ_POLLIN, 0}};
+      std::vector<const std::string*> ids;
+      for (auto& [id, socket] : back) {
+        items.push_back({socket.handle(), 0, ZMQ_POLLIN, 0});
+        ids.push_back(&id);
+      }
+      zmq::poll(items, std::chrono::milliseconds(20));
+      if (items[0].revents & ZMQ_POLLIN) {
+        zmq::message_t id, payload;
+        (void)front_.recv(id);
+        (void)front_.recv(payload);
+        auto it = back.find(id.to_string());
+        if (it == back.end()) {
+          it = back.emplace(id.to_string(), zmq::socket_t(context_, zmq::socket_type::dealer)).first;
+          it->second.set(zmq::sockopt::linger, 0);
+          it->second.connect(master_);
+        }
+        spoil(payload);
+        it->second.send(payload, zmq::send_flags::none);
+      }
+      for (size_t i = 1; i < items.size(); ++i) {
+        if (!(items[i].revents & ZMQ_POLLIN)) continue;
+        zmq::message_t payload;
+        (void)back.at(*ids[i - 1]).recv(payload);
+        front_.send(zmq::buffer(*ids[i - 1]), zmq::send_flags::sndmore);
+        front_.send(payload, zmq::send_flags::none);
+      }
+    }
+    for (auto& [id, socket] : back) socket.close();
+  }
+  void spoil(zmq::message_t& payload) {
+    std::span<const uint8_t> bytes(payload.data<uint8_t>(), payload.size());
+    if (!protocol::is_tile_result(bytes)) return;
+    std::string error;
+    std::optional<protocol::TileResultView> view = protocol::decode_tile_result(bytes, error);
+    if (!view || view->fields.frame_id != frame_id_ || view->fields.tile.x != tile_x_ || view->fields.tile.y != tile_y_)
+      return;
+    uint8_t* pixel = payload.data<uint8_t>() + (view->pixel_bytes.data() - bytes.data());
+    if (view->fields.pixel_format == PixelFormat::Float16) {
+      pixel[0] = 0x00, pixel[1] = 0x7e;  // a half NaN
+    } else {
+      const float nan = std::numeric_limits<float>::quiet_NaN();
+      std::memcpy(pixel, &nan, sizeof nan);
+    }
+    ++spoiled_;
+  }
+
+  zmq::context_t context_;
+  zmq::socket_t front_{context_, zmq::socket_type::router};
+  std::string endpoint_, master_;
+  uint64_t frame_id_;
+  int tile_x_, tile_y_;
+  std::atomic<bool> stop_{false};
+  std::atomic<int> spoiled_{0};
+  std::thread thread_;
+};
+
+// Honest workers behind that proxy: the tile fails validation on one, goes to
+// the other (never back), fails there too, and the master renders it itself.
+// Every frame is written, each the one-process image; no worker is
+// quarantined, and the log and the totals agree on what happened.
+TEST(Distributed, AProxyThatSpoilsOneTileCostsNoFrame) {
+  const int port = test::free_port();
+  const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(port);
+  const std::string out = test::output_path("dist-spoiled.exr"), stats = test::output_path("dist-spoiled.json");
+  SpoilingProxy proxy(endpoint, 1, 16, 32);
+  pid_t m = test::start(master("--workers 0 --min-workers 2 --frames 4 --listen " + endpoint + " -o " + out +
+                               " --stats " + stats + " > " + out + ".log 2>&1"));
+  std::vector<pid_t> workers;
+  for (int i = 0; i < 2; ++i)
+    workers.push_back(test::start(std::string(IGI_WORKER_BINARY) + " --connect " + proxy.endpoint() +
+                                  " --threads 1 --quiet"));
+  EXPECT_EQ(test::wait_exit(m, 120), 0);
+  for (pid_t w : workers) EXPECT_EQ(test::wait_exit(w, 20), 0) << "no worker was quarantined (that is exit 5)";
+  std::ifstream log_file(out + ".log");
+  const std::string log((std::istreambuf_iterator<char>(log_file)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(proxy.spoiled(), 2) << "once on each worker, then never again: " << log;
+  EXPECT_NE(log.find("failed validation on worker-"), std::string::npos) << log;
+  EXPECT_NE(log.find("the master renders it itself"), std::string::npos) << log;
+  EXPECT_NE(log.find("tiles the master rendered 1, workers quarantined 0"), std::string::npos) << log;
+  for (int f = 0; f < 4; ++f) {
+    const std::string name = "dist-spoiled-000" + std::to_string(f);
+    EXPECT_TRUE(test::images_identical(name, read_image(test::output_path(name + ".exr")), single_process()));
+  }
+  nlohmann::json s = test::read_stats(stats);
+  EXPECT_EQ(s["outcome"], "done");
+  EXPECT_EQ(s["own_tiles"].get<int>(), 1);
+  EXPECT_EQ(s["frames"][3]["failed_results_total"].get<int>(), 2);
+  EXPECT_EQ(s["frames"][3]["quarantined_total"].get<int>(), 0);
 }
 
 TEST(Distributed, WorkerJoiningMidSessionGetsWork) {

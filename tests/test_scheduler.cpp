@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <queue>
 
 #include "scheduler.h"
@@ -408,42 +409,122 @@ TEST(Scheduler, ANewWorkerHoldsTwoJobsUntilItAnswersAndCopiesGoToProvenWorkers) 
   EXPECT_TRUE(copies[0].duplicate);
 }
 
-TEST(Scheduler, AResultThatFailsValidationReleasesItsJob) {
+// A failed job goes to another worker, never back to the one that failed it
+// (which takes the next job meanwhile).
+TEST(Scheduler, AResultThatFailsValidationSendsItsJobToAnotherWorker) {
   Scheduler s(1, 2);
   s.add_worker("a");
+  s.add_worker("b");
+  s.add_frame(0, tiles(3));
+  const auto first = s.assign(at(0));
+  ASSERT_EQ(first.size(), 2u);
+  const JobAssignment failed = for_worker(first, "a").at(0);
+  s.on_bad_result("a", failed.job_id);
+  EXPECT_EQ(s.outstanding("a"), 0) << "its credit is back";
+  EXPECT_EQ(s.stats().reissued, 1u);
+  const auto next = s.assign(at(1));
+  ASSERT_EQ(next.size(), 1u);
+  EXPECT_EQ(next[0].worker, "a");
+  EXPECT_NE(next[0].job_id, failed.job_id) << "a takes the next job, not the one it failed";
+  answer(s, for_worker(first, "b"), 5, at(2));
+  const auto again = s.assign(at(2));
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_EQ(again[0].worker, "b");
+  EXPECT_EQ(again[0].job_id, failed.job_id) << "b, which has not failed it, does";
+  EXPECT_TRUE(s.take_own_jobs().empty()) << "one failure with another worker present: not the caller's";
+  answer(s, again, 5, at(3));
+  answer(s, next, 5, at(3));
+  EXPECT_EQ(s.take_completed_frames(), std::vector<uint64_t>{0});
+  EXPECT_EQ(s.stats().failed_results, 1u);
+}
+
+// Two workers failed it: the caller renders it, and its result completes the frame.
+TEST(Scheduler, AJobTwoWorkersFailedIsTheCallers) {
+  Scheduler s(1, 2);
+  s.add_worker("a");
+  s.add_worker("b");
+  s.add_worker("c");
   s.add_frame(0, tiles(1));
   auto j = s.assign(at(0));
   ASSERT_EQ(j.size(), 1u);
-  EXPECT_FALSE(s.on_bad_result("a", j[0].job_id)) << "one failure is not yet deterministic";
-  EXPECT_EQ(s.outstanding("a"), 0) << "its credit is back";
-  EXPECT_EQ(s.stats().reissued, 1u);
-  // Another worker takes it over (a has gone) and fails it too: two workers, deterministic.
-  s.add_worker("b");
-  s.remove_worker("a");
+  const uint64_t job = j[0].job_id;
+  s.on_bad_result(j[0].worker, job);
   auto again = s.assign(at(1));
-  ASSERT_EQ(again.size(), 1u) << "the job goes out again";
-  EXPECT_EQ(again[0].job_id, j[0].job_id);
-  EXPECT_EQ(again[0].worker, "b");
-  EXPECT_FALSE(again[0].duplicate);
-  EXPECT_TRUE(s.on_bad_result("b", again[0].job_id)) << "two workers failed it: deterministic";
-  EXPECT_EQ(s.stats().failed_results, 2u);
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_NE(again[0].worker, j[0].worker);
+  EXPECT_TRUE(s.take_own_jobs().empty());
+  s.on_bad_result(again[0].worker, job);
+  EXPECT_TRUE(s.assign(at(2)).empty()) << "the third worker does not get it: two failed it";
+  const auto own = s.take_own_jobs();
+  ASSERT_EQ(own.size(), 1u);
+  EXPECT_EQ(own[0].job_id, job);
+  EXPECT_EQ(own[0].frame_id, 0u);
+  EXPECT_TRUE(own[0].worker.empty());
+  EXPECT_EQ(s.stats().own_jobs, 1u);
+  const auto failers = s.failed_on(job);
+  EXPECT_EQ(std::set<WorkerId>(failers.begin(), failers.end()), (std::set<WorkerId>{j[0].worker, again[0].worker}));
+  EXPECT_TRUE(s.take_completed_frames().empty());
+  EXPECT_TRUE(s.on_own_result(job));
+  EXPECT_FALSE(s.on_own_result(job)) << "once";
+  EXPECT_EQ(s.take_completed_frames(), std::vector<uint64_t>{0});
 }
 
-TEST(Scheduler, ThreeFailuresOnOneWorkerAreDeterministicToo) {
+// A lone worker that fails a job: the caller renders it at once; the worker
+// never sees it again, and the frame completes.
+TEST(Scheduler, ALoneWorkersFailedJobIsTheCallersAtOnce) {
+  Scheduler s(1, 2);
+  s.add_worker("only");
+  s.add_frame(0, tiles(2));
+  auto j = s.assign(at(0));
+  ASSERT_EQ(j.size(), 1u);
+  s.on_bad_result("only", j[0].job_id);
+  const auto own = s.take_own_jobs();
+  ASSERT_EQ(own.size(), 1u);
+  EXPECT_EQ(own[0].job_id, j[0].job_id);
+  auto next = s.assign(at(1));
+  ASSERT_EQ(next.size(), 1u);
+  EXPECT_NE(next[0].job_id, j[0].job_id);
+  answer(s, next, 5, at(2));
+  EXPECT_TRUE(s.assign(at(3)).empty()) << "nothing left for it";
+  EXPECT_TRUE(s.take_completed_frames().empty()) << "the caller's job is still out";
+  EXPECT_TRUE(s.on_own_result(j[0].job_id));
+  EXPECT_EQ(s.take_completed_frames(), std::vector<uint64_t>{0});
+}
+
+// A job one worker failed waits for the other; when the other leaves, the
+// only worker present has failed it: the caller's.
+TEST(Scheduler, AFailedJobBecomesTheCallersWhenItsOtherWorkersLeave) {
+  Scheduler s(1, 2);
+  s.add_worker("a");
+  s.add_worker("b");
+  s.add_frame(0, tiles(3));
+  const auto first = s.assign(at(0));
+  const JobAssignment failed = for_worker(first, "a").at(0);
+  s.on_bad_result("a", failed.job_id);
+  s.assign(at(1));  // a takes the third job
+  EXPECT_TRUE(s.take_own_jobs().empty());
+  s.remove_worker("b");
+  s.assign(at(2));
+  const auto own = s.take_own_jobs();
+  ASSERT_EQ(own.size(), 1u);
+  EXPECT_EQ(own[0].job_id, failed.job_id);
+}
+
+// The caller's job of a frame the view left: its result is not wanted.
+TEST(Scheduler, ACancelledFramesOwnJobIsNotWanted) {
   Scheduler s(1, 2);
   s.add_worker("only");
   s.add_frame(0, tiles(1));
-  bool deterministic = false;
-  for (int i = 0; i < 3; ++i) {
-    auto j = s.assign(at(i));
-    ASSERT_EQ(j.size(), 1u);
-    deterministic = s.on_bad_result("only", j[0].job_id);
-    EXPECT_EQ(deterministic, i == 2) << "failure " << i + 1;
-  }
+  auto j = s.assign(at(0));
+  s.on_bad_result("only", j[0].job_id);
+  ASSERT_EQ(s.take_own_jobs().size(), 1u);
+  s.cancel_frame(0);
+  EXPECT_FALSE(s.on_own_result(j[0].job_id));
 }
 
-// Fresh identities that fail a job on purpose cannot make it "fail on every
-// worker" and end the run: only workers that have returned a result count.
+// Fresh identities that fail a job on purpose only lose it: with proven
+// workers present the job is theirs, and the caller takes it over only when
+// two proven workers failed it.
 TEST(Scheduler, FailuresFromWorkersThatNeverAnsweredDoNotCondemnAJob) {
   SchedulerConfig config;
   config.credits = 1;
@@ -462,7 +543,8 @@ TEST(Scheduler, FailuresFromWorkersThatNeverAnsweredDoNotCondemnAJob) {
     auto j = s.assign(at(2 + i));
     ASSERT_EQ(j.size(), 1u);
     ASSERT_EQ(j[0].worker, fake);
-    EXPECT_FALSE(s.on_bad_result(fake, j[0].job_id)) << "fake " << i;
+    s.on_bad_result(fake, j[0].job_id);
+    EXPECT_TRUE(s.take_own_jobs().empty()) << "fake " << i;
     s.remove_worker(fake);
   }
   for (const char* w : {"a", "b"}) {  // the proven workers fail it too: now it is the job
@@ -470,8 +552,8 @@ TEST(Scheduler, FailuresFromWorkersThatNeverAnsweredDoNotCondemnAJob) {
     auto j = s.assign(at(10));
     ASSERT_EQ(j.size(), 1u);
     ASSERT_EQ(j[0].worker, w);
-    EXPECT_EQ(s.on_bad_result(w, j[0].job_id), std::string(w) == "b") << w;
-    s.remove_worker(w);  // so the other takes the job
+    s.on_bad_result(w, j[0].job_id);
+    EXPECT_EQ(s.take_own_jobs().size(), std::string(w) == "b" ? 1u : 0u) << w;
   }
 }
 
@@ -567,7 +649,9 @@ TEST(Scheduler, UnknownResultsAreHarmless) {
   EXPECT_EQ(s.on_result("a", 999, 0, at(0)), ResultVerdict::Unknown);
   EXPECT_EQ(s.on_result("ghost", 999, 0, at(0)), ResultVerdict::Unknown);
   s.drop_result("ghost", 999);
-  EXPECT_FALSE(s.on_bad_result("ghost", 999));
+  s.on_bad_result("ghost", 999);
+  EXPECT_TRUE(s.take_own_jobs().empty());
+  EXPECT_FALSE(s.on_own_result(999));
 }
 
 TEST(Scheduler, ForcedDuplicatesGoToAnotherWorker) {

@@ -6,10 +6,8 @@
 #include <string>
 #include <utility>
 
-#include "core/pixel_surface.h"
 #include "methods/memory_check.h"
-#include "protocol/pixels.h"
-#include "scene/accel.h"
+#include "protocol/tile_render.h"
 
 #include <sys/eventfd.h>
 #include <unistd.h>
@@ -88,19 +86,8 @@ protocol::TileResult RenderPool::render(const protocol::TileJobMsg& job, FrameSt
   if (std::string error = tile_memory_error(frame.settings, job.tile.w, job.tile.h, int(threads_.size()), memory_bytes_);
       !error.empty())
     throw std::invalid_argument(error);
-  protocol::TileResult r;
-  r.frame_id = job.frame_id;
-  r.job_id = job.job_id;
-  r.tile = job.tile;
-  r.pixels.resize(size_t(job.tile.w) * job.tile.h);
-  frame.method->render_tile(job.tile, r.pixels, r.rays);
-  if (frame.setup.want_surfaces) {  // the master's reprojection; its rays are counted with the camera's
-    r.surfaces.resize(r.pixels.size());
-    r.rays.primary += trace_pixel_surfaces(scene_.context().accel, frame.setup, job.tile, r.surfaces);
-  }
-  r.pixel_format = format_;
-  r.nonfinite_pixels = protocol::wire_pixels(r.pixels, format_);  // the master rejects non-finite pixels
-  r.frame_state_hash = frame.method->frame_state_hash();
+  protocol::TileResult r =
+      protocol::render_tile_result(*frame.method, scene_.context().accel, frame.setup, job.job_id, job.tile, format_);
   r.render_seconds = std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

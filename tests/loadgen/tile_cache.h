@@ -36,7 +36,7 @@ class TileCache {
   static void poison(zmq::message_t& answer, PixelFormat format);
 
   // The VPL-set hash a correct worker of the built-in Cornell box reports for
-  // this frame (the master computes the same one: master/reference_hashes.h);
+  // this frame (the master computes the same one: master/master_renderer.h);
   // thread-safe, computed once per frame setup.
   uint64_t frame_hash(const FrameSetup& frame, const RenderSettings& settings);
 

@@ -1,0 +1,111 @@
+#include "master_renderer.h"
+
+#include <exception>
+#include <memory>
+#include <utility>
+
+#include <sys/eventfd.h>
+#include <unistd.h>
+
+#include "core/method.h"
+#include "protocol/codec.h"
+#include "protocol/tile_render.h"
+#include "render/scene_state.h"
+
+namespace igi {
+
+MasterRenderer::MasterRenderer(Scene scene) : fd_(eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC)) {
+  thread_ = std::thread([this, s = std::move(scene)]() mutable { run(std::move(s)); });
+}
+
+MasterRenderer::~MasterRenderer() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+    requests_.clear();
+  }
+  wake_.notify_all();
+  thread_.join();
+  close(fd_);
+}
+
+void MasterRenderer::request(const FrameSetup& frame, const RenderSettings& settings) {
+  {
+    std::lock_guard lock(mutex_);
+    requests_.push_back({frame, settings, std::nullopt, {}, PixelFormat::Float32});
+  }
+  wake_.notify_one();
+}
+
+void MasterRenderer::request_tile(const FrameSetup& frame, const RenderSettings& settings, uint64_t job_id,
+                                  const TileJob& tile, PixelFormat format) {
+  {
+    std::lock_guard lock(mutex_);
+    requests_.push_back({frame, settings, job_id, tile, format});
+  }
+  wake_.notify_one();
+}
+
+std::vector<MasterRenderer::Answer> MasterRenderer::take() {
+  std::lock_guard lock(mutex_);
+  uint64_t count;
+  while (read(fd_, &count, sizeof count) > 0) {}
+  return std::exchange(answers_, {});
+}
+
+std::vector<MasterRenderer::TileAnswer> MasterRenderer::take_tiles() {
+  std::lock_guard lock(mutex_);
+  uint64_t count;
+  while (read(fd_, &count, sizeof count) > 0) {}
+  return std::exchange(tile_answers_, {});
+}
+
+// As a worker's render pool does it: the scene posed for the frame, then the
+// frame's method made and begun (render_pool.cpp), then its hash or the tile.
+void MasterRenderer::run(Scene scene) {
+  enable_flush_to_zero();  // as on every render thread: the VPLs' floats must be the workers'
+  std::unique_ptr<SceneState> state;
+  std::string load_error;
+  try {
+    state = std::make_unique<SceneState>(std::move(scene));
+  } catch (const std::exception& e) {
+    load_error = std::string("the master cannot build the scene: ") + e.what();
+  }
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    wake_.wait(lock, [&] { return stopping_ || !requests_.empty(); });
+    if (stopping_) return;
+    const Request request = std::move(requests_.front());
+    requests_.pop_front();
+    lock.unlock();
+    Answer answer;
+    TileAnswer tile;
+    answer.frame_id = request.frame.frame_id;
+    answer.error = tile.error = load_error;
+    if (state) {
+      try {
+        state->set_pose(request.frame.pose);
+        std::unique_ptr<Method> method = make_method(state->context(), request.settings);
+        method->begin_frame(request.frame);
+        if (request.job_id)
+          tile.result = protocol::encode(protocol::render_tile_result(*method, state->context().accel, request.frame,
+                                                                      *request.job_id, request.tile, request.format));
+        else
+          answer.hash = method->frame_state_hash();
+      } catch (const std::exception& e) {
+        answer.error = tile.error = e.what();
+      }
+    }
+    lock.lock();
+    if (request.job_id) {
+      tile.job_id = *request.job_id;
+      tile_answers_.push_back(std::move(tile));
+    } else {
+      answers_.push_back(std::move(answer));
+    }
+    const uint64_t one = 1;
+    (void)!write(fd_, &one, sizeof one);
+  }
+}
+
+}  // namespace igi
