@@ -13,6 +13,7 @@
 #include "render/frame_renderer.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_pack.h"
+#include "scene/libraries.h"
 #include "scene/scene_file.h"
 
 namespace igi {
@@ -193,7 +194,7 @@ void MasterSession::add_frame(const FrameSetup& frame, const RenderSettings& set
     tiles_cut_ = {frame.width, frame.height, border};
   }
   scheduler_.add_frame(frame.frame_id, tiles_);
-  if (referee_) referee_->request(frame, settings);
+  if (referee_ && !follows_workers_) referee_->request(frame, settings);
 }
 
 void MasterSession::cancel_frame(uint64_t frame_id) {
@@ -236,6 +237,7 @@ void MasterSession::step(Clock::time_point now, std::vector<CompletedFrame>& don
   take_references();
   dispatch(scheduler_.assign(now));
   render_own_jobs();
+  for (const HashDispute& d : scheduler_.take_disputes()) on_dispute(d);
   take_quarantined();
   for (const std::string& identity : std::exchange(congested_, {}))
     if (peers_.count(identity)) {
@@ -376,12 +378,18 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
   peer.last_heard = peer.last_sent = Clock::now();
   peer.frames_sent.clear();
   peer.failed_results = 0;
+  peer.libraries = hello.libraries;
   scheduler_.remove_worker(identity);  // another Hello on this connection (other threads): its old jobs go back first
   // Enough jobs to keep every thread busy while results travel.
   const int wanted = std::max<int>(options_.credits, 2 * int(std::min<uint32_t>(hello.threads, 32)));
   peer.credits = uint32_t(std::min<int>(wanted, protocol::kMaxCredits));  // --credits is within it already
   scheduler_.add_worker(identity, int(peer.credits));
-  log_peer(peer.name + " joined (" + std::to_string(hello.threads) + " threads)");
+  const bool other_libraries = !hello.libraries.empty() && hello.libraries != runtime_libraries();
+  log_peer(peer.name + " joined (" + std::to_string(hello.threads) + " threads" +
+           (other_libraries ? "; it runs " + hello.libraries + ", the master " + runtime_libraries() +
+                                  ": their VPL sets may differ"
+                            : "") +
+           ")");
   send(identity, welcome(peer.credits));
 }
 
@@ -531,8 +539,11 @@ void MasterSession::render_own_jobs() {
                              ", tile " + describe(job.tile) + ") failed validation on " +
                              (failed != job_failures_.end() ? failed->second.text : std::string("its workers"));
     if (failed != job_failures_.end()) job_failures_.erase(failed);
-    if (!referee_) {
-      if (fatal_.empty()) fatal_ = what + ", and no other worker may take it: its frame can never complete";
+    if (!referee_ || follows_workers_) {  // a master whose VPL sets lost to its workers' would render another tile
+      if (fatal_.empty())
+        fatal_ = what + ", no other worker may take it and the master cannot render it" +
+                 (follows_workers_ ? " as they would (its VPL sets differ from theirs)" : "") +
+                 ": its frame can never complete";
       return;
     }
     if (++own_logged_ <= kLogFirst || own_logged_ % 100 == 0)  // always said, never a flood
@@ -632,6 +643,37 @@ void MasterSession::take_references() {
     scheduler_.set_reference(a.frame_id, a.hash);
   }
   for (const MasterRenderer::TileAnswer& a : referee_->take_tiles()) use_own_result(a);
+}
+
+// Every worker agrees on a frame's VPL sets and the master's own differ: the
+// master is likelier wrong than they (a maths library 1 ulp off, which no
+// version names, is enough). Authenticated workers are followed; anonymous
+// ones could be two fakes, so the run ends at once, saying why.
+void MasterSession::on_dispute(const HashDispute& d) {
+  std::string names, libraries;
+  for (const WorkerId& id : d.workers) {
+    auto peer = peers_.find(id);
+    const std::string name = peer != peers_.end() ? peer->second.name : "a departed worker";
+    names += (names.empty() ? "" : ", ") + name;
+    if (peer != peers_.end() && peer->second.libraries != runtime_libraries())
+      libraries += "; " + name + " runs " + peer->second.libraries;
+  }
+  const std::string what =
+      "frame " + std::to_string(d.frame_id) + ": the master's VPL-set hash " + hash_hex(d.callers_hash) +
+      " differs from the one all its workers agree on (" + names + ": " + hash_hex(d.workers_hash) +
+      "). The master is the odd one out: likely its maths library or CPU (the master runs " + runtime_libraries() +
+      (libraries.empty() ? ", as they do: a library that differs under one version, LD_PRELOAD, another libm"
+                           " dispatch for this CPU" : libraries) + ")";
+  if (!zap_) {
+    if (fatal_.empty())
+      fatal_ = what + ". Without CURVE keys two agreeing workers could be two fakes, so the master cannot follow "
+                      "them: run it where the workers' libraries are, or authenticate the workers (--authorized-keys)";
+    return;
+  }
+  std::fprintf(stderr, "igi-master: %s. The workers are authenticated by their CURVE keys: the master follows their "
+                       "agreement from now on (votes among them decide each frame)\n", what.c_str());
+  follows_workers_ = true;
+  scheduler_.follow_workers();
 }
 
 // Liveness and heartbeats, a few times per heartbeat interval: O(peers), not per message.

@@ -163,6 +163,8 @@ class MasterSession {
   uint64_t declared_dead() const { return declared_dead_; }            // workers silent past the timeout, or not reading
   uint64_t nonfinite_pixels() const { return nonfinite_pixels_; }
   uint64_t own_tiles() const { return own_tiles_; }  // jobs the master rendered itself (no worker's result passed)
+  // The master's VPL sets lost to its authenticated workers', which agreed: votes decide from then on.
+  bool follows_workers() const { return follows_workers_; }
   uint64_t quarantined_count() const { return quarantined_count_; }  // workers quarantined, for any reason
   const SchedulerStats& scheduler_stats() const { return scheduler_.stats(); }
   const std::vector<std::string>& quarantined() const { return quarantined_names_; }  // "worker-3: why"
@@ -183,6 +185,7 @@ class MasterSession {
     uint32_t number = 0, threads = 0, credits = 0;
     std::map<uint64_t, Clock::time_point> sent;  // job id -> when (detailed statistics only)
     double round_trip_ms = 0.0;
+    std::string libraries;  // as its Hello said (scene/libraries.h)
   };
   struct OpenFrame {
     FrameSetup setup;
@@ -212,6 +215,7 @@ class MasterSession {
   void take_quarantined();
   void take_references();
   void render_own_jobs();
+  void on_dispute(const HashDispute& dispute);
   void count_failures_against_workers(uint64_t job_id);
   void use_own_result(const MasterRenderer::TileAnswer& answer);
   void sweep(Clock::time_point now);
@@ -266,6 +270,7 @@ class MasterSession {
   std::map<uint64_t, JobFailures> job_failures_;
   std::map<uint64_t, std::string> own_failures_;  // jobs the master renders: what it said of each
   uint64_t own_tiles_ = 0;
+  bool follows_workers_ = false;  // its own hashes were outvoted once (CURVE only): workers vote from then on
   std::map<uint64_t, OpenFrame> frames_;
   std::vector<TileJob> tiles_;             // the tiles of a frame as tiles_cut_ says
   std::tuple<int, int, int> tiles_cut_{0, 0, 0};  // width, height, border of tiles_

@@ -77,6 +77,7 @@ void Scheduler::take_back(Worker& w, const WorkerId& id, uint64_t job_id) {
 
 void Scheduler::add_frame(uint64_t frame_id, const std::vector<TileJob>& tiles) {
   Frame& frame = frames_[frame_id];
+  frame.id = frame_id;
   frame.by_vote = !config_.master_reference;
   for (const TileJob& tile : tiles) {
     const uint64_t id = next_job_id_++;
@@ -323,7 +324,8 @@ void Scheduler::assign_verifications(TimePoint now, std::vector<JobAssignment>& 
   for (auto& entry : frames_) {
     const Frame& frame = entry.second;  // a plain reference: clang 14 lambdas cannot capture structured bindings
     if (hungry_.empty()) return;
-    if (frame.reference || !frame.by_vote || frame.held.empty() || frame.done + frame.held.size() != frame.jobs.size())
+    const bool voting = frame.by_vote || (frame.callers_hash && !frame.disputed);
+    if (frame.reference || !voting || frame.held.empty() || frame.done + frame.held.size() != frame.jobs.size())
       continue;
     release_lost_copies(frame, now);
     const bool copy_out = std::any_of(frame.held.begin(), frame.held.end(),
@@ -547,15 +549,65 @@ size_t Scheduler::possible_voters(const Frame& frame) const {
 void Scheduler::set_reference(uint64_t frame_id, std::optional<uint64_t> hash) {
   auto it = frames_.find(frame_id);
   if (it == frames_.end() || it->second.reference) return;
-  if (hash) return decide(it->second, *hash);
+  if (hash) {
+    it->second.callers_hash = hash;
+    return judge(it->second);
+  }
   it->second.by_vote = true;
   try_decide(it->second);
+}
+
+// The caller's hash, once a worker agrees; or, once every worker present
+// that could vote has (a proven one, or one rendering a job of the frame;
+// once every job is answered, proven ones only) without one agreeing, the
+// caller's hash all the same (the dissenters are quarantined), unless two or
+// more agree on another: then the caller is likelier wrong than they, and it is asked.
+void Scheduler::judge(Frame& frame) {
+  if (frame.reference || !frame.callers_hash || frame.disputed) return;
+  const uint64_t callers = *frame.callers_hash;
+  if (frame.votes.count(callers)) return decide(frame, callers);
+  if (frame.votes.empty()) return;
+  auto voted = [&](const WorkerId& id) {
+    return std::any_of(frame.votes.begin(), frame.votes.end(), [&](const auto& v) { return v.second.count(id) > 0; });
+  };
+  std::set<WorkerId> rendering;
+  if (frame.done + frame.held.size() < frame.jobs.size())
+    for (uint64_t job_id : frame.jobs)
+      for (const Holder& h : jobs_.at(job_id).holders) rendering.insert(h.worker);
+  for (const auto& [id, worker] : workers_)
+    if ((worker.answered > 0 || rendering.count(id)) && !voted(id)) return;  // verification copies bring its vote
+  if (frame.votes.size() == 1 && frame.votes.begin()->second.size() >= 2) {
+    frame.disputed = true;
+    const auto& [hash, voters] = *frame.votes.begin();
+    disputes_.push_back(HashDispute{frame.id, callers, hash, {voters.begin(), voters.end()}});
+    return;
+  }
+  decide(frame, callers);
+}
+
+std::vector<HashDispute> Scheduler::take_disputes() { return std::exchange(disputes_, {}); }
+
+void Scheduler::follow_workers() {
+  config_.master_reference = false;
+  for (auto& [frame_id, frame] : frames_) {
+    if (frame.reference) continue;
+    frame.callers_hash.reset();
+    frame.by_vote = true;
+    if (frame.disputed) {
+      frame.disputed = false;
+      const uint64_t workers = frame.votes.begin()->first;
+      decide(frame, workers);
+    } else {
+      try_decide(frame);
+    }
+  }
 }
 
 // At least two voters and a strict majority of the possible ones: the losers
 // are always fewer than the winners. A worker decides alone only when it is
 // the frame's only possible voter and has answered every job.
 void Scheduler::try_decide(Frame& frame) {
+  if (frame.callers_hash) return judge(frame);
   if (!frame.by_vote || frame.votes.empty()) return;
   const size_t possible = possible_voters(frame);
   for (const auto& [hash, voters] : frame.votes)

@@ -40,7 +40,13 @@
 //  - With `master_reference` (the master's default) the caller computes each
 //    frame's hash itself (master_renderer.h) and hands it to set_reference();
 //    every worker is judged against it, so no number of agreeing peers can
-//    outvote it. Until it comes, results are held.
+//    outvote it. Results are held until a worker's agrees with it; then the
+//    others' workers are quarantined, and later results are judged at once.
+//    While none agrees, the frame waits for every proven worker present (one
+//    that has returned a result) to vote; then, if two or more voted and all
+//    agree on another hash, the caller is the odd one out (another maths
+//    library, say): the frame is disputed (take_disputes()) and waits for the
+//    caller, which may follow_workers(); otherwise the dissenters are quarantined.
 //  - Otherwise, or for a frame whose hash the caller could not compute, the
 //    workers vote: a hash decides when at least two workers and a strict
 //    majority of the frame's possible voters (workers present, and voters
@@ -125,6 +131,13 @@ struct SchedulerStats {
   uint64_t quarantined = 0;   // workers quarantined for a hash that lost
 };
 
+// A frame whose every proven worker agrees on a hash that is not the caller's own.
+struct HashDispute {
+  uint64_t frame_id = 0;
+  uint64_t callers_hash = 0, workers_hash = 0;
+  std::vector<WorkerId> workers;
+};
+
 // A frame whose voters disagree with no majority possible among the workers present.
 struct HashSplit {
   uint64_t frame_id = 0;
@@ -193,6 +206,11 @@ class Scheduler {
   std::vector<WorkerId> take_quarantined();
   // The oldest frame that cannot be decided without another worker, if any.
   std::optional<HashSplit> stalled_split() const;
+  // Frames disputed since the last call: the workers agree, the caller's hash differs.
+  std::vector<HashDispute> take_disputes();
+  // The caller gives up its own hashes: disputed frames take their workers'
+  // hash, and this frame and every later one are decided by vote.
+  void follow_workers();
 
   int outstanding(const WorkerId& id) const;
   bool holds(const WorkerId& id, uint64_t job_id) const;  // the worker has this job and has not answered it
@@ -226,11 +244,14 @@ class Scheduler {
     bool own = false;                // the caller renders it (take_own_jobs)
   };
   struct Frame {
+    uint64_t id = 0;
     std::vector<uint64_t> jobs;
     size_t done = 0;
     size_t copies = 0;  // straggler copies handed out
-    std::optional<uint64_t> reference;
+    std::optional<uint64_t> reference;  // decided: results with it count
     bool by_vote = true;  // false while the caller's reference is awaited
+    std::optional<uint64_t> callers_hash;  // the caller's reference, until a worker agrees with it
+    bool disputed = false;
     std::map<uint64_t, std::set<WorkerId>> votes;  // until the reference is decided
     std::vector<uint64_t> held;
   };
@@ -269,6 +290,7 @@ class Scheduler {
   bool release_holder(Job& job, const WorkerId& id, TimePoint now, bool sample);
   void complete(Frame& frame, Job& job);
   void try_decide(Frame& frame);
+  void judge(Frame& frame);
   void decide(Frame& frame, uint64_t reference);
   void quarantine(const WorkerId& id);
   size_t possible_voters(const Frame& frame) const;
@@ -287,6 +309,7 @@ class Scheduler {
   std::deque<Issue> issued_;         // copies in the order handed out; stale entries skipped
   std::set<uint64_t> failing_;       // queued jobs that failed somewhere: may be the caller's now
   std::vector<JobAssignment> own_jobs_;  // for the caller to render (take_own_jobs)
+  std::vector<HashDispute> disputes_;
   std::vector<double> round_trips_;  // the latest kRoundTrips, as a ring
   size_t round_trip_next_ = 0;
   mutable std::optional<double> median_;  // of round_trips_, until the next sample

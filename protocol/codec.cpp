@@ -173,6 +173,7 @@ void write(Writer& w, const Hello& m) {
   w.string(m.build_id);
   w.string(m.simd);
   w.u32(m.threads);
+  w.string(m.libraries);
 }
 
 void read(Reader& r, Hello& m) {
@@ -180,6 +181,7 @@ void read(Reader& r, Hello& m) {
   m.simd = r.string("simd", kMaxString);
   m.threads = r.u32("threads");
   check_range(r, "threads", m.threads, 1, kMaxThreads);
+  m.libraries = r.string("libraries", kMaxString);
 }
 
 void write(Writer& w, const Welcome& m) {

@@ -44,7 +44,7 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // that workers ask for by hash as they ask for the scene). 12: settings carry vpl_draws.
 // 13: settings carry lightcuts_block. 14: FrameSetup carries want_surfaces and
 // TileResult its pixels' surfaces (the window's reprojection); CancelFrame.
-inline constexpr uint16_t kVersion = 14;
+inline constexpr uint16_t kVersion = 15;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;
@@ -81,6 +81,7 @@ struct Hello {
   std::string build_id;   // must equal the master's: same binary, same floats
   std::string simd;       // e.g. "avx512", for logs
   uint32_t threads = 1;
+  std::string libraries;  // scene/libraries.h: "glibc 2.36, Embree 3.13.5"; named when VPL sets differ
 };
 
 struct Welcome {

@@ -119,7 +119,7 @@ std::vector<Message> samples() {
   std::vector<uint8_t> scene(300);
   for (size_t i = 0; i < scene.size(); ++i) scene[i] = uint8_t(i * 7);
   return {
-      Hello{"igi-1.0-abc123", "avx2", 12},
+      Hello{"igi-1.0-abc123", "avx2", 12, "glibc 2.36, Embree 3.13.5"},
       Welcome{0x1122334455667788ull, "cornell.glb", 0xcbf29ce484222325ull, 123456, {0.5f, 1.0f, 2.0f}, settings, 3, 250, 1700,
               PixelFormat::Float16, "sky.exr", 0x5eed5eed5eed5eedull, 4096, -30.0f},
       Refuse{"build id mismatch: worker abc, master def"},
@@ -573,7 +573,7 @@ TEST(Protocol, HugeLengthsAndBadBytesAreRejectedBeforeUse) {
   };
   const std::vector<uint8_t> all_ones = {0xFF, 0xFF, 0xFF, 0xFF};
   EXPECT_EQ(patched(sample<Hello>(), 8, all_ones), "Hello.build_id: length 4294967295 over the limit of 4096");
-  EXPECT_EQ(patched(sample<Hello>(), 8, {0, 0x10, 0, 0}), "Hello.build_id: truncated: length 4096, 26 bytes left");
+  EXPECT_EQ(patched(sample<Hello>(), 8, {0, 0x10, 0, 0}), "Hello.build_id: truncated: length 4096, 55 bytes left");
   SceneData scene = sample<SceneData>();
   size_t bytes_at = 8 + 8 + 4 + scene.file_name.size();
   EXPECT_EQ(patched(scene, bytes_at, all_ones), "SceneData.bytes: length 4294967295 over the limit of 536870912");

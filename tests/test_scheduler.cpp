@@ -318,6 +318,60 @@ TEST(Scheduler, WithTheMastersHashNoNumberOfAgreeingWorkersOutvotesIt) {
   EXPECT_EQ(s.stats().verified, 0u);
 }
 
+// The caller is the odd one out: its two workers agree on another hash. The
+// frame is disputed, no one is quarantined, and once the caller follows them
+// the frame completes with theirs, and later frames are decided by vote.
+TEST(Scheduler, TwoWorkersThatAgreeAgainstTheCallerDisputeTheFrame) {
+  SchedulerConfig config;
+  config.credits = 1;
+  config.master_reference = true;
+  Scheduler s(config);
+  s.add_worker("a");
+  s.add_worker("b");
+  s.add_frame(0, tiles(3));
+  const auto first = s.assign(at(0));
+  ASSERT_EQ(first.size(), 2u);
+  s.set_reference(0, 5);
+  EXPECT_EQ(s.on_result("a", for_worker(first, "a")[0].job_id, 7, at(1)), ResultVerdict::Held);
+  EXPECT_TRUE(s.take_disputes().empty()) << "b renders a job of the frame: its vote is awaited";
+  EXPECT_TRUE(s.take_quarantined().empty());
+  EXPECT_EQ(s.on_result("b", for_worker(first, "b")[0].job_id, 7, at(1)), ResultVerdict::Held);
+  const auto disputes = s.take_disputes();
+  ASSERT_EQ(disputes.size(), 1u);
+  EXPECT_EQ(disputes[0].frame_id, 0u);
+  EXPECT_EQ(disputes[0].callers_hash, 5u);
+  EXPECT_EQ(disputes[0].workers_hash, 7u);
+  EXPECT_EQ(disputes[0].workers.size(), 2u);
+  EXPECT_TRUE(s.take_quarantined().empty());
+  s.follow_workers();
+  answer(s, s.assign(at(2)), 7, at(3));
+  EXPECT_EQ(s.take_completed_frames(), std::vector<uint64_t>{0});
+  s.add_frame(1, tiles(2));
+  answer(s, s.assign(at(4)), 7, at(5));
+  EXPECT_EQ(s.take_completed_frames(), std::vector<uint64_t>{1}) << "by vote, no caller's hash awaited";
+  EXPECT_TRUE(s.take_quarantined().empty());
+}
+
+// One worker against the caller is no dispute (it could be a fake, or
+// faulty): it is quarantined as soon as no other worker's vote is awaited;
+// and a second that agrees with the caller settles it at once.
+TEST(Scheduler, OneWorkerAgainstTheCallerIsQuarantinedNotADispute) {
+  SchedulerConfig config;
+  config.credits = 1;
+  config.master_reference = true;
+  Scheduler s(config);
+  s.add_worker("a");
+  s.add_worker("b");
+  s.add_frame(0, tiles(2));
+  const auto jobs = s.assign(at(0));
+  s.set_reference(0, 5);
+  EXPECT_EQ(s.on_result("a", for_worker(jobs, "a")[0].job_id, 7, at(1)), ResultVerdict::Held);
+  EXPECT_TRUE(s.take_quarantined().empty()) << "b's vote is awaited";
+  EXPECT_EQ(s.on_result("b", for_worker(jobs, "b")[0].job_id, 5, at(1)), ResultVerdict::Accepted);
+  EXPECT_EQ(s.take_quarantined(), std::vector<WorkerId>{"a"});
+  EXPECT_TRUE(s.take_disputes().empty());
+}
+
 // A frame whose hash the master could not compute falls back to a vote.
 TEST(Scheduler, AFrameWithoutTheMastersHashIsDecidedByItsWorkers) {
   SchedulerConfig config;

@@ -9,6 +9,7 @@
 #include "protocol/socket.h"
 #include "render/frame_renderer.h"
 #include "scene/accel.h"
+#include "scene/libraries.h"
 #include "scene/load_scene.h"
 #include "scene/scene_file.h"
 
@@ -97,7 +98,7 @@ WorkerSession::Outcome WorkerSession::serve(zmq::context_t& context) {
                                       ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL | ZMQ_EVENT_HANDSHAKE_FAILED_AUTH |
                                       ZMQ_EVENT_DISCONNECTED);
   protocol::connect(socket, options_.endpoint);
-  const protocol::Hello hello{options_.build_id, "native", uint32_t(options_.threads)};
+  const protocol::Hello hello{options_.build_id, "native", uint32_t(options_.threads), runtime_libraries()};
   send(socket, hello);
   auto last_heard = Clock::now();
   for (;;) {

@@ -13,6 +13,7 @@ extern const char* const kRenderBinary;
 extern const char* const kMasterBinary;
 extern const char* const kWorkerBinary;
 extern const char* const kSoakBinary;
+extern const char* const kOffByOneLibm;
 extern const char* const kWindowScriptsDir;
 }  // namespace igi::test::paths
 
@@ -24,4 +25,5 @@ extern const char* const kWindowScriptsDir;
 #define IGI_MASTER_BINARY (::igi::test::paths::kMasterBinary)
 #define IGI_WORKER_BINARY (::igi::test::paths::kWorkerBinary)
 #define IGI_SOAK_BINARY (::igi::test::paths::kSoakBinary)
+#define IGI_OFF_BY_ONE_LIBM (::igi::test::paths::kOffByOneLibm)
 #define IGI_WINDOW_SCRIPTS_DIR (::igi::test::paths::kWindowScriptsDir)
