@@ -23,7 +23,7 @@ nlohmann::ordered_json totals_json(const RunTotals& t, uint64_t tiles) {
           {"refused_keys", t.refused_keys},
           {"failed_handshakes", t.failed_handshakes}, {"nonfinite_pixels", t.nonfinite_pixels},
           {"declared_dead", t.declared_dead},
-          {"quarantined", t.quarantined}, {"own_tiles", t.own_tiles},
+          {"quarantined", t.quarantined}, {"own_tiles", t.own_tiles}, {"benched", t.benched},
           {"master_follows_workers", t.follows_workers}, {"pixel_format", t.pixel_format},
           {"io_threads", t.io_threads},
           {"master_cpu_seconds", t.master_cpu_seconds}, {"session_cpu_seconds", t.session_cpu_seconds},
@@ -47,6 +47,7 @@ RunTotals run_totals(const MasterSession& session, int io_threads, double cpu_st
   t.quarantined = session.quarantined();
   t.own_tiles = session.own_tiles();
   t.follows_workers = session.follows_workers();
+  t.benched = session.benched();
   t.master_cpu_seconds = process_cpu_seconds() - cpu_start;
   t.session_cpu_seconds = session.session_cpu_seconds();
   t.wall_seconds = wall_seconds;

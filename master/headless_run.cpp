@@ -152,10 +152,11 @@ class HeadlessRun {
   void print_summary() const {
     const SchedulerStats& s = session_.scheduler_stats();
     std::fprintf(stderr, "igi-master: %d frames; tiles copied %llu, reissued %llu, verification copies %llu, "
-                 "results failing validation %llu, tiles the master rendered %llu, workers quarantined %llu, "
-                 "declared dead %llu, non-finite pixels %llu\n", done_,
+                 "results failing validation %llu, tiles the master rendered %llu, hoarders benched %llu, "
+                 "workers quarantined %llu, declared dead %llu, non-finite pixels %llu\n", done_,
                  (unsigned long long)s.duplicated, (unsigned long long)s.reissued, (unsigned long long)s.verified,
                  (unsigned long long)s.failed_results, (unsigned long long)session_.own_tiles(),
+                 (unsigned long long)session_.benched(),
                  (unsigned long long)session_.quarantined_count(), (unsigned long long)session_.declared_dead(),
                  (unsigned long long)session_.nonfinite_pixels());
   }

@@ -238,6 +238,15 @@ void MasterSession::step(Clock::time_point now, std::vector<CompletedFrame>& don
   dispatch(scheduler_.assign(now));
   render_own_jobs();
   for (const HashDispute& d : scheduler_.take_disputes()) on_dispute(d);
+  for (const WorkerId& id : scheduler_.take_benched()) {
+    auto peer = peers_.find(id);
+    if (peer == peers_.end()) continue;
+    ++benched_;
+    char late[32];
+    std::snprintf(late, sizeof late, "%.0f ms", 1e3 * scheduler_.straggler_seconds());
+    log_peer(peer->second.name + " held a job past " + late + " without answering it while another worker did "
+             "(it heartbeats, so it is not dead): its jobs go to others, and it gets none until it answers");
+  }
   take_quarantined();
   for (const std::string& identity : std::exchange(congested_, {}))
     if (peers_.count(identity)) {
@@ -416,6 +425,7 @@ void MasterSession::on_result(const std::string& identity, std::span<const uint8
   auto peer = peers_.find(identity);
   if (peer == peers_.end()) return on_bad_message(identity, "message from a peer that never said hello");
   peer->second.last_heard = Clock::now();
+  scheduler_.heard_result(identity);  // a benched worker works again
   std::string error;
   std::optional<protocol::TileResultView> view = protocol::decode_tile_result(bytes, error);
   if (!view) {

@@ -163,6 +163,7 @@ class MasterSession {
   uint64_t declared_dead() const { return declared_dead_; }            // workers silent past the timeout, or not reading
   uint64_t nonfinite_pixels() const { return nonfinite_pixels_; }
   uint64_t own_tiles() const { return own_tiles_; }  // jobs the master rendered itself (no worker's result passed)
+  uint64_t benched() const { return benched_; }  // hoarders given no more jobs until they answer (scheduler.h)
   // The master's VPL sets lost to its authenticated workers', which agreed: votes decide from then on.
   bool follows_workers() const { return follows_workers_; }
   uint64_t quarantined_count() const { return quarantined_count_; }  // workers quarantined, for any reason
@@ -270,6 +271,7 @@ class MasterSession {
   std::map<uint64_t, JobFailures> job_failures_;
   std::map<uint64_t, std::string> own_failures_;  // jobs the master renders: what it said of each
   uint64_t own_tiles_ = 0;
+  uint64_t benched_ = 0;
   bool follows_workers_ = false;  // its own hashes were outvoted once (CURVE only): workers vote from then on
   std::map<uint64_t, OpenFrame> frames_;
   std::vector<TileJob> tiles_;             // the tiles of a frame as tiles_cut_ says

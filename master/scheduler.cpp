@@ -451,9 +451,9 @@ void Scheduler::hand_failed_jobs_to_caller() {
     }
     Job& job = it->second;
     const bool too_many = int(job.counted_failers.size()) >= config_.max_failed_workers;
-    const bool nobody_else =
-        !workers_.empty() && std::all_of(workers_.begin(), workers_.end(),
-                                         [&](const auto& w) { return job.failed_on.count(w.first) > 0; });
+    const bool nobody_else = std::none_of(workers_.begin(), workers_.end(), [&](const auto& w) {
+      return !w.second.benched && !job.failed_on.count(w.first);
+    }) && !workers_.empty();
     if (!too_many && !nobody_else) {
       ++f;
       continue;
@@ -486,6 +486,64 @@ std::vector<WorkerId> Scheduler::failed_on(uint64_t job_id) const {
 }
 
 ResultVerdict Scheduler::on_result(const WorkerId& id, uint64_t job_id, uint64_t hash, TimePoint now) {
+  if (auto w = workers_.find(id); w != workers_.end()) {
+    w->second.last_answer = now;
+    w->second.overtaken = 0;
+  }
+  const std::vector<WorkerId> hoarders = overtaken_hoarders(id, job_id, now);
+  const ResultVerdict verdict = record_result(id, job_id, hash, now);
+  for (const WorkerId& h : hoarders) bench(h);
+  return verdict;
+}
+
+// The job's other holders, when this is its first result, that have returned
+// nothing since they got it, for longer than a copy waits to go out, and
+// were overtaken so once before since their latest result.
+std::vector<WorkerId> Scheduler::overtaken_hoarders(const WorkerId& id, uint64_t job_id, TimePoint now) {
+  std::vector<WorkerId> hoarders;
+  auto it = jobs_.find(job_id);
+  if (it == jobs_.end() || it->second.done || it->second.held_by) return hoarders;
+  const double late = straggler_seconds();
+  for (const Holder& h : it->second.holders) {
+    auto w = workers_.find(h.worker);
+    if (h.worker == id || w == workers_.end() || w->second.benched) continue;
+    if (seconds_between(std::max(w->second.last_answer, h.issued), now) >= late && ++w->second.overtaken >= 2)
+      hoarders.push_back(h.worker);
+  }
+  return hoarders;
+}
+
+// Its jobs go back to the pool (in order, as a dead worker's do); it keeps
+// its connection, and its next result brings it back (heard_result()).
+void Scheduler::bench(const WorkerId& id) {
+  auto it = workers_.find(id);
+  if (it == workers_.end() || it->second.benched) return;
+  Worker& w = it->second;
+  w.benched = true;
+  w.credits = 0;
+  hungry_.erase(id);
+  const std::vector<uint64_t> held = std::exchange(w.jobs, {});
+  for (auto j = held.rbegin(); j != held.rend(); ++j) {
+    auto job = jobs_.find(*j);
+    if (job == jobs_.end()) continue;
+    release_holder(job->second, id, TimePoint{}, false);
+    requeue(*j);
+  }
+  ++stats_.benched;
+  newly_benched_.push_back(id);
+}
+
+void Scheduler::heard_result(const WorkerId& id) {
+  auto it = workers_.find(id);
+  if (it == workers_.end() || !it->second.benched) return;
+  it->second.benched = false;
+  it->second.credits = 1;  // and one more per result, as a newcomer
+  if (it->second.jobs.empty()) hungry_.insert(id);
+}
+
+std::vector<WorkerId> Scheduler::take_benched() { return std::exchange(newly_benched_, {}); }
+
+ResultVerdict Scheduler::record_result(const WorkerId& id, uint64_t job_id, uint64_t hash, TimePoint now) {
   auto it = jobs_.find(job_id);
   if (it == jobs_.end()) {
     drop_result(id, job_id);
@@ -537,13 +595,18 @@ ResultVerdict Scheduler::on_result(const WorkerId& id, uint64_t job_id, uint64_t
 
 // ---- The reference hash.
 
+// Workers that take jobs, and voters since gone or benched.
 size_t Scheduler::possible_voters(const Frame& frame) const {
-  size_t n = workers_.size();
-  std::set<WorkerId> gone;
+  auto takes_jobs = [&](const WorkerId& id) {
+    auto w = workers_.find(id);
+    return w != workers_.end() && !w->second.benched;
+  };
+  size_t n = size_t(std::count_if(workers_.begin(), workers_.end(), [](const auto& w) { return !w.second.benched; }));
+  std::set<WorkerId> others;
   for (const auto& [hash, voters] : frame.votes)
     for (const WorkerId& v : voters)
-      if (!workers_.count(v)) gone.insert(v);
-  return n + gone.size();
+      if (!takes_jobs(v)) others.insert(v);
+  return n + others.size();
 }
 
 void Scheduler::set_reference(uint64_t frame_id, std::optional<uint64_t> hash) {
@@ -575,7 +638,8 @@ void Scheduler::judge(Frame& frame) {
     for (uint64_t job_id : frame.jobs)
       for (const Holder& h : jobs_.at(job_id).holders) rendering.insert(h.worker);
   for (const auto& [id, worker] : workers_)
-    if ((worker.answered > 0 || rendering.count(id)) && !voted(id)) return;  // verification copies bring its vote
+    if (!worker.benched && (worker.answered > 0 || rendering.count(id)) && !voted(id))
+      return;  // verification copies bring its vote
   if (frame.votes.size() == 1 && frame.votes.begin()->second.size() >= 2) {
     frame.disputed = true;
     const auto& [hash, voters] = *frame.votes.begin();

@@ -34,6 +34,14 @@
 //    towards that limit (fresh identities that fail on purpose only lose the
 //    job, and the caller renders a job only when the workers present failed it).
 //  - A worker declared dead gives its outstanding jobs back to the pool.
+//  - Hoarders: when a copy of a job answers first and the job's other holder
+//    has returned nothing since it got the job, for longer than a copy waits
+//    to go out, the holder is overtaken. A worker overtaken twice with no
+//    result in between (it heartbeats, so it is not dead, but holds jobs far
+//    past the others' rate) is benched: its jobs go back to the pool and it
+//    gets no more until a result of its own comes in (heard_result()), when it
+//    starts again from one job. take_benched() names it. A benched worker is
+//    no voter that a frame waits for.
 //
 // The VPL-set hash (a frame's per-frame state, identical on every correct
 // worker) is the frame's reference, never whatever the first to answer says:
@@ -129,6 +137,7 @@ struct SchedulerStats {
   uint64_t failed_results = 0;  // results that failed validation
   uint64_t own_jobs = 0;        // jobs no worker could render, given to the caller (take_own_jobs)
   uint64_t quarantined = 0;   // workers quarantined for a hash that lost
+  uint64_t benched = 0;       // times a worker was benched for holding jobs it did not answer
 };
 
 // A frame whose every proven worker agrees on a hash that is not the caller's own.
@@ -186,6 +195,10 @@ class Scheduler {
   ResultVerdict on_result(const WorkerId& id, uint64_t job_id, uint64_t frame_state_hash, TimePoint now);
   // The result's job is unknown: only the worker's credit comes back.
   void drop_result(const WorkerId& id, uint64_t job_id);
+  // A result of any kind came from the worker: a benched one works again, from one job.
+  void heard_result(const WorkerId& id);
+  // Workers benched since the last call (hoarders: see above).
+  std::vector<WorkerId> take_benched();
   // The result failed validation: the worker no longer holds the job, which
   // goes back to the pool for another worker, or to the caller's own.
   void on_bad_result(const WorkerId& id, uint64_t job_id);
@@ -217,6 +230,7 @@ class Scheduler {
   bool answered(uint64_t job_id) const;  // another copy's result is in (it counts, or is held for the hash)
   const SchedulerStats& stats() const { return stats_; }
   double median_round_trip() const;  // seconds; 0 before any
+  double straggler_seconds() const;  // how old an outstanding copy is when it counts as late
   // Test hook: hand the next `n` jobs out twice on purpose (the copy at once, to another worker, whatever its credit).
   void force_duplicates(int n) { forced_duplicates_ = n; }
 
@@ -261,6 +275,9 @@ class Scheduler {
     int max_credits = 1;
     uint64_t answered = 0;       // results it returned first (it renders: a proven worker)
     uint64_t newest_answered = 0;  // 1 + the serial of the newest copy it has answered (0: none)
+    TimePoint last_answer{};       // its latest result of any kind
+    int overtaken = 0;             // its jobs answered first by copies since its latest result
+    bool benched = false;          // overtaken twice: no jobs until it answers
   };
   struct Issue {
     TimePoint at;
@@ -281,7 +298,6 @@ class Scheduler {
   void trim_issued();
   bool straggler_eligible(const Issue& issue, TimePoint now) const;
   void release_lost_copies(const Frame& frame, TimePoint now);
-  double straggler_seconds() const;
   size_t duplicate_budget(const Frame& frame) const;
   JobAssignment give(const WorkerId& id, uint64_t job_id, TimePoint now);
   void force_copy(const WorkerId& holder, uint64_t job_id, TimePoint now, std::vector<JobAssignment>& out);
@@ -293,6 +309,9 @@ class Scheduler {
   void judge(Frame& frame);
   void decide(Frame& frame, uint64_t reference);
   void quarantine(const WorkerId& id);
+  ResultVerdict record_result(const WorkerId& id, uint64_t job_id, uint64_t hash, TimePoint now);
+  std::vector<WorkerId> overtaken_hoarders(const WorkerId& id, uint64_t job_id, TimePoint now);
+  void bench(const WorkerId& id);
   size_t possible_voters(const Frame& frame) const;
 
   SchedulerConfig config_;
@@ -310,6 +329,7 @@ class Scheduler {
   std::set<uint64_t> failing_;       // queued jobs that failed somewhere: may be the caller's now
   std::vector<JobAssignment> own_jobs_;  // for the caller to render (take_own_jobs)
   std::vector<HashDispute> disputes_;
+  std::vector<WorkerId> newly_benched_;
   std::vector<double> round_trips_;  // the latest kRoundTrips, as a ring
   size_t round_trip_next_ = 0;
   mutable std::optional<double> median_;  // of round_trips_, until the next sample

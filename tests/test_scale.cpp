@@ -164,6 +164,23 @@ TEST(Scale, OfTwoWorkersThatDisagreeTheWrongOneIsQuarantinedWithoutAThird) {
   EXPECT_FALSE(r.workers[1].quarantined);
 }
 
+// Two peers that heartbeat and take jobs but never answer: their jobs are
+// copied to honest workers until each has been overtaken twice, then they are
+// benched (named in the log) and hold nothing a frame waits for: few copies
+// in all, every frame exact, no one declared dead or quarantined.
+TEST(Scale, TwoHoardersAreBenchedAndNamed) {
+  LoadgenOptions o = all_join_first(options("hoarders", 6, 20));
+  std::vector<SimBehaviour> b = paced(o);
+  b[4].hoard = b[5].hoard = true;
+  const LoadgenReport r = run_exactly(o, b);
+  const nlohmann::json s = stats(o);
+  EXPECT_EQ(s["benched"].get<int>(), 2) << r.master_log;
+  EXPECT_LE(s["frames"].back()["duplicated_total"].get<int>(), 12) << "copies only until each is overtaken twice";
+  EXPECT_EQ(s["declared_dead"].get<int>(), 0);
+  EXPECT_EQ(r.quarantined_workers(), 0);
+  EXPECT_NE(r.master_log.find("held a job past"), std::string::npos) << r.master_log;
+}
+
 TEST(Scale, AResultWithTheWrongRectangleIsRenderedAgain) {
   LoadgenOptions o = all_join_first(options("wrong-tile", 4, 10));
   std::vector<SimBehaviour> b = paced(o);

@@ -140,6 +140,50 @@ TEST(Scheduler, AStragglerIsCopiedOnlyOnceOlderThanThreeMedianRoundTrips) {
   EXPECT_EQ(s.take_completed_frames().size(), 1u);
 }
 
+// A peer that heartbeats and takes jobs but never answers: its jobs are
+// copied to the honest worker; overtaken twice, it is benched, its jobs go to
+// others and it gets none, so later frames need no copies at all. A result
+// of its own (late) brings it back, from one job.
+TEST(Scheduler, AHoarderOvertakenTwiceIsBenchedAndLaterFramesNeedNoCopies) {
+  Scheduler s(1, 2);
+  s.add_worker("honest");
+  double clock = 0;
+  learn_round_trips(s, clock);  // 10 ms tiles: late after 30 ms
+  s.judge_by_reference();       // as the master does: a frame needs no second voter
+  s.add_worker("hoarder");
+  // Runs a frame: the honest worker answers each job 10 ms after it gets it.
+  auto run_frame = [&](uint64_t frame_id, int jobs) {
+    s.add_frame(frame_id, tiles(jobs));
+    s.set_reference(frame_id, 1);
+    std::vector<JobAssignment> honest;
+    for (int step = 0; step < 200 && s.take_completed_frames().empty(); ++step) {
+      for (const JobAssignment& j : s.assign(at(clock)))
+        if (j.worker == "honest") honest.push_back(j);
+      clock += 10;
+      for (const JobAssignment& j : std::exchange(honest, {}))
+        if (s.check_result(j.worker, j.job_id, j.frame_id, j.tile) == ResultCheck::Wanted ||
+            s.check_result(j.worker, j.job_id, j.frame_id, j.tile) == ResultCheck::NotNeeded)
+          s.on_result(j.worker, j.job_id, 1, at(clock));
+    }
+  };
+  run_frame(0, 4);
+  EXPECT_TRUE(s.take_benched().empty()) << "overtaken once: a slow worker may be";
+  run_frame(1, 4);
+  EXPECT_EQ(s.take_benched(), std::vector<WorkerId>{"hoarder"});
+  EXPECT_EQ(s.stats().benched, 1u);
+  EXPECT_EQ(s.outstanding("hoarder"), 0) << "its jobs went back";
+  const uint64_t copies = s.stats().duplicated;
+  EXPECT_GE(copies, 1u);
+  run_frame(2, 4);
+  run_frame(3, 4);
+  EXPECT_EQ(s.stats().duplicated, copies) << "a benched worker holds nothing a frame must wait for";
+  EXPECT_EQ(s.outstanding("hoarder"), 0);
+  s.heard_result("hoarder");  // a late result of its own
+  s.add_frame(4, tiles(4));
+  const auto back = for_worker(s.assign(at(clock)), "hoarder");
+  EXPECT_EQ(back.size(), 1u) << "back, with one job";
+}
+
 TEST(Scheduler, NoMoreThanTwoCopiesOfAJob) {
   Scheduler s(1, 2);
   for (const char* w : {"a", "b", "c"}) s.add_worker(w);

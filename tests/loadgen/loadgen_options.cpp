@@ -47,6 +47,8 @@ void add_fault_and_check_options(CLI::App& app, CommandLine& c) {
   app.add_option("--churn", c.churn_seed, "faults on a seeded schedule: a tenth of the workers join late, a tenth "
                  "stall past the master's timeout, a tenth die and are replaced")
       ->check(integer<uint64_t>(0, UINT64_MAX))->type_name("SEED");
+  app.add_option("--hoarders", c.hoarders, "the last N workers take jobs, heartbeat and never answer")
+      ->check(integer(0, kMaxWorkers))->type_name("N");
   app.add_option("--diverging", c.diverging, "the first N workers report another VPL-set hash")
       ->check(integer(0, kMaxWorkers))->type_name("N");
   app.add_option("--nan-every", c.nan_every, "worker 0 sends a NaN pixel in every N-th tile")
@@ -105,6 +107,7 @@ std::vector<SimBehaviour> behaviours(const CommandLine& c) {
   base.threads = o.threads;
   std::vector<SimBehaviour> all(size_t(o.workers), base);
   for (int i = 0; i < std::min(c.diverging, o.workers); ++i) all[size_t(i)].hash_offset = 1;
+  for (int i = 0; i < std::min(c.hoarders, o.workers); ++i) all[all.size() - 1 - size_t(i)].hoard = true;
   all[0].nan_every = c.nan_every;
   all[0].wrong_tile_every = c.wrong_tile_every;
   if (c.churn_seed == 0) return all;

@@ -13,6 +13,7 @@ struct CommandLine {
   LoadgenOptions run;
   uint64_t churn_seed = 0;   // not 0: workers join late, stall past the timeout, die and are replaced
   int diverging = 0;         // workers whose VPL-set hash differs (the first N)
+  int hoarders = 0;          // workers that take jobs and never answer (the last N)
   int nan_every = 0;         // worker 0 sends a NaN tile every n-th answer
   int wrong_tile_every = 0;  // worker 0 claims a wrong rectangle every n-th answer
   int check_every = 0;       // with --write-frames: check every n-th frame pixel by pixel

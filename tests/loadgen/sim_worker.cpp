@@ -96,6 +96,7 @@ void SimWorker::handle(const protocol::Message& m, Clock::time_point now) {
 
 // One tile at a time per lane: it is done tile_seconds after its lane is free.
 void SimWorker::take_job(const protocol::TileJobMsg& job, Clock::time_point now) {
+  if (behaviour_.hoard) return;
   auto lane = std::min_element(lanes_.begin(), lanes_.end());
   const Clock::time_point begin = std::max(now, *lane);
   *lane = begin + seconds(behaviour_.tile_seconds);

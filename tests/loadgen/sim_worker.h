@@ -33,6 +33,7 @@ struct SimBehaviour {
   int wrong_tile_every = 0;    // every n-th answer claims another rectangle (0: never)
   int truncate_every = 0;      // every n-th answer loses its last bytes (it does not decode)
   std::optional<std::pair<int, int>> poison_pixel;  // the tile holding this pixel always has a NaN
+  bool hoard = false;          // takes jobs and heartbeats, never answers
 };
 
 struct SimOutcome {
