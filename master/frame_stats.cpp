@@ -27,6 +27,8 @@ nlohmann::ordered_json totals_json(const RunTotals& t, uint64_t tiles) {
           {"master_follows_workers", t.follows_workers}, {"pixel_format", t.pixel_format},
           {"io_threads", t.io_threads},
           {"master_cpu_seconds", t.master_cpu_seconds}, {"session_cpu_seconds", t.session_cpu_seconds},
+          {"master_hash_frames", t.hash_frames}, {"master_hash_seconds", t.hash_seconds},
+          {"master_peak_rss_mib", t.peak_rss_mib},
           {"wall_seconds", t.wall_seconds}, {"tiles", tiles},
           {"master_cpu_us_per_tile", tiles ? 1e6 * t.master_cpu_seconds / double(tiles) : 0.0}};
 }
@@ -48,6 +50,11 @@ RunTotals run_totals(const MasterSession& session, int io_threads, double cpu_st
   t.own_tiles = session.own_tiles();
   t.follows_workers = session.follows_workers();
   t.benched = session.benched();
+  t.hash_frames = session.reference_frames();
+  t.hash_seconds = session.reference_seconds();
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  t.peak_rss_mib = double(usage.ru_maxrss) / 1024.0;  // Linux: KiB
   t.master_cpu_seconds = process_cpu_seconds() - cpu_start;
   t.session_cpu_seconds = session.session_cpu_seconds();
   t.wall_seconds = wall_seconds;

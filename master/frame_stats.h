@@ -28,6 +28,9 @@ struct RunTotals {
   bool follows_workers = false;    // the master's VPL sets lost to its authenticated workers' (CURVE)
   double master_cpu_seconds = 0.0;   // process CPU (every thread) during the session loop
   double session_cpu_seconds = 0.0;  // the session thread's own CPU
+  uint64_t hash_frames = 0;          // frames whose VPL-set hash the master computed itself (master_renderer.h)
+  double hash_seconds = 0.0;         // its thread's time on them (off the session thread; ahead of headless frames)
+  double peak_rss_mib = 0.0;         // the master's peak memory (its own copy of the scene and BVH included)
   double wall_seconds = 0.0;
   std::string pixel_format;        // on the wire: float or half
   int io_threads = 0;

@@ -16,6 +16,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr size_t kMaxBacklog = 3;  // frames waiting for the sink before the session stops adding more
 constexpr auto kNoWorkerLimit = std::chrono::seconds(60);
+constexpr int kHashesAhead = 2;  // frames whose hashes the master computes before it adds them
 
 std::string frame_path(const std::string& output, int frame, int frames, int first) {
   if (frames <= 1 && first == 0) return output;
@@ -114,6 +115,9 @@ class HeadlessRun {
     gathered_ = gathered_ || workers_gathered(o_, session_, wall_start_);
     while (gathered_ && next_ < total_ && session_.can_add_frame() && sink_.backlog() < kMaxBacklog)
       session_.add_frame(plan_frame(o_.render, o_.camera_path, scene_, first_index_ + next_++, o_.progressive));
+    // The master's own VPL-set hashes of the next frames, computed while these render.
+    for (int ahead = next_; ahead < std::min(total_, next_ + kHashesAhead); ++ahead)
+      session_.expect_frame(plan_frame(o_.render, o_.camera_path, scene_, first_index_ + ahead, o_.progressive));
   }
 
   void pump() {

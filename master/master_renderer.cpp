@@ -1,5 +1,6 @@
 #include "master_renderer.h"
 
+#include <chrono>
 #include <exception>
 #include <memory>
 #include <utility>
@@ -78,6 +79,7 @@ void MasterRenderer::run(Scene scene) {
     const Request request = std::move(requests_.front());
     requests_.pop_front();
     lock.unlock();
+    const auto start = std::chrono::steady_clock::now();
     Answer answer;
     TileAnswer tile;
     answer.frame_id = request.frame.frame_id;
@@ -96,6 +98,7 @@ void MasterRenderer::run(Scene scene) {
         answer.error = tile.error = e.what();
       }
     }
+    answer.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     lock.lock();
     if (request.job_id) {
       tile.job_id = *request.job_id;

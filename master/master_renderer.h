@@ -49,6 +49,7 @@ class MasterRenderer {
     uint64_t frame_id = 0;
     std::optional<uint64_t> hash;  // none when the master could not compute it (error says why)
     std::string error;
+    double seconds = 0.0;          // the thread's time for it (pose, method, VPL sets)
   };
   struct TileAnswer {
     uint64_t job_id = 0;

@@ -25,6 +25,7 @@ constexpr size_t kMaxQuarantinedNames = 1000;
 constexpr uint64_t kLogFirst = 5;        // repeated conditions are logged this often, then counted
 constexpr int kPeerLinesPerMinute = 100;  // joins and departures logged one by one
 constexpr size_t kRememberDropped = 4096;  // dropped peers whose later messages are ignored
+constexpr size_t kMaxExpected = 8;         // frames whose hashes are computed before they are added
 
 double thread_cpu_seconds() {
   timespec t{};
@@ -177,9 +178,27 @@ void MasterSession::judge_by(Scene scene) {
   referee_ = std::make_unique<MasterRenderer>(std::move(scene));
 }
 
-void MasterSession::add_frame(const FrameSetup& frame) { add_frame(frame, options_.render.settings); }
+void MasterSession::expect_frame(const FrameSetup& frame) {
+  if (!referee_ || follows_workers_ || expected_.count(frame.frame_id) || frames_.count(frame.frame_id)) return;
+  if (expected_.size() >= kMaxExpected) return;  // frames expected far ahead wait for their turn
+  expected_[frame.frame_id];
+  referee_->request(frame, options_.render.settings);
+}
+
+void MasterSession::add_frame(const FrameSetup& frame) {
+  auto expected = expected_.find(frame.frame_id);
+  if (expected == expected_.end()) return add_frame(frame, options_.render.settings);
+  std::optional<MasterRenderer::Answer> answer = std::move(expected->second);
+  expected_.erase(expected);
+  add_frame(frame, options_.render.settings, false);  // its hash is on its way, or here
+  if (answer) scheduler_.set_reference(answer->frame_id, answer->hash);
+}
 
 void MasterSession::add_frame(const FrameSetup& frame, const RenderSettings& settings) {
+  add_frame(frame, settings, true);
+}
+
+void MasterSession::add_frame(const FrameSetup& frame, const RenderSettings& settings, bool request_hash) {
   OpenFrame open;
   open.setup = frame;
   open.settings = settings;
@@ -194,7 +213,7 @@ void MasterSession::add_frame(const FrameSetup& frame, const RenderSettings& set
     tiles_cut_ = {frame.width, frame.height, border};
   }
   scheduler_.add_frame(frame.frame_id, tiles_);
-  if (referee_ && !follows_workers_) referee_->request(frame, settings);
+  if (referee_ && !follows_workers_ && request_hash) referee_->request(frame, settings);
 }
 
 void MasterSession::cancel_frame(uint64_t frame_id) {
@@ -646,7 +665,13 @@ void MasterSession::take_quarantined() {
 // (the scene does not fit here, say) is left to a vote among the workers.
 void MasterSession::take_references() {
   if (!referee_) return;
-  for (const MasterRenderer::Answer& a : referee_->take()) {
+  for (MasterRenderer::Answer& a : referee_->take()) {
+    ++reference_frames_;
+    reference_seconds_ += a.seconds;
+    if (auto expected = expected_.find(a.frame_id); expected != expected_.end()) {
+      expected->second = std::move(a);  // the frame is not added yet: add_frame() takes it
+      continue;
+    }
     if (!a.hash && ++referee_errors_ <= kLogFirst)
       log("frame " + std::to_string(a.frame_id) + ": the master cannot compute its VPL-set hash (" + a.error +
           "): its workers vote on it");

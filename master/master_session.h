@@ -134,6 +134,10 @@ class MasterSession {
   bool can_add_frame() const { return scheduler_.can_add_frame(); }
   void add_frame(const FrameSetup& frame);
   void add_frame(const FrameSetup& frame, const RenderSettings& settings);
+  // A frame to come with the options' settings (a headless run knows its
+  // camera path): the master computes its VPL-set hash now, so that when the
+  // frame is added its workers' results need not wait for it.
+  void expect_frame(const FrameSetup& frame);
   // The view moved on: the frame is dropped and every worker that holds a
   // job of it is told to drop its queued ones (CancelFrame); their credit
   // comes back at once. The frame never completes.
@@ -166,6 +170,9 @@ class MasterSession {
   uint64_t benched() const { return benched_; }  // hoarders given no more jobs until they answer (scheduler.h)
   // The master's VPL sets lost to its authenticated workers', which agreed: votes decide from then on.
   bool follows_workers() const { return follows_workers_; }
+  // The master's own VPL-set hashes: frames computed and the time its thread spent on them.
+  uint64_t reference_frames() const { return reference_frames_; }
+  double reference_seconds() const { return reference_seconds_; }
   uint64_t quarantined_count() const { return quarantined_count_; }  // workers quarantined, for any reason
   const SchedulerStats& scheduler_stats() const { return scheduler_.stats(); }
   const std::vector<std::string>& quarantined() const { return quarantined_names_; }  // "worker-3: why"
@@ -197,6 +204,7 @@ class MasterSession {
     std::optional<Clock::time_point> started;
   };
 
+  void add_frame(const FrameSetup& frame, const RenderSettings& settings, bool request_hash);
   void step(Clock::time_point now, std::vector<CompletedFrame>& done);
   void wait_for_traffic(Clock::time_point until);
   void serve_security();
@@ -272,7 +280,11 @@ class MasterSession {
   std::map<uint64_t, std::string> own_failures_;  // jobs the master renders: what it said of each
   uint64_t own_tiles_ = 0;
   uint64_t benched_ = 0;
-  bool follows_workers_ = false;  // its own hashes were outvoted once (CURVE only): workers vote from then on
+  bool follows_workers_ = false;
+  // Hashes of expected frames (expect_frame()): requested (no answer yet) or answered; at most kMaxExpected.
+  std::map<uint64_t, std::optional<MasterRenderer::Answer>> expected_;
+  uint64_t reference_frames_ = 0;
+  double reference_seconds_ = 0.0;  // its own hashes were outvoted once (CURVE only): workers vote from then on
   std::map<uint64_t, OpenFrame> frames_;
   std::vector<TileJob> tiles_;             // the tiles of a frame as tiles_cut_ says
   std::tuple<int, int, int> tiles_cut_{0, 0, 0};  // width, height, border of tiles_
