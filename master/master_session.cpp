@@ -305,6 +305,9 @@ void MasterSession::receive_batch() {
       if (parts++ == 1) payload = std::move(part);
     }
     const std::string id = identity.to_string();
+    user_id_.clear();
+    if (zap_ && parts == 2 && !peers_.count(id))  // a Hello, or a stranger's message: which key sent it
+      if (const char* user = zmq_msg_gets(payload.handle(), "User-Id")) user_id_ = user;
     if (parts != 2) {
       on_bad_message(id, std::to_string(parts - 1) + " frames, expected 1 message frame after the identity");
       continue;
@@ -343,6 +346,13 @@ void MasterSession::serve_security() {
 
 void MasterSession::on_zap_decision(const protocol::ZapDecision& d) {
   if (d.allowed) return log("CURVE key '" + d.name + "' from " + d.address + " accepted");
+  if (d.quarantined) {
+    ++refused_keys_;
+    if (++quarantined_keys_logged_ <= kLogFirst || quarantined_keys_logged_ % 1000 == 0)
+      std::fprintf(stderr, "igi-master: refused CURVE key '%s' from %s: it was quarantined in this session\n",
+                   d.name.c_str(), d.address.c_str());
+    return;
+  }
   ++refused_keys_;
   // Each key once, and a bounded set: a peer may try a new key per connection.
   if (refused_logged_.size() < 1000 && refused_logged_.insert(d.public_key).second)
@@ -407,6 +417,7 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
   peer.frames_sent.clear();
   peer.failed_results = 0;
   peer.libraries = hello.libraries;
+  peer.key_name = user_id_;
   scheduler_.remove_worker(identity);  // another Hello on this connection (other threads): its old jobs go back first
   // Enough jobs to keep every thread busy while results travel.
   const int wanted = std::max<int>(options_.credits, 2 * int(std::min<uint32_t>(hello.threads, 32)));
@@ -644,10 +655,13 @@ void MasterSession::quarantine_peer(const std::string& identity, const std::stri
   auto it = peers_.find(identity);
   if (it == peers_.end()) return;
   const std::string name = it->second.name;
-  std::fprintf(stderr, "igi-master: %s quarantined: %s; it gets no more work\n", name.c_str(), why.c_str());
+  const std::string key = it->second.key_name;
+  std::fprintf(stderr, "igi-master: %s quarantined: %s; it gets no more work%s\n", name.c_str(), why.c_str(),
+               key.empty() ? "" : (", and its CURVE key '" + key + "' is refused from now on").c_str());
   send(identity, protocol::Bye{"quarantined by the master: " + why, protocol::ByeKind::Quarantined});
   scheduler_.remove_worker(identity);
   peers_.erase(it);
+  if (zap_ && !key.empty()) zap_->quarantine(key);  // by key: a reconnection is a new connection, not a new worker
   quarantined_ids_.insert(identity);
   ++quarantined_count_;
   if (quarantined_names_.size() < kMaxQuarantinedNames) quarantined_names_.push_back(name + ": " + why);

@@ -194,6 +194,7 @@ class MasterSession {
     std::map<uint64_t, Clock::time_point> sent;  // job id -> when (detailed statistics only)
     double round_trip_ms = 0.0;
     std::string libraries;  // as its Hello said (scene/libraries.h)
+    std::string key_name;   // its CURVE key's name (the ZAP handler's User-Id); empty without CURVE
   };
   struct OpenFrame {
     FrameSetup setup;
@@ -295,8 +296,10 @@ class MasterSession {
   uint64_t bad_messages_ = 0;
   uint64_t refused_keys_ = 0, failed_handshakes_ = 0, declared_dead_ = 0;
   uint64_t nonfinite_pixels_ = 0, nonfinite_logged_ = 0, failures_logged_ = 0, referee_errors_ = 0, own_logged_ = 0;
+  uint64_t quarantined_keys_logged_ = 0;
   std::optional<uint64_t> stall_reported_;  // the frame whose split was logged
   std::string fatal_;
+  std::string user_id_;  // the CURVE key name of the message being handled (receive_batch)
   double session_cpu_ = 0.0;
   std::set<std::string> refused_logged_;  // each refused key is logged once
   uint64_t next_peer_ = 0;

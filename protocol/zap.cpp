@@ -40,9 +40,14 @@ ZapDecision ZapHandler::answer(std::vector<zmq::message_t>& request) {
   } else {
     d.public_key = z85_encode_key(request[6].data<uint8_t>());
     if (auto it = authorized_.find(d.public_key); it != authorized_.end()) {
-      d.allowed = true;
       d.name = it->second;
-      status = "200", text = "OK";
+      if (quarantined_.count(d.name)) {
+        d.quarantined = true;
+        text = "this key was quarantined by the master";
+      } else {
+        d.allowed = true;
+        status = "200", text = "OK";
+      }
     }
   }
   const std::string request_id = request.size() >= 2 ? request[1].to_string() : "";
@@ -50,7 +55,7 @@ ZapDecision ZapHandler::answer(std::vector<zmq::message_t>& request) {
   socket_.send(zmq::buffer(request_id), zmq::send_flags::sndmore);
   socket_.send(zmq::buffer(status), zmq::send_flags::sndmore);
   socket_.send(zmq::buffer(text), zmq::send_flags::sndmore);
-  socket_.send(zmq::buffer(d.name), zmq::send_flags::sndmore);  // user id: shown as the message property "User-Id"
+  socket_.send(zmq::buffer(d.allowed ? d.name : std::string()), zmq::send_flags::sndmore);  // user id: the message property "User-Id"
   socket_.send(zmq::buffer(std::string()), zmq::send_flags::none);
   return d;
 }

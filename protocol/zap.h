@@ -8,6 +8,7 @@
 // calls answer_waiting(); a client's handshake waits until then (libzmq gives
 // a handshake 30 s). Single-threaded, like the socket it serves.
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@ struct ZapDecision {
   std::string address;     // the peer's IP address
   std::string name;        // the authorised key's name; empty when refused
   bool allowed = false;
+  bool quarantined = false;  // an authorised key, refused: the master quarantined it this session
 };
 
 class ZapHandler {
@@ -31,10 +33,14 @@ class ZapHandler {
   zmq::socket_t& socket() { return socket_; }
   // Answers every request waiting now, without blocking.
   std::vector<ZapDecision> answer_waiting();
+  // The key named `name` (an authorised key's name: the "User-Id" property of
+  // its messages) is refused from now on: quarantine by key, not by connection.
+  void quarantine(const std::string& name) { quarantined_.insert(name); }
 
  private:
   ZapDecision answer(std::vector<zmq::message_t>& request);
   std::map<std::string, std::string> authorized_;
+  std::set<std::string> quarantined_;  // key names
   zmq::socket_t socket_;
 };
 

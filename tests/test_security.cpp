@@ -29,6 +29,7 @@
 #include "support/image_compare.h"
 #include "support/process.h"
 #include "support/render_fixture.h"
+#include "support/sanitizers.h"
 #include "support/stats_file.h"
 
 namespace igi {
@@ -353,6 +354,38 @@ TEST(Security, AMasterWithAnotherMathsLibraryAndAnonymousWorkersEndsAtOnceSaying
   EXPECT_NE(master_log.find("authenticate the workers (--authorized-keys)"), std::string::npos) << master_log;
   EXPECT_EQ(master_log.find("quarantined:"), std::string::npos) << master_log;
   EXPECT_LT(seconds, 20.0) << "at once, not after the 60 s a stalled run waits";
+}
+
+// Quarantine is by key, not by connection: a worker whose maths library is
+// 1 ulp off (preloaded) is quarantined against the master and an honest
+// worker; started again with the same key, it is refused at the handshake,
+// while the honest one renders every frame.
+TEST(Security, AQuarantinedWorkersKeyIsRefusedWhenItComesBack) {
+#ifdef IGI_TEST_SANITIZED
+  GTEST_SKIP() << "a sanitizer's runtime must come first among preloaded libraries";
+#endif
+  const fs::path dir = keyed_folder("quarantined-key");
+  make_keys(dir / "workers", "render02");
+  const std::string endpoint = loopback(), log = (dir / "master.log").string();
+  pid_t m = test::start(master("--workers 0 --min-workers 2 --frames 300 --key " + (dir / "master.key").string() +
+                               " --authorized-keys " + (dir / "workers").string() + " --listen " + endpoint + " -o " +
+                               (dir / "out.exr").string() + " >" + log + " 2>&1"));
+  auto keyed = [&](const std::string& name) {
+    return worker(endpoint, "--quiet --give-up 5 --master-key " + (dir / "master.pub").string() + " --key " +
+                                (dir / "workers" / (name + ".key")).string());
+  };
+  pid_t honest = test::start(keyed("render02"));
+  auto odd = test::run("env LD_PRELOAD=" + std::string(IGI_OFF_BY_ONE_LIBM) + " " + keyed("render01"), 60);
+  EXPECT_EQ(odd.exit_code, 5) << "quarantined: " << odd.output;
+  auto again = test::run(keyed("render01"), 60);
+  EXPECT_EQ(again.exit_code, 3) << "refused at the handshake: " << again.output;
+  EXPECT_EQ(test::wait_exit(m, 120), 0) << read_text(log);
+  EXPECT_EQ(test::wait_exit(honest, 20), 0);
+  const std::string master_log = read_text(log);
+  EXPECT_NE(master_log.find("its CURVE key 'render01' is refused from now on"), std::string::npos) << master_log;
+  EXPECT_NE(master_log.find("refused CURVE key 'render01' from 127.0.0.1: it was quarantined"), std::string::npos)
+      << master_log;
+  expect_frames_match(dir, 3, "security-quarantined-key");
 }
 
 TEST(Security, PlainWorkersAndWrongMasterKeysCannotConnect) {
