@@ -1,9 +1,13 @@
 // igi-render: renders one image of a scene with one method, in this process.
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <optional>
-#include <optional>
+
+#include <unistd.h>
 
 #include "camera_bookmark.h"
 #include "cli/option_checks.h"
@@ -16,6 +20,15 @@
 #include "scene/load_scene.h"
 
 namespace {
+
+std::atomic<bool> g_interrupted{false};  // Ctrl-C: the passes done so far are written, as partial
+constexpr int kInterruptedStatus = 130;  // 128 + SIGINT, as a shell reports it
+
+// frames.png -> frames.partial.png
+std::string partial_path(const std::string& output) {
+  const std::filesystem::path p(output);
+  return (p.parent_path() / (p.stem().string() + ".partial" + p.extension().string())).string();
+}
 
 int run(igi::RenderOptions o) {
   std::optional<igi::Camera> camera;  // a bad camera file stops us before the scene loads
@@ -48,13 +61,26 @@ int run(igi::RenderOptions o) {
   options.tile_size = o.tile_size;
   auto start = std::chrono::steady_clock::now();
   if (!o.quiet)
-    options.progress = [start](float f) {
+    options.progress = [start, shown = 0.0](float f) mutable {
       double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (t > 1.0) std::fprintf(stderr, "\r%5.1f%%  %.1f s", 100.0 * f, t);
+      if (t < 1.0 || t - shown < 0.25) return;  // short passes report each: a line four times a second
+      shown = t;
+      std::fprintf(stderr, "\r%5.1f%%  %.1f s", 100.0 * f, t);
     };
-  igi::OfflineResult r = igi::render_offline(state.context(), o.settings, frame, o.samples, options);
+  igi::OfflineResult r = igi::render_offline(state.context(), o.settings, frame, o.samples, options, &g_interrupted);
   if (!o.quiet) std::fprintf(stderr, "\r                      \r");
+  const bool partial = r.passes < r.planned;
+  if (partial && r.passes == 0) {
+    std::fprintf(stderr, "igi-render: interrupted before the first pass finished: nothing written\n");
+    return kInterruptedStatus;
+  }
+  if (partial) o.output = partial_path(o.output);
   igi::write_image(r.image, o.output, o.exposure);
+  if (partial) {
+    std::fprintf(stderr, "igi-render: interrupted after %d of %d passes: wrote them to %s\n", r.passes, r.planned,
+                 o.output.c_str());
+    return kInterruptedStatus;
+  }
   std::printf("%s: %s %dx%d, %d %s, %.3f s, %.1f Mrays (%.1f Mrays/s)\n", o.output.c_str(),
               igi::method_name(o.settings.method), o.width, o.height, o.samples,
               o.settings.method == igi::MethodKind::PathTracer ? "spp" : "passes", r.seconds,
@@ -72,6 +98,14 @@ int run(igi::RenderOptions o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The first Ctrl-C ends the render after the pass under way; a second ends the process at once.
+  auto interrupt = [](int) {
+    if (g_interrupted.exchange(true)) std::_Exit(kInterruptedStatus);
+    const char note[] = "\nigi-render: stopping after this pass (Ctrl-C again to quit without writing)\n";
+    (void)!write(STDERR_FILENO, note, sizeof note - 1);
+  };
+  std::signal(SIGINT, interrupt);
+  std::signal(SIGTERM, interrupt);
   return igi::cli::run_program("igi-render", 1, 1, [&] {
     igi::RenderOptions o = igi::parse_render_options({argv + 1, argv + argc});
     if (o.help) { std::cout << igi::render_usage(argv[0]); return 0; }

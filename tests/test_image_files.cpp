@@ -1,6 +1,7 @@
 // Image files (image/image.h), as headless frames, igi-render's -o and
 // screenshots write them: a file is replaced whole or not at all, nothing is
-// left beside it, and equal images give byte-identical files.
+// left beside it, equal images give byte-identical files, and a Ctrl-C leaves
+// a partial image under its own name.
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -16,6 +17,7 @@
 
 #include "image/image.h"
 #include "support/image_compare.h"
+#include "support/process.h"
 
 namespace igi {
 namespace {
@@ -136,6 +138,34 @@ TEST(ImageFiles, EqualImagesGiveByteIdenticalFiles) {
     EXPECT_EQ(file_bytes(folder / ("first-" + std::string(name))), file_bytes(folder / ("second-" + std::string(name))))
         << name;
   }
+}
+
+
+// Ctrl-C on igi-render writes the passes finished so far, beside the output
+// and named as partial (out.partial.exr), says how many, and exits 130; the
+// output's own name is never a partial image.
+TEST(ImageFiles, CtrlCOnIgiRenderWritesThePassesDoneAsPartial) {
+  const std::filesystem::path dir = test::output_path("interrupted");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string out = (dir / "out.exr").string(), log = (dir / "log.txt").string();
+  pid_t render = test::start(std::string(IGI_RENDER_BINARY) + " --scene cornell --size 32x24 --vpl-paths 4 --spp 1000000 "
+                             "--threads 1 -o " + out + " >" + log + " 2>&1");
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // loading, then many 2 ms passes
+  kill(render, SIGINT);
+  EXPECT_EQ(test::wait_exit(render, 60), 130);
+  std::ifstream in(log);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("interrupted after "), std::string::npos) << text;
+  EXPECT_NE(text.find(" of 1000000 passes: wrote them to " + (dir / "out.partial.exr").string()), std::string::npos)
+      << text;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const Image partial = read_image((dir / "out.partial.exr").string());
+  EXPECT_EQ(partial.width, 32);
+  double sum = 0.0;
+  for (int y = 0; y < partial.height; ++y)
+    for (int x = 0; x < partial.width; ++x) sum += partial.at(x, y).g;
+  EXPECT_GT(sum, 0.0) << "the lit box, not an empty image";
 }
 
 }  // namespace

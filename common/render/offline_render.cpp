@@ -10,7 +10,8 @@
 namespace igi {
 
 OfflineResult render_offline(const SceneContext& context, const RenderSettings& settings,
-                             const FrameSetup& base, int samples, const FrameOptions& options) {
+                             const FrameSetup& base, int samples, const FrameOptions& options,
+                             const std::atomic<bool>* stop) {
   auto method = make_method(context, settings);
   if (!method) throw std::invalid_argument(std::string("method not available: ") + method_name(settings.method));
   const bool pt = settings.method == MethodKind::PathTracer;
@@ -20,7 +21,8 @@ OfflineResult render_offline(const SceneContext& context, const RenderSettings& 
   auto start = std::chrono::steady_clock::now();
   Accumulator accumulator(base.width, base.height);
   OfflineResult result;
-  for (int pass = 0; pass < passes; ++pass) {
+  result.planned = passes;
+  for (int pass = 0; pass < passes && !(stop && *stop); ++pass) {
     FrameSetup frame = base;
     if (pt) {
       frame.sample_begin = uint32_t(pass * per_pass);
@@ -39,8 +41,9 @@ OfflineResult render_offline(const SceneContext& context, const RenderSettings& 
       pass_options.progress = [&](float f) { options.progress((float(pass) + f) / float(passes)); };
     Image image = render_frame(*method, frame, tile_border(settings), pass_options, result.rays);
     accumulator.add(image, double(frame.sample_count));
+    ++result.passes;
   }
-  result.image = accumulator.resolve();
+  if (result.passes > 0) result.image = accumulator.resolve();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
