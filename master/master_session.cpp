@@ -704,7 +704,7 @@ void MasterSession::on_dispute(const HashDispute& d) {
     auto peer = peers_.find(id);
     const std::string name = peer != peers_.end() ? peer->second.name : "a departed worker";
     names += (names.empty() ? "" : ", ") + name;
-    if (peer != peers_.end() && peer->second.libraries != runtime_libraries())
+    if (peer != peers_.end() && !peer->second.libraries.empty() && peer->second.libraries != runtime_libraries())
       libraries += "; " + name + " runs " + peer->second.libraries;
   }
   const std::string what =
