@@ -115,9 +115,9 @@ class HeadlessRun {
     gathered_ = gathered_ || workers_gathered(o_, session_, wall_start_);
     while (gathered_ && next_ < total_ && session_.can_add_frame() && sink_.backlog() < kMaxBacklog)
       session_.add_frame(plan_frame(o_.render, o_.camera_path, scene_, first_index_ + next_++, o_.progressive));
-    // The master's own VPL-set hashes of the next frames, computed while these render.
-    for (int ahead = next_; ahead < std::min(total_, next_ + kHashesAhead); ++ahead)
-      session_.expect_frame(plan_frame(o_.render, o_.camera_path, scene_, first_index_ + ahead, o_.progressive));
+    // The master's own VPL-set hashes of the next frames, computed while these render; each planned once.
+    for (expected_ = std::max(expected_, next_); expected_ < std::min(total_, next_ + kHashesAhead); ++expected_)
+      session_.expect_frame(plan_frame(o_.render, o_.camera_path, scene_, first_index_ + expected_, o_.progressive));
   }
 
   void pump() {
@@ -189,6 +189,7 @@ class HeadlessRun {
   FrameSink sink_;
   std::optional<StatsWriter> stats_;
   int next_ = 0, done_ = 0;
+  int expected_ = 0;  // frames below this were given to expect_frame() (or added)
   const Clock::time_point wall_start_ = Clock::now();
   const double cpu_start_ = process_cpu_seconds();
   Clock::time_point last_flush_ = wall_start_;

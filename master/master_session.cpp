@@ -260,7 +260,6 @@ void MasterSession::step(Clock::time_point now, std::vector<CompletedFrame>& don
   for (const WorkerId& id : scheduler_.take_benched()) {
     auto peer = peers_.find(id);
     if (peer == peers_.end()) continue;
-    ++benched_;
     char late[32];
     std::snprintf(late, sizeof late, "%.0f ms", 1e3 * scheduler_.straggler_seconds());
     log_peer(peer->second.name + " held a job past " + late + " without answering it while another worker did "

@@ -167,7 +167,7 @@ class MasterSession {
   uint64_t declared_dead() const { return declared_dead_; }            // workers silent past the timeout, or not reading
   uint64_t nonfinite_pixels() const { return nonfinite_pixels_; }
   uint64_t own_tiles() const { return own_tiles_; }  // jobs the master rendered itself (no worker's result passed)
-  uint64_t benched() const { return benched_; }  // hoarders given no more jobs until they answer (scheduler.h)
+  uint64_t benched() const { return scheduler_.stats().benched; }  // hoarders given no jobs until they answer
   // The master's VPL sets lost to its authenticated workers', which agreed: votes decide from then on.
   bool follows_workers() const { return follows_workers_; }
   // The master's own VPL-set hashes: frames computed and the time its thread spent on them.
@@ -280,7 +280,6 @@ class MasterSession {
   std::map<uint64_t, JobFailures> job_failures_;
   std::map<uint64_t, std::string> own_failures_;  // jobs the master renders: what it said of each
   uint64_t own_tiles_ = 0;
-  uint64_t benched_ = 0;
   bool follows_workers_ = false;
   // Hashes of expected frames (expect_frame()): requested (no answer yet) or answered; at most kMaxExpected.
   std::map<uint64_t, std::optional<MasterRenderer::Answer>> expected_;
