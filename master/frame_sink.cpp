@@ -34,6 +34,11 @@ std::string FrameSink::error() const {
   return error_;
 }
 
+std::optional<Image> FrameSink::last_written() const {
+  std::lock_guard lock(mutex_);
+  return last_written_;
+}
+
 void FrameSink::consume(const FrameBuffer& pixels, const std::string& path) {
   if (!accumulator_ && path.empty()) return;
   Image image = pixels.to_image();
@@ -43,6 +48,8 @@ void FrameSink::consume(const FrameBuffer& pixels, const std::string& path) {
     image = accumulator_->resolve();
   }
   write_image(image, path, exposure_);
+  std::lock_guard lock(mutex_);
+  last_written_ = std::move(image);
 }
 
 void FrameSink::run() {

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "image/frame_buffer.h"
+#include "image/image.h"
 #include "render/accumulator.h"
 
 namespace igi {
@@ -29,6 +30,8 @@ class FrameSink {
   size_t backlog() const;  // frames queued and not yet done
   // The first write error, if any (checked by the caller at the end).
   std::string error() const;
+  // The last image written (after finish(): the run's last), if any.
+  std::optional<Image> last_written() const;
 
  private:
   void run();
@@ -40,6 +43,7 @@ class FrameSink {
   std::deque<std::pair<std::shared_ptr<FrameBuffer>, std::string>> queue_;
   size_t busy_ = 0;
   std::string error_;
+  std::optional<Image> last_written_;
   bool stopping_ = false;
   std::thread thread_;
 };

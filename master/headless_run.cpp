@@ -6,6 +6,8 @@
 
 #include "frame_plan.h"
 #include "frame_sink.h"
+#include "image/exposure_check.h"
+#include "scene/builtin_scenes.h"
 #include "frame_stats.h"
 #include "run_modes.h"
 #include "stats_writer.h"
@@ -165,6 +167,17 @@ class HeadlessRun {
                  (unsigned long long)session_.nonfinite_pixels());
   }
 
+  // An image all black, nearly black or mostly white: said, with the option that fixes it.
+  void say_if_badly_exposed() const {
+    const std::optional<Image> last = sink_.last_written();
+    if (!last) return;
+    const bool file_lamps = !is_builtin_scene(o_.render.scene) && !scene_.lights.empty();
+    if (auto advice = exposure_advice(*last, {o_.render.exposure, !is_float_format(o_.render.output), file_lamps,
+                                             o_.render.light_units == LightUnits::Photometric,
+                                             !scene_.camera}))
+      std::fprintf(stderr, "igi-master: %s\n", advice->c_str());
+  }
+
   // Closes the session and the workers, waits for the last images, writes the final statistics.
   int finish(LocalWorkers& workers, const std::string& failure) {
     RunTotals totals = totals_now();
@@ -175,6 +188,7 @@ class HeadlessRun {
     workers.stop_all();
     sink_.finish();  // waits for the last images
     const std::string write_error = sink_.error();
+    if (!o_.render.quiet) say_if_badly_exposed();
     if (stats_) stats_->write_final(totals);
     if (!failure.empty()) throw std::runtime_error(failure);
     if (!write_error.empty()) throw std::runtime_error(write_error);

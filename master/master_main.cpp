@@ -70,13 +70,18 @@ void arm_test_hooks(const igi::MasterOptions& o, igi::MasterSession& session, ig
 
 int run(igi::MasterOptions o) {
   const std::optional<CurveSetup> curve = curve_setup(o);  // bad key files stop us before anything is bound
-  igi::Scene scene = igi::load_scene(o.render.scene, nullptr, igi::sky_choice(o.render));  // validates it, and gives the camera
+  igi::SceneMessages messages;
+  igi::Scene scene = igi::load_scene(o.render.scene, igi::scene_options(o.render), &messages);  // validates it, and gives the camera
+  for (const std::string& w : messages.warnings) std::fprintf(stderr, "igi-master: warning: %s\n", w.c_str());
+  if (!o.render.quiet)
+    for (const std::string& n : messages.notices) std::fprintf(stderr, "igi-master: %s\n", n.c_str());
   if (auto note = igi::choose_caustics(o.render, scene)) std::fprintf(stderr, "igi-master: %s\n", note->c_str());
   igi::Scene as_workers_load_it = scene;                 // the master's own VPL sets judge each worker's
   if (!o.render.camera_file.empty()) igi::place_camera(scene, igi::read_camera_file(o.render.camera_file));  // before anything starts
   zmq::context_t context(o.io_threads);
   igi::SceneSource source = igi::make_scene_source(o.render.scene);
   source.environment = scene.environment;
+  source.light_units = o.render.light_units;
   if (scene.environment_map)  // --environment FILE's, or the glTF scene's extras'
     igi::add_environment_map(source, scene.environment_map->source(), scene.environment_map->rotation());
   igi::MasterSession session(o, std::move(source), context, curve ? &curve->server : nullptr);

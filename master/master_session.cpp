@@ -447,6 +447,7 @@ protocol::Welcome MasterSession::welcome(uint32_t credits) const {
   w.environment_map_hash = scene_.map_hash;
   w.environment_map_size = scene_.map_size;
   w.environment_rotation = scene_.map_rotation;
+  w.light_units = scene_.light_units;
   return w;
 }
 

@@ -63,6 +63,7 @@ struct SceneSource {
   uint64_t map_hash = 0, map_size = 0;
   float map_rotation = 0.0f;
   std::shared_ptr<const std::vector<uint8_t>> map_message;  // the encoded SceneData
+  LightUnits light_units = LightUnits::Photometric;  // how the file's lamps are read (Welcome carries it)
 };
 // Reads a scene file (or names a built-in scene) and encodes what workers may ask for.
 SceneSource make_scene_source(const std::string& scene);

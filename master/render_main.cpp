@@ -6,12 +6,14 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <string>
 
 #include <unistd.h>
 
 #include "camera_bookmark.h"
 #include "cli/option_checks.h"
 #include "display/image_window.h"
+#include "image/exposure_check.h"
 #include "render_options.h"
 #include "render/offline_render.h"
 #include "render/scene_state.h"
@@ -24,6 +26,15 @@ namespace {
 std::atomic<bool> g_interrupted{false};  // Ctrl-C: the passes done so far are written, as partial
 constexpr int kInterruptedStatus = 130;  // 128 + SIGINT, as a shell reports it
 
+// "40 s", "3 min", "2.5 h"
+std::string duration_text(double seconds) {
+  char text[32];
+  if (seconds < 90.0) std::snprintf(text, sizeof text, "%.0f s", seconds);
+  else if (seconds < 5400.0) std::snprintf(text, sizeof text, "%.0f min", seconds / 60.0);
+  else std::snprintf(text, sizeof text, "%.1f h", seconds / 3600.0);
+  return text;
+}
+
 // frames.png -> frames.partial.png
 std::string partial_path(const std::string& output) {
   const std::filesystem::path p(output);
@@ -33,9 +44,11 @@ std::string partial_path(const std::string& output) {
 int run(igi::RenderOptions o) {
   std::optional<igi::Camera> camera;  // a bad camera file stops us before the scene loads
   if (!o.camera_file.empty()) camera = igi::read_camera_file(o.camera_file);
-  std::vector<std::string> warnings;
-  igi::Scene scene = igi::load_scene(o.scene, &warnings, igi::sky_choice(o));
-  for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  igi::SceneMessages messages;
+  igi::Scene scene = igi::load_scene(o.scene, igi::scene_options(o), &messages);
+  for (const std::string& w : messages.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  if (!o.quiet)
+    for (const std::string& n : messages.notices) std::fprintf(stderr, "igi-render: %s\n", n.c_str());
   if (auto note = igi::choose_caustics(o, scene); note && !o.quiet) std::fprintf(stderr, "igi-render: %s\n", note->c_str());
   if (camera) igi::place_camera(scene, *camera);
   if (!o.export_gltf.empty()) {
@@ -46,6 +59,7 @@ int run(igi::RenderOptions o) {
                            "render it with --environment FILE again\n", o.export_gltf.c_str());
     return 0;
   }
+  const bool framing_camera = !scene.camera;
   igi::FrameSetup frame;
   frame.width = o.width;
   frame.height = o.height;
@@ -60,15 +74,21 @@ int run(igi::RenderOptions o) {
   options.threads = o.threads;
   options.tile_size = o.tile_size;
   auto start = std::chrono::steady_clock::now();
+  const bool terminal = isatty(STDERR_FILENO);
   if (!o.quiet)
-    options.progress = [start, shown = 0.0](float f) mutable {
+    options.progress = [start, terminal, shown = 0.0](float f) mutable {
       double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (t < 1.0 || t - shown < 0.25) return;  // short passes report each: a line four times a second
+      // A terminal gets a line rewritten four times a second; a log a line every 10 s.
+      if (t < 1.0 || t - shown < (terminal ? 0.25 : 10.0)) return;
       shown = t;
-      std::fprintf(stderr, "\r%5.1f%%  %.1f s", 100.0 * f, t);
+      const std::string left = f > 0.0f ? ", about " + duration_text(t / f * (1.0 - f)) + " left" : "";
+      if (terminal)
+        std::fprintf(stderr, "\r%5.1f%%  %.1f s%s   ", 100.0 * f, t, left.c_str());
+      else
+        std::fprintf(stderr, "igi-render: %.1f%% after %.1f s%s\n", 100.0 * f, t, left.c_str());
     };
   igi::OfflineResult r = igi::render_offline(state.context(), o.settings, frame, o.samples, options, &g_interrupted);
-  if (!o.quiet) std::fprintf(stderr, "\r                      \r");
+  if (!o.quiet && terminal) std::fprintf(stderr, "\r%60s\r", "");
   const bool partial = r.passes < r.planned;
   if (partial && r.passes == 0) {
     std::fprintf(stderr, "igi-render: interrupted before the first pass finished: nothing written\n");
@@ -76,6 +96,10 @@ int run(igi::RenderOptions o) {
   }
   if (partial) o.output = partial_path(o.output);
   igi::write_image(r.image, o.output, o.exposure);
+  if (auto advice = igi::exposure_advice(r.image, {o.exposure, !igi::is_float_format(o.output),
+                                                   messages.file_lamps > 0,
+                                                   o.light_units == igi::LightUnits::Photometric, framing_camera}))
+    std::fprintf(stderr, "igi-render: %s\n", advice->c_str());
   if (partial) {
     std::fprintf(stderr, "igi-render: interrupted after %d of %d passes: wrote them to %s\n", r.passes, r.planned,
                  o.output.c_str());

@@ -89,6 +89,12 @@ void add_image_options(CLI::App& app, RenderOptions& o) {
   app.add_option("--environment-rotation", o.environment_rotation,
                  "turns --environment's map by DEG degrees about +y (right-handed) [0]")
       ->check(cli::bounded_number(360.0))->type_name("DEG");
+  app.add_option_function<std::string>(
+         "--light-units",
+         [&o](const std::string& u) { o.light_units = u == "radiometric" ? LightUnits::Radiometric : LightUnits::Photometric; },
+         "a glTF file's lamps: photometric as glTF and Blender write them (point and spot in candela, sun in lux, "
+         "at 683 lm/W), or radiometric (W/sr, W/m^2) [photometric]")
+      ->check(cli::one_of({"photometric", "radiometric"}))->type_name("photometric|radiometric");
 }
 
 void add_vpl_options(CLI::App& app, RenderSettings& s) {
@@ -206,12 +212,14 @@ void add_render_options(CLI::App& app, RenderOptions& o) {
   add_lightcuts_and_importance_options(app, o.settings);
 }
 
-std::optional<SkyChoice> sky_choice(const RenderOptions& o) {
-  if (!o.environment) return std::nullopt;
-  SkyChoice sky = *o.environment;
-  sky.radiance *= o.environment_scale;
-  sky.rotation = o.environment_rotation;
-  return sky;
+SceneOptions scene_options(const RenderOptions& o) {
+  SceneOptions options;
+  options.light_units = o.light_units;
+  if (!o.environment) return options;
+  options.sky = *o.environment;
+  options.sky->radiance *= o.environment_scale;
+  options.sky->rotation = o.environment_rotation;
+  return options;
 }
 
 void check_render_options(const CLI::App& app, const RenderOptions& o) {

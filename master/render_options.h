@@ -45,6 +45,7 @@ struct RenderOptions {
   // does not choose (choose_caustics).
   bool caustics_given = false;
   float environment_scale = 1.0f, environment_rotation = 0.0f;
+  LightUnits light_units = LightUnits::Photometric;  // --light-units: how a glTF file's lamps are read
 };
 
 // Declares the render options on `app`, writing into `options` (which must
@@ -54,8 +55,9 @@ void add_render_options(CLI::App& app, RenderOptions& options);
 // lightcuts and a caustic map would need. Throws cli::OptionError.
 void check_render_options(const CLI::App& app, const RenderOptions& options);
 
-// The sky the options ask for (scale and rotation applied), or none.
-std::optional<SkyChoice> sky_choice(const RenderOptions& options);
+// How the options ask the scene to be read: the sky (scale and rotation
+// applied), or none; the lamps' units.
+SceneOptions scene_options(const RenderOptions& options);
 
 // Caustics by default where the scene has mirrors, glass or sharp GGX
 // (photons::has_specular_surfaces): for ir and igi,

@@ -199,6 +199,7 @@ void write(Writer& w, const Welcome& m) {
   w.u64(m.environment_map_hash);
   w.u64(m.environment_map_size);
   w.f32(m.environment_rotation);
+  w.u8(static_cast<uint8_t>(m.light_units));
 }
 
 PixelFormat read_pixel_format(Reader& r, const char* field) {
@@ -237,6 +238,10 @@ void read(Reader& r, Welcome& m) {
   m.environment_rotation = r.f32("environment_rotation");
   if (!(std::abs(m.environment_rotation) <= 360.0f))
     r.fail("environment_rotation", show(m.environment_rotation) + ", expected degrees within +-360");
+  const uint8_t units = r.u8("light_units");
+  if (units > static_cast<uint8_t>(LightUnits::Radiometric))
+    r.fail("light_units", std::to_string(units) + ", expected 0 (photometric) or 1 (radiometric)");
+  m.light_units = r.ok() ? LightUnits(units) : LightUnits::Photometric;
 }
 
 void write(Writer& w, const Refuse& m) { w.string(m.reason); }

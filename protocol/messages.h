@@ -27,6 +27,7 @@
 #include "core/frame.h"
 #include "core/settings.h"
 #include "image/frame_buffer.h"
+#include "scene/light_units.h"
 
 namespace igi::protocol {
 
@@ -43,8 +44,9 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // filter's levels. 11: Welcome carries the scene's environment (a constant sky, or a map
 // that workers ask for by hash as they ask for the scene). 12: settings carry vpl_draws.
 // 13: settings carry lightcuts_block. 14: FrameSetup carries want_surfaces and
-// TileResult its pixels' surfaces (the window's reprojection); CancelFrame.
-inline constexpr uint16_t kVersion = 15;
+// TileResult its pixels' surfaces (the window's reprojection); CancelFrame. 15: Hello
+// carries the runtime libraries. 16: Welcome carries the units the scene's lamps are read in.
+inline constexpr uint16_t kVersion = 16;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;
@@ -105,6 +107,9 @@ struct Welcome {
   std::string environment_map;  // the file's name (no directories)
   uint64_t environment_map_hash = 0, environment_map_size = 0;
   float environment_rotation = 0.0f;  // degrees about +y
+  // How the glTF file's lamps are read (--light-units): the master's choice,
+  // so that every copy of the scene is lit alike.
+  LightUnits light_units = LightUnits::Photometric;
 };
 
 struct Refuse {

@@ -66,7 +66,7 @@ void expect_workers_match_one_process(const std::string& name, const std::string
   auto r = test::run(master("--workers 2 --frames 1 " + options + " -o " + out, scene));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   if (output) *output = r.output;
-  test::Prepared p(load_scene(scene, nullptr, sky));
+  test::Prepared p(load_scene(scene, {sky}));
   RenderSettings s;
   s.method = MethodKind::Igi;
   s.paths_per_set = 8;
@@ -464,6 +464,40 @@ TEST(Distributed, AGltfWithItsBufferBesideItTravelsWhole) {
   EXPECT_NE(said.find("goes to workers as box.glb"), std::string::npos) << said;
   EXPECT_EQ(std::distance(fs::directory_iterator(dir / "worker" / "cache"), fs::directory_iterator{}), 1);
   EXPECT_TRUE(test::images_identical("dist-gltf", read_image(out), single_process(scene)));
+}
+
+// An OBJ scene (its MTL and texture beside it) reaches a worker in another
+// folder as the .glb the master made of it, and the frame is igi-render's.
+TEST(Distributed, AnObjSceneTravelsAsAGlbAndMatchesOneProcess) {
+  const fs::path dir = fs::path(test::output_path("dist-obj"));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "master");
+  fs::create_directories(dir / "worker");
+  Image boards(4, 4);
+  for (int i = 0; i < 16; ++i) boards.pixels[size_t(i)] = glm::vec3(0.2f + 0.1f * float(i % 4), 0.3f, 0.2f);
+  write_image(boards, (dir / "master" / "boards.png").string());
+  std::ofstream(dir / "master" / "box.mtl") << "newmtl wall\nKd 0.7 0.6 0.5\nnewmtl floor\nKd 1 1 1\nmap_Kd boards.png\n"
+                                               "newmtl lamp\nKd 0 0 0\nKe 12 11 10\n";
+  // An open box seen from +z: floor, back, left, right, ceiling, and a lamp under the ceiling facing down.
+  std::ofstream(dir / "master" / "box.obj")
+      << "mtllib box.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 2 -1\nv 1 2 -1\nv 1 2 1\nv -1 2 1\n"
+         "v -0.3 1.99 -0.3\nv 0.3 1.99 -0.3\nv 0.3 1.99 0.3\nv -0.3 1.99 0.3\nvt 0 0\nvt 2 0\nvt 2 2\nvt 0 2\n"
+         "usemtl floor\nf 4/1 3/2 2/3 1/4\nusemtl wall\nf 1 2 6 5\nf 4 1 5 8\nf 2 3 7 6\nf 5 6 7 8\n"
+         "usemtl lamp\nf 9 10 11 12\n";
+  const std::string scene = (dir / "master" / "box.obj").string();
+  const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(test::free_port());
+  const std::string out = (dir / "out.exr").string(), log = (dir / "master.log").string();
+  pid_t m = test::start(master("--workers 0 --frames 1 --quiet --listen " + endpoint + " -o " + out, scene) + " 2>" + log);
+  auto r = test::run(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --scene-dir " +
+                     (dir / "worker").string() + " --cache " + (dir / "worker" / "cache").string(), 60);
+  EXPECT_EQ(test::wait_exit(m, 60), 0);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream text(log);
+  const std::string said((std::istreambuf_iterator<char>(text)), std::istreambuf_iterator<char>());
+  EXPECT_NE(said.find("goes to workers as box.glb"), std::string::npos) << said;
+  const Image image = read_image(out);
+  EXPECT_GT(image.mean().x, 0.01f) << "lit by its Ke lamp";
+  EXPECT_TRUE(test::images_identical("dist-obj", image, single_process(scene)));
 }
 
 }  // namespace

@@ -31,7 +31,7 @@ constexpr int kSize = 48;
 Scene quad_under_sky(glm::vec3 sky, std::shared_ptr<const EnvironmentMap> map = nullptr) {
   Scene s;
   s.name = "quad-under-sky";
-  s.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};  // facing +z, where the auto camera is
+  s.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};  // facing +z, where the camera is
   s.triangles = {{0, 1, 2}, {0, 2, 3}};
   s.triangle_material = {0, 0};
   Material m;
@@ -39,6 +39,7 @@ Scene quad_under_sky(glm::vec3 sky, std::shared_ptr<const EnvironmentMap> map = 
   s.materials = {m};
   s.environment = sky;
   s.environment_map = std::move(map);
+  s.camera = Camera{{0.0f, 0.0f, 4.0f}, {0.0f, 0.0f, -1.0f}};  // the quad fills the middle 70 % of the view
   s.validate();
   return s;
 }
@@ -107,7 +108,7 @@ TEST(Environment, ASceneWithoutLightOrSkyNamesTheOptionAndABadSkyIsRefused) {
   EXPECT_THROW(quad_under_sky(glm::vec3(1.0f, -1.0f, 1.0f)), SceneError);
   EXPECT_THROW(quad_under_sky(glm::vec3(NAN, 1.0f, 1.0f)), SceneError);
   // The command line's sky replaces a built-in scene's (none) and lights it.
-  EXPECT_EQ(load_scene("cornell", nullptr, SkyChoice{glm::vec3(0.25f)}).environment, glm::vec3(0.25f));
+  EXPECT_EQ(load_scene("cornell", {SkyChoice{glm::vec3(0.25f)}}).environment, glm::vec3(0.25f));
   EXPECT_EQ(load_scene("cornell").environment, glm::vec3(0.0f));
 }
 
@@ -209,7 +210,7 @@ TEST(Environment, AGltfSceneNamesItsOwnMapInItsExtras) {
   ASSERT_TRUE(from_extras.environment_map);
   EXPECT_EQ(from_extras.environment, glm::vec3(1.0f));
   EXPECT_EQ(from_extras.environment_map->rotation(), 30.0f);
-  const Scene from_options = load_scene(dir + "/quad.gltf", nullptr, SkyChoice{glm::vec3(1.0f), dir + "/sky.exr", 30.0f});
+  const Scene from_options = load_scene(dir + "/quad.gltf", {SkyChoice{glm::vec3(1.0f), dir + "/sky.exr", 30.0f}});
   for (const glm::vec3 d : {glm::vec3(0, 0, -1), glm::vec3(0.3f, 0.5f, 0.8f), glm::vec3(-1, -0.2f, 0)})
     EXPECT_EQ(from_extras.sky(d), from_options.sky(d));
   write_image(sun_and_sky(), test::output_path("sky.exr"));

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -245,12 +246,13 @@ TEST(GltfLoader, NonUniformScaleTransformsNormalsByInverseTranspose) {
   expect_near(scene.normals[0], glm::normalize(glm::vec3(0, 0.5f, 1)));
 }
 
+// Intensities in the specification's candela: 683 cd is 1 W/sr.
 TEST(GltfLoader, PunctualLightsAndCameraAreRead) {
   GltfBuilder b;
   b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", diffuse_material()))}});
   const double s = std::sqrt(0.5);
-  const int point = b.add_light({{"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 8.0}});
-  const int spot = b.add_light({{"type", "spot"}, {"intensity", 2.0}, {"range", 10.0},
+  const int point = b.add_light({{"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 8.0 * 683}});
+  const int spot = b.add_light({{"type", "spot"}, {"intensity", 2.0 * 683}, {"range", 10.0},
                                 {"spot", {{"innerConeAngle", 0.1}, {"outerConeAngle", 0.5}}}});
   b.add_root({{"translation", {1, 2, 3}}, {"extensions", {{"KHR_lights_punctual", {{"light", point}}}}}});
   b.add_root({{"translation", {0, 4, 0}}, {"rotation", {-s, 0, 0, s}},  // -Z onto -Y
@@ -277,6 +279,67 @@ TEST(GltfLoader, PunctualLightsAndCameraAreRead) {
   expect_near(scene.camera->up, {0, 1, 0});
   EXPECT_FLOAT_EQ(scene.camera->vfov, 0.8f);
   EXPECT_EQ(warnings_with(loaded, "aspectRatio"), 1u);
+  // One line says how they were read, naming the brightest as written and as read.
+  ASSERT_EQ(loaded.notices.size(), 1u);
+  for (const char* said : {"2 lamps", "683 lm/W", "5464 cd = 8 W/sr", "--light-units radiometric"})
+    EXPECT_NE(loaded.notices[0].find(said), std::string::npos) << said << " missing in: " << loaded.notices[0];
+}
+
+// Blender's exporter: a 100 W point lamp is 5435 cd, a 3 W/m^2 sun 2049 lux.
+// --light-units radiometric reads a file's numbers as W/sr and W/m^2.
+TEST(GltfLoader, LightUnitsSayHowIntensitiesAreRead) {
+  GltfBuilder b = lit_quad();
+  const int point = b.add_light({{"type", "point"}, {"intensity", 100.0 / (4 * std::numbers::pi) * 683}});
+  const int sun = b.add_light({{"type", "directional"}, {"intensity", 3.0 * 683}});
+  b.add_root({{"translation", {0, 0, 2}}, {"extensions", {{"KHR_lights_punctual", {{"light", point}}}}}});
+  b.add_root({{"extensions", {{"KHR_lights_punctual", {{"light", sun}}}}}});
+  const fs::path path = b.write_gltf(test_dir(), "blender-lamps");
+  const Scene photometric = load_gltf(path.string()).scene;
+  ASSERT_EQ(photometric.lights.size(), 2u);
+  expect_near(photometric.lights[0].intensity, glm::vec3(float(100.0 / (4 * std::numbers::pi))));
+  expect_near(photometric.lights[1].intensity, glm::vec3(3.0f));
+  const LoadedScene radiometric = load_gltf(path.string(), GltfOptions{std::nullopt, LightUnits::Radiometric});
+  ASSERT_EQ(radiometric.scene.lights.size(), 2u);
+  expect_near(radiometric.scene.lights[1].intensity, glm::vec3(3.0f * 683), 1e-3f);
+  ASSERT_EQ(radiometric.notices.size(), 2u) << "the units, and the framing camera";
+  EXPECT_NE(radiometric.notices[0].find("read as W/sr and W/m^2"), std::string::npos) << radiometric.notices[0];
+}
+
+// Blender exports neither its lamp nor its camera by default: the scene gets
+// a sun from over the framing camera's shoulder, and both are named.
+TEST(GltfLoader, AFileWithoutLightOrCameraGetsASunAndAFramingCamera) {
+  GltfBuilder b;
+  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", diffuse_material()))}});
+  const LoadedScene loaded = load_gltf(b.write_gltf(test_dir(), "unlit").string());
+  EXPECT_TRUE(loaded.warnings.empty());
+  ASSERT_EQ(loaded.scene.lights.size(), 1u);
+  const PunctualLight& sun = loaded.scene.lights[0];
+  EXPECT_EQ(sun.type, LightType::Directional);
+  EXPECT_FALSE(loaded.scene.camera.has_value());
+  const Camera camera = loaded.scene.auto_camera();
+  EXPECT_GT(glm::dot(sun.direction, camera.forward), 0.8f) << "the sun shines the way the camera looks";
+  EXPECT_LT(sun.direction.y, camera.forward.y) << "and from higher up";
+  ASSERT_EQ(loaded.notices.size(), 2u);
+  EXPECT_NE(loaded.notices[0].find("no light"), std::string::npos) << loaded.notices[0];
+  EXPECT_NE(loaded.notices[0].find("--environment"), std::string::npos) << loaded.notices[0];
+  EXPECT_NE(loaded.notices[1].find("no camera"), std::string::npos) << loaded.notices[1];
+}
+
+// The framing camera stands on the side the lamps light: a lamp at -x, +z
+// puts it at -x, +z of the centre, one at +x, -z at +x, -z.
+TEST(GltfLoader, TheFramingCameraSeesTheLitSide) {
+  for (const glm::vec3 lamp : {glm::vec3(-5, 3, 4), glm::vec3(5, 3, -4), glm::vec3(4, 3, 5)}) {
+    GltfBuilder b = lit_quad();
+    const int point = b.add_light({{"type", "point"}, {"intensity", 683.0}});
+    b.add_root({{"translation", {lamp.x, lamp.y, lamp.z}}, {"extensions", {{"KHR_lights_punctual", {{"light", point}}}}}});
+    const Scene scene = load_gltf(b.write_gltf(test_dir(), "lamp").string()).scene;
+    const Camera camera = scene.auto_camera();
+    const glm::vec3 centre = scene.bounds().center();
+    EXPECT_GT((camera.position.x - centre.x) * lamp.x, 0.0f) << "lamp at x " << lamp.x;
+    EXPECT_GT((camera.position.z - centre.z) * lamp.z, 0.0f) << "lamp at z " << lamp.z;
+    EXPECT_GT(camera.position.y, centre.y);
+    expect_near(glm::normalize(centre - camera.position), camera.forward);
+  }
 }
 
 TEST(GltfLoader, SpotConesOutOfOrderAreAnError) {
@@ -480,8 +543,8 @@ TEST(GltfLoader, MissingFileIsAnError) {
 // A scene in another format, or a mistyped built-in name: the error says
 // what is read and what to do, not a JSON parse error or "no such file".
 TEST(GltfLoader, OtherFormatsAndMistypedBuiltInsSayWhatToDo) {
-  const fs::path obj = test_dir() / "cube.obj";
-  std::ofstream(obj) << "# a triangle\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const fs::path ply = test_dir() / "cube.ply";
+  std::ofstream(ply) << "ply\nformat ascii 1.0\nelement vertex 0\nend_header\n";
   auto error_of = [](const std::string& name) -> std::string {
     try {
       load_scene(name);
@@ -490,10 +553,10 @@ TEST(GltfLoader, OtherFormatsAndMistypedBuiltInsSayWhatToDo) {
     }
     return "";
   };
-  const std::string on_obj = error_of(obj.string());
-  for (const char* fragment : {"cube.obj", "glTF 2.0", ".obj", "Blender", "File > Export"})
-    EXPECT_NE(on_obj.find(fragment), std::string::npos) << "'" << fragment << "' missing in: " << on_obj;
-  EXPECT_EQ(on_obj.find("parse error"), std::string::npos) << on_obj;
+  const std::string on_ply = error_of(ply.string());
+  for (const char* fragment : {"cube.ply", "glTF 2.0", "OBJ (.obj)", "not .ply", "Blender", "File > Export"})
+    EXPECT_NE(on_ply.find(fragment), std::string::npos) << "'" << fragment << "' missing in: " << on_ply;
+  EXPECT_EQ(on_ply.find("parse error"), std::string::npos) << on_ply;
   const fs::path blend = test_dir() / "scene.blend";
   std::ofstream(blend) << "BLENDER";
   const std::string on_blend = error_of(blend.string());
@@ -576,12 +639,6 @@ TEST(GltfLoader, BufferViewBeyondItsBufferIsAnError) {
   GltfBuilder b = lit_quad();
   b.doc["bufferViews"][2]["byteLength"] = 4096;
   expect_scene_error(b.write_gltf(test_dir(), "view"), {"bufferViews[2]", "exceeds buffer 0"});
-}
-
-TEST(GltfLoader, SceneWithoutLightIsAnError) {
-  GltfBuilder b;
-  b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", diffuse_material()))}});
-  expect_scene_error(b.write_gltf(test_dir(), "dark"), {"no light"});
 }
 
 TEST(GltfLoader, SceneWithoutGeometryIsAnError) {
@@ -703,8 +760,11 @@ TEST(GltfLoader, EmitterTooSmallForFloatIsNoLight) {
   GltfBuilder b = lit_quad();
   b.doc["nodes"][0]["scale"] = {1e-30, 1e-30, 1e-30};
   b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", diffuse_material()))}});
-  const fs::path path = b.write_gltf(test_dir(), "tiny");
-  expect_scene_error(path, {"no light"});
+  const LoadedScene loaded = load_gltf(b.write_gltf(test_dir(), "tiny").string());
+  ASSERT_EQ(loaded.scene.lights.size(), 1u) << "the supplied sun";
+  EXPECT_EQ(loaded.scene.lights[0].type, LightType::Directional);
+  ASSERT_FALSE(loaded.notices.empty());
+  EXPECT_NE(loaded.notices[0].find("no light"), std::string::npos) << loaded.notices[0];
 }
 
 // The document's text with `placeholder` (a JSON string) replaced by `text`:

@@ -211,6 +211,21 @@ TEST(GltfWriter, EmissionAboveOneUsesEmissiveStrength) {
     EXPECT_NE(std::find(used.begin(), used.end(), name), used.end()) << name;
 }
 
+// The specification's units, as Blender reads them: candela and lux at 683 lm/W.
+TEST(GltfWriter, LampsAreWrittenInCandelaAndLux) {
+  Scene scene = rich_scene(true);
+  add_lights_and_camera(scene);
+  const fs::path path = test_dir() / "lamps.gltf";
+  write_gltf(scene, path.string());
+  std::ifstream in(path);
+  const nlohmann::json lights = nlohmann::json::parse(in)["extensions"]["KHR_lights_punctual"]["lights"];
+  ASSERT_EQ(lights.size(), 3u);
+  EXPECT_DOUBLE_EQ(lights[0]["intensity"].get<double>(), 4.0 * 683);  // point: 4 W/sr, colour (1, 0.5, 0.25)
+  EXPECT_DOUBLE_EQ(lights[1]["intensity"].get<double>(), 3.0 * 683);
+  EXPECT_DOUBLE_EQ(lights[2]["intensity"].get<double>(), 0.5 * 683);  // sun: 0.5 W/m^2
+  EXPECT_DOUBLE_EQ(lights[0]["color"][1].get<double>(), 0.5);
+}
+
 TEST(GltfWriter, TextureRoundTripsThroughPng) {
   Scene scene = rich_scene(true);
   Texture texture;

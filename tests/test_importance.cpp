@@ -110,7 +110,7 @@ TEST(LightImportance, LightsOfTheRoomsTheCameraSeesGetMostPaths) {
 // read a punctual light that was not there): it is credited where the
 // camera's surfaces see it, and every probability is finite.
 TEST(LightImportance, TheSkyIsCreditedLikeAnyLight) {
-  const test::Prepared p(load_scene("cornell", nullptr, SkyChoice{glm::vec3(0.2f, 0.3f, 0.4f)}));
+  const test::Prepared p(load_scene("cornell", {SkyChoice{glm::vec3(0.2f, 0.3f, 0.4f)}}));
   const auto& lights = p.lights->lights();
   ASSERT_EQ(lights.back().kind, LightKind::Environment);
   RenderSettings s = vpl_settings(MethodKind::Igi, 16);

@@ -54,7 +54,8 @@ bool same(const Welcome& a, const Welcome& b) {
          a.scene_size == b.scene_size && a.environment == b.environment && same(a.settings, b.settings) && a.credits == b.credits &&
          a.heartbeat_ms == b.heartbeat_ms && a.timeout_ms == b.timeout_ms && a.pixel_format == b.pixel_format &&
          a.environment_map == b.environment_map && a.environment_map_hash == b.environment_map_hash &&
-         a.environment_map_size == b.environment_map_size && a.environment_rotation == b.environment_rotation;
+         a.environment_map_size == b.environment_map_size && a.environment_rotation == b.environment_rotation &&
+         a.light_units == b.light_units;
 }
 bool same(const Refuse& a, const Refuse& b) { return a.reason == b.reason; }
 bool same(const SceneRequest& a, const SceneRequest& b) { return a.scene_hash == b.scene_hash; }
@@ -121,7 +122,7 @@ std::vector<Message> samples() {
   return {
       Hello{"igi-1.0-abc123", "avx2", 12, "glibc 2.36, Embree 3.13.5"},
       Welcome{0x1122334455667788ull, "cornell.glb", 0xcbf29ce484222325ull, 123456, {0.5f, 1.0f, 2.0f}, settings, 3, 250, 1700,
-              PixelFormat::Float16, "sky.exr", 0x5eed5eed5eed5eedull, 4096, -30.0f},
+              PixelFormat::Float16, "sky.exr", 0x5eed5eed5eed5eedull, 4096, -30.0f, LightUnits::Radiometric},
       Refuse{"build id mismatch: worker abc, master def"},
       SceneRequest{0xdeadbeefcafef00dull},
       SceneData{0x0123456789abcdefull, "scene.glb", scene},
@@ -591,8 +592,9 @@ TEST(Protocol, HugeLengthsAndBadBytesAreRejectedBeforeUse) {
   EXPECT_EQ(patched(welcome, method_at, {7}), "Welcome.settings.method: --method: expected pt, ir, igi or lightcuts (0..3), got 7");
   EXPECT_EQ(patched(welcome, method_at - 12, {0, 0, 0x80, 0xbf}),  // -1.0f
             "Welcome.environment: -1, expected a radiance from 0 to 1000000");
-  // The map's rotation, the Welcome's last 4 bytes: degrees within +-360.
-  const size_t rotation_at = encode(Message{welcome}).size() - 4;
+  // The map's rotation, 4 bytes before the last (the lamps' units): degrees within +-360.
+  const size_t rotation_at = encode(Message{welcome}).size() - 5;
+  EXPECT_EQ(patched(welcome, rotation_at + 4, {2}), "Welcome.light_units: 2, expected 0 (photometric) or 1 (radiometric)");
   EXPECT_EQ(patched(welcome, rotation_at, {0, 0, 0xc8, 0x43}),  // 400.0f
             "Welcome.environment_rotation: 400, expected degrees within +-360");
   // method u8; path, light and specular depth, interleave, paths_per_set, vpl_draws, aa_samples i32;

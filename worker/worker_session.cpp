@@ -27,7 +27,7 @@ std::string scene_key(const protocol::Welcome& w) {
   std::memcpy(&rotation, &w.environment_rotation, sizeof rotation);
   return w.scene_name + "#" + hash_hex(w.scene_hash) + "#" + std::to_string(sky[0]) + "," + std::to_string(sky[1]) +
          "," + std::to_string(sky[2]) + "#" + w.environment_map + "#" + hash_hex(w.environment_map_hash) + "#" +
-         std::to_string(rotation);
+         std::to_string(rotation) + "#" + light_units_name(w.light_units);
 }
 
 }  // namespace
@@ -265,14 +265,14 @@ WorkerSession::LoadResult WorkerSession::find_and_load(const SceneCache& cache, 
     sky.map = *map;
     sky.rotation = w.environment_rotation;
   }
-  return load(scene, sky, fail);
+  return load(scene, {sky, w.light_units}, fail);
 }
 
-WorkerSession::LoadResult WorkerSession::load(const std::string& scene, const SkyChoice& sky, bool fail) {
+WorkerSession::LoadResult WorkerSession::load(const std::string& scene, const SceneOptions& options, bool fail) {
   try {
     if (fail) throw std::runtime_error("--test-fail-scene-load");
     auto loaded = std::make_shared<Loaded>();
-    loaded->scene = std::make_unique<SceneState>(load_scene(scene, nullptr, sky));
+    loaded->scene = std::make_unique<SceneState>(load_scene(scene, options));
     return {loaded, 0, {}, false};
   } catch (const std::exception& e) {
     return {nullptr, 0, e.what(), false};

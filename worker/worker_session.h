@@ -81,7 +81,7 @@ class WorkerSession {
   };
   // The scene and its map (built in, in a search folder or the cache), loaded; or the one to ask for.
   static LoadResult find_and_load(const SceneCache& cache, const protocol::Welcome& welcome, bool fail);
-  static LoadResult load(const std::string& scene, const SkyChoice& sky, bool fail);
+  static LoadResult load(const std::string& scene, const SceneOptions& options, bool fail);
 
   Outcome serve(zmq::context_t& context);
   void wait_for_work(zmq::socket_t& socket);

@@ -41,7 +41,7 @@ std::vector<unsigned char> to_srgb8(const Image& image, float exposure) {
   return bytes;
 }
 
-static bool is_float_format(const std::string& path) {
+bool is_float_format(const std::string& path) {
   std::string ext = path.substr(path.find_last_of('.') + 1);
   std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
   return ext == "exr" || ext == "hdr" || ext == "pfm" || ext == "tif" || ext == "tiff";

@@ -37,6 +37,9 @@ void write_image(const Image& image, const std::string& path, float exposure = 1
 // for a device such as /dev/null. Writes nothing.
 std::optional<std::string> image_path_error(const std::string& path);
 Image read_image(const std::string& path);
+// Whether write_image() writes `path` as linear floats (.exr, .hdr, .pfm,
+// .tif) rather than 8-bit sRGB after exposure.
+bool is_float_format(const std::string& path);
 
 // 8-bit sRGB, three bytes a pixel, row 0 at the top; clamps after `exposure`.
 std::vector<unsigned char> to_srgb8(const Image& image, float exposure = 1.0f);

@@ -1,13 +1,24 @@
 #include "io/file_bytes.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fcntl.h>
 #include <stdexcept>
 #include <sys/stat.h>
 #include <unistd.h>
 
 namespace igi {
+
+bool inside_folder(const std::string& root, const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::path target = fs::weakly_canonical(path, error);
+  if (root.empty() || error) return false;
+  const fs::path base(root);
+  return std::mismatch(base.begin(), base.end(), target.begin(), target.end()).first == base.end();
+}
 
 namespace {
 

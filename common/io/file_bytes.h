@@ -12,6 +12,11 @@ namespace igi {
 // regular file or cannot be read.
 std::optional<std::vector<uint8_t>> read_file_bytes(const std::string& path);
 
+// Whether `path`, links and ".." resolved, lies inside the folder `root`
+// (itself resolved by the caller: std::filesystem::weakly_canonical). An
+// empty root holds nothing. Scenes read external files only from their own folder.
+bool inside_folder(const std::string& root, const std::string& path);
+
 // Whether the process's umask may narrow a new file's permissions: a key file
 // must get exactly its mode (owner read/write), a cached scene no wider than
 // the user's umask allows.

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 
 #include <tiny_gltf.h>
 
+#include "io/file_bytes.h"
 #include "scene/animation.h"
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_animation.h"
@@ -30,6 +32,22 @@ constexpr uint32_t kGlbMagic = 0x46546C67;      // "glTF"
 constexpr uint32_t kChunkJson = 0x4E4F534A;     // "JSON"
 constexpr uint32_t kChunkBin = 0x004E4942;      // "BIN\0"
 constexpr size_t kGlbHeaderBytes = 12, kChunkHeaderBytes = 8;
+// A file without a light gets a sun of this irradiance (W/m^2): a white
+// diffuse face turned to it shows about 0.8 at exposure 1.
+constexpr float kSuppliedSunIrradiance = 3.0f;
+
+// 4 significant digits; whole numbers from 1000 to 1e9 in full (5435 cd, 27320 cd).
+std::string format_number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, std::abs(x) >= 1e3 && std::abs(x) < 1e9 ? "%.0f" : "%.4g", x);
+  return text;
+}
+
+std::string show(glm::vec3 p) {
+  return "(" + format_number(p.x) + ", " + format_number(p.y) + ", " + format_number(p.z) + ")";
+}
+
+float max_component(glm::vec3 c) { return std::max({c.x, c.y, c.z}); }
 
 std::vector<unsigned char> read_file(const std::string& path) {
   std::error_code error;
@@ -55,12 +73,7 @@ struct ResourceFolder {
 
   bool contains(const std::string& path) {
     std::error_code error;
-    const fs::path target = fs::weakly_canonical(path, error);
-    bool inside = !root.empty() && !error;
-    if (inside) {
-      auto [root_end, unused] = std::mismatch(root.begin(), root.end(), target.begin(), target.end());
-      inside = root_end == root.end();
-    }
+    const bool inside = inside_folder(root.string(), path);
     const bool known = std::find(refused.begin(), refused.end(), path) != refused.end();
     if (!inside && !known && fs::exists(path, error)) refused.push_back(path);
     return inside;
@@ -293,6 +306,48 @@ glm::vec3 read_environment(const tinygltf::Model& model, const std::string& reso
   return c;  // finite and >= 0: Scene::validate
 }
 
+// The line that says how the file's lights (already in W/sr and W/m^2) were read.
+std::string light_units_notice(LightUnits units, const GltfDiagnostics& diag, const std::vector<PunctualLight>& lights) {
+  const PunctualLight* brightest = &lights[0];
+  for (const PunctualLight& light : lights)
+    if (max_component(light.intensity) > max_component(brightest->intensity)) brightest = &light;
+  const double radiometric = max_component(brightest->intensity);
+  const bool directional = brightest->type == LightType::Directional;
+  const std::string count = std::to_string(lights.size()) + (lights.size() == 1 ? " lamp" : " lamps");
+  const std::string unit = directional ? " W/m^2" : " W/sr";
+  if (units == LightUnits::Radiometric)
+    return diag.file + ": " + count + " read as W/sr and W/m^2 (--light-units radiometric); the brightest " +
+           format_number(radiometric) + unit;
+  return diag.file + ": " + count + " in glTF's units, candela and lux, read at " + format_number(kLumensPerWatt) +
+         " lm/W: the brightest " + format_number(radiometric * kLumensPerWatt) + (directional ? " lux = " : " cd = ") +
+         format_number(radiometric) + unit + " (--light-units radiometric reads them as W/sr and W/m^2)";
+}
+
+// A file without a light or a camera (Blender exports neither by default):
+// a sun over the camera's shoulder, and the framing camera, each named.
+void supply_light_and_camera(const GltfDiagnostics& diag, Scene& scene, std::vector<std::string>& notices) {
+  if (!scene.has_light()) {
+    const Camera camera = scene.camera_or_auto();
+    const glm::vec3 right = glm::normalize(glm::cross(camera.forward, camera.up));
+    const glm::vec3 up = glm::cross(right, camera.forward);
+    PunctualLight sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(camera.forward - 0.4f * up + 0.3f * right);  // from above, left and behind
+    sun.intensity = glm::vec3(kSuppliedSunIrradiance);
+    scene.lights.push_back(sun);
+    notices.push_back(diag.file + ": no light (no lamp, no emissive material, no sky): lit by a sun of " +
+                      format_number(kSuppliedSunIrradiance) +
+                      " W/m^2 from over the camera's shoulder. Export the lamps with the file "
+                      "(Blender: Include > Punctual Lights) or light it with --environment 1,1,1");
+  }
+  if (!scene.camera) {
+    const Camera camera = scene.auto_camera();
+    notices.push_back(diag.file + ": no camera: framing the scene from " + show(camera.position) +
+                      ", looking at its centre from the side its lights face (--camera FILE, or the window, "
+                      "picks another)");
+  }
+}
+
 // Scene::validate names the scene, not the file: prefix the file.
 void validate_scene(const Scene& scene, const GltfDiagnostics& diag) {
   try {
@@ -304,13 +359,13 @@ void validate_scene(const Scene& scene, const GltfDiagnostics& diag) {
 
 }  // namespace
 
-LoadedScene load_gltf(const std::string& path, std::optional<glm::vec3> environment) {
+LoadedScene load_gltf(const std::string& path, const GltfOptions& options) {
   const std::string folder = fs::path(path).parent_path().string();
-  return load_gltf_memory(read_file(path), path, folder.empty() ? "." : folder, environment);
+  return load_gltf_memory(read_file(path), path, folder.empty() ? "." : folder, options);
 }
 
 LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& name,
-                             const std::string& resource_dir, std::optional<glm::vec3> environment) {
+                             const std::string& resource_dir, const GltfOptions& options) {
   GltfDiagnostics diag;
   diag.file = name;
   const tinygltf::Model model = parse_model(bytes, resource_dir, diag);
@@ -324,15 +379,19 @@ LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& 
   std::vector<AnimationChannel> channels = read_gltf_animations(model, diag);
   std::vector<bool> animated(model.nodes.size(), false);
   for (const AnimationChannel& channel : channels) animated[channel.node] = true;
-  FlattenedNodes nodes = flatten_nodes(model, animated, diag);
+  const bool photometric = options.light_units == LightUnits::Photometric;
+  FlattenedNodes nodes = flatten_nodes(model, animated, photometric ? 1.0 / kLumensPerWatt : 1.0, diag);
   std::vector<DynamicPart> parts = add_mesh_instances(model, nodes.instances, diag, scene);
   check_world_extent(scene, diag);
   scene.lights = std::move(nodes.lights);
+  loaded.file_lamps = scene.lights.size();
+  if (!scene.lights.empty()) loaded.notices.push_back(light_units_notice(options.light_units, diag, scene.lights));
   scene.camera = nodes.camera;
   if (!nodes.pose_nodes.empty()) scene.animation = make_animation(std::move(channels), nodes, std::move(parts), scene, diag);
   scene.name = nodes.scene_name.empty() ? fs::path(name).stem().string() : nodes.scene_name;
   // The command line's sky replaces the file's (a worker's copy: the master's sky, its map sent apart).
-  scene.environment = environment ? *environment : read_environment(model, resource_dir, diag, scene);
+  scene.environment = options.environment ? *options.environment : read_environment(model, resource_dir, diag, scene);
+  if (!scene.triangles.empty()) supply_light_and_camera(diag, scene, loaded.notices);
   validate_scene(scene, diag);
   loaded.warnings = std::move(diag.warnings);
   return loaded;

@@ -25,30 +25,45 @@
 #include <optional>
 #include <vector>
 
+#include "scene/light_units.h"
 #include "scene/scene.h"
 
 namespace igi {
+
+struct GltfOptions {
+  // The sky, replacing the file's (the command line's, or the master's on a worker).
+  std::optional<glm::vec3> environment;
+  LightUnits light_units = LightUnits::Photometric;
+};
 
 struct LoadedScene {
   Scene scene;
   // One line per feature the renderer left out or repaired, each naming the
   // file, the feature and what became of it.
   std::vector<std::string> warnings;
+  // What the loader read or assumed that the user should know of, each a
+  // line naming the file: the units its lights were read in, the camera and
+  // light it supplied when the file has none.
+  std::vector<std::string> notices;
+  size_t file_lamps = 0;  // the lights the file gave (a supplied sun is not one of them)
 };
 
 // Binary when the file starts with the "glTF" magic or is named *.glb;
 // JSON otherwise.
 // External URIs resolve inside the file's folder. The environment (a
 // constant sky) comes from the glTF scene's extras, {"environment": [r, g,
-// b]}, unless `environment` is given: then that one (the command line's).
-LoadedScene load_gltf(const std::string& path, std::optional<glm::vec3> environment = std::nullopt);
+// b]}, unless `options.environment` is given: then that one.
+//
+// A file without a light (no punctual light, no emitter, no sky) gets a sun
+// over the camera's shoulder, and one without a camera the framing camera
+// of Scene::auto_camera(); each says so in `notices`.
+LoadedScene load_gltf(const std::string& path, const GltfOptions& options = {});
 
 // The same from bytes in memory (the fuzz targets, scenes off the wire).
 // `name` stands for the file in messages and, like a path, says .glb when
 // the bytes lack the magic. External URIs resolve inside `resource_dir`;
 // with an empty `resource_dir` every external URI is refused.
 LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& name,
-                             const std::string& resource_dir = "",
-                             std::optional<glm::vec3> environment = std::nullopt);
+                             const std::string& resource_dir = "", const GltfOptions& options = {});
 
 }  // namespace igi

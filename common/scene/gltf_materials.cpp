@@ -90,6 +90,32 @@ std::optional<glm::ivec2> encoded_image_size(const unsigned char* bytes, size_t 
   return std::nullopt;
 }
 
+// Texels are stored as float4: 2^26 of them are 1 GiB. A header may also
+// claim more pixels than its file can hold: stb decodes a JPEG whose scans
+// are cut short or missing as if the rest were there, so a 600-byte file
+// that says 8000 x 8000 took 12 s and 1.4 GB before this check. The most
+// pixels a byte can hold:
+// - PNG: 8 (1-bit pixels) times deflate's largest ratio, 1032:1.
+// - JPEG: a scan spends at least one bit on each 8 x 8 block (a 1-bit DC
+//   code, progressive); 1024 is twice that, for slack. Real files stay far
+//   below: a flat 4:2:0 JPEG with the standard tables holds about 64.
+void check_image_size(const unsigned char* bytes, size_t size, const std::string& name, const GltfDiagnostics& diag) {
+  constexpr int64_t kMaxTexels = int64_t(1) << 26;
+  const std::optional<glm::ivec2> extent = encoded_image_size(bytes, size);
+  if (!extent) diag.fail(name, "neither a PNG nor a JPEG image (or its header is cut short)");
+  const int64_t texels = int64_t(extent->x) * extent->y;
+  if (extent->x <= 0 || extent->y <= 0 || texels > kMaxTexels)
+    diag.fail(name, std::to_string(extent->x) + " x " + std::to_string(extent->y) +
+                         " pixels, expected at least 1 x 1 and at most 2^26 pixels");
+  const bool png = bytes[0] == 0x89;
+  const int64_t per_byte = png ? 8 * 1032 : 1024;
+  if (texels > per_byte * int64_t(size))
+    diag.fail(name, std::to_string(extent->x) + " x " + std::to_string(extent->y) + " pixels in " +
+                         std::to_string(size) + " bytes: more than a " + (png ? "PNG" : "JPEG") +
+                         " file of that size can hold (" + std::to_string(per_byte) +
+                         " pixels a byte); the file is cut short or broken");
+}
+
 // Converts materials in glTF order; decodes each used image once.
 class MaterialConverter {
  public:
@@ -104,7 +130,6 @@ class MaterialConverter {
   void warn_ignored_textures(const tinygltf::Material& source);
   int base_color_texture(const tinygltf::TextureInfo& info, const std::string& name);
   void warn_sampler(int sampler);
-  void check_image_size(const unsigned char* bytes, size_t size, const std::string& name);
   Texture decode_image(int image);
 
   const tinygltf::Model& model_;
@@ -219,31 +244,6 @@ int MaterialConverter::base_color_texture(const tinygltf::TextureInfo& info, con
   return slot;
 }
 
-// Texels are stored as float4: 2^26 of them are 1 GiB. A header may also
-// claim more pixels than its file can hold: stb decodes a JPEG whose scans
-// are cut short or missing as if the rest were there, so a 600-byte file
-// that says 8000 x 8000 took 12 s and 1.4 GB before this check. The most
-// pixels a byte can hold:
-// - PNG: 8 (1-bit pixels) times deflate's largest ratio, 1032:1.
-// - JPEG: a scan spends at least one bit on each 8 x 8 block (a 1-bit DC
-//   code, progressive); 1024 is twice that, for slack. Real files stay far
-//   below: a flat 4:2:0 JPEG with the standard tables holds about 64.
-void MaterialConverter::check_image_size(const unsigned char* bytes, size_t size, const std::string& name) {
-  constexpr int64_t kMaxTexels = int64_t(1) << 26;
-  const std::optional<glm::ivec2> extent = encoded_image_size(bytes, size);
-  if (!extent) diag_.fail(name, "neither a PNG nor a JPEG image (or its header is cut short)");
-  const int64_t texels = int64_t(extent->x) * extent->y;
-  if (extent->x <= 0 || extent->y <= 0 || texels > kMaxTexels)
-    diag_.fail(name, std::to_string(extent->x) + " x " + std::to_string(extent->y) +
-                         " pixels, expected at least 1 x 1 and at most 2^26 pixels");
-  const bool png = bytes[0] == 0x89;
-  const int64_t per_byte = png ? 8 * 1032 : 1024;
-  if (texels > per_byte * int64_t(size))
-    diag_.fail(name, std::to_string(extent->x) + " x " + std::to_string(extent->y) + " pixels in " +
-                         std::to_string(size) + " bytes: more than a " + (png ? "PNG" : "JPEG") +
-                         " file of that size can hold (" + std::to_string(per_byte) +
-                         " pixels a byte); the file is cut short or broken");
-}
 
 void MaterialConverter::warn_sampler(int sampler) {
   if (sampler < 0 || size_t(sampler) >= model_.samplers.size()) return;
@@ -271,19 +271,23 @@ Texture MaterialConverter::decode_image(int index) {
   if (size == 0 && image.bufferView >= 0) diag_.fail(shown, "the bufferView is empty");
   if (size == 0) diag_.fail(shown, "the image file is missing, empty or outside the scene's folder");
   if (size > size_t(INT_MAX)) diag_.fail(shown, std::to_string(size) + " bytes, over the 2 GiB image limit");
-  check_image_size(bytes, size, shown);
-  std::string error, warning;
-  tinygltf::Image decoded;
-  const bool ok = tinygltf::LoadImageData(&decoded, index, &error, &warning, 0, 0, bytes, int(size), nullptr);
-  const size_t expected_bytes = size_t(decoded.width) * size_t(decoded.height) * 4 * size_t(decoded.bits / 8);
-  if (!ok || decoded.component != 4 || (decoded.bits != 8 && decoded.bits != 16) ||
-      decoded.image.size() != expected_bytes)
-    diag_.fail(shown, "cannot be decoded" + (error.empty() ? std::string() : " (" + trimmed(error) + ")") +
-                          ": expected a PNG or JPEG image");
-  return to_linear_texture(decoded);
+  return decode_texture(bytes, size, shown, diag_);
 }
 
 }  // namespace
+
+Texture decode_texture(const unsigned char* bytes, size_t size, const std::string& shown, const GltfDiagnostics& diag) {
+  check_image_size(bytes, size, shown, diag);
+  std::string error, warning;
+  tinygltf::Image decoded;
+  const bool ok = tinygltf::LoadImageData(&decoded, 0, &error, &warning, 0, 0, bytes, int(size), nullptr);
+  const size_t expected_bytes = size_t(decoded.width) * size_t(decoded.height) * 4 * size_t(decoded.bits / 8);
+  if (!ok || decoded.component != 4 || (decoded.bits != 8 && decoded.bits != 16) ||
+      decoded.image.size() != expected_bytes)
+    diag.fail(shown, "cannot be decoded" + (error.empty() ? std::string() : " (" + trimmed(error) + ")") +
+                         ": expected a PNG or JPEG image");
+  return to_linear_texture(decoded);
+}
 
 void convert_materials(const tinygltf::Model& model, GltfDiagnostics& diag, Scene& scene) {
   MaterialConverter converter(model, diag, scene);

@@ -24,6 +24,11 @@ namespace igi {
 // scene.textures (one per decoded image that a material uses).
 void convert_materials(const tinygltf::Model& model, GltfDiagnostics& diag, Scene& scene);
 
+// A PNG or JPEG file's bytes as a linear texture (sRGB decoded; alpha kept),
+// after the same checks as a glTF image: its header's size at most 2^26
+// pixels and no more than its bytes can hold. Throws SceneError naming `shown`.
+Texture decode_texture(const unsigned char* bytes, size_t size, const std::string& shown, const GltfDiagnostics& diag);
+
 // The material glTF prescribes for a primitive without one: white,
 // metallic 1, roughness 1, single-sided; here a Conductor with alpha 1.
 Material default_gltf_material();

@@ -63,8 +63,9 @@ std::vector<int> root_nodes(const tinygltf::Model& model, std::string& scene_nam
 
 class NodeWalker {
  public:
-  NodeWalker(const tinygltf::Model& model, const std::vector<bool>& animated, GltfDiagnostics& diag)
-      : model_(model), animated_(animated), diag_(diag), visited_(model.nodes.size(), false) {
+  NodeWalker(const tinygltf::Model& model, const std::vector<bool>& animated, double light_scale,
+             GltfDiagnostics& diag)
+      : model_(model), animated_(animated), light_scale_(light_scale), diag_(diag), visited_(model.nodes.size(), false) {
     out_.pose_node_of.assign(model.nodes.size(), -1);
   }
 
@@ -86,6 +87,7 @@ class NodeWalker {
 
   const tinygltf::Model& model_;
   const std::vector<bool>& animated_;
+  double light_scale_;  // file units into W/sr and W/m^2
   GltfDiagnostics& diag_;
   std::vector<bool> visited_;
   FlattenedNodes out_;
@@ -181,7 +183,7 @@ std::optional<PunctualLight> NodeWalker::to_punctual(const tinygltf::Light& ligh
   const glm::vec3 color = c.size() >= 3 ? glm::vec3(c[0], c[1], c[2]) : glm::vec3(1.0f);
   if (glm::any(glm::lessThan(color, glm::vec3(0.0f))) || !(light.intensity >= 0.0))
     diag_.fail(name, "color and intensity must not be negative");
-  out.intensity = color * float(light.intensity);  // radiometric: W/sr or W/m^2
+  out.intensity = glm::vec3(glm::dvec3(color) * (light.intensity * light_scale_));  // radiometric: W/sr or W/m^2
   if (!finite(out.intensity))
     diag_.fail(name, "color x intensity is not finite, expected finite radiometric intensity");
   if (light.type == "point") {
@@ -239,9 +241,9 @@ void NodeWalker::add_camera(const tinygltf::Node& node, const std::string& name,
 
 }  // namespace
 
-FlattenedNodes flatten_nodes(const tinygltf::Model& model, const std::vector<bool>& animated,
+FlattenedNodes flatten_nodes(const tinygltf::Model& model, const std::vector<bool>& animated, double light_scale,
                              GltfDiagnostics& diag) {
-  return NodeWalker(model, animated, diag).walk();
+  return NodeWalker(model, animated, light_scale, diag).walk();
 }
 
 }  // namespace igi

@@ -40,8 +40,10 @@ struct FlattenedNodes {
   std::vector<int> light_pose_node;
 };
 
-// `animated` has one flag per glTF node (or is empty: nothing moves).
-FlattenedNodes flatten_nodes(const tinygltf::Model& model, const std::vector<bool>& animated,
+// `animated` has one flag per glTF node (or is empty: nothing moves). Light
+// intensities are multiplied by `light_scale` into W/sr and W/m^2 (1/683 for
+// glTF's candela and lux: scene/light_units.h).
+FlattenedNodes flatten_nodes(const tinygltf::Model& model, const std::vector<bool>& animated, double light_scale,
                              GltfDiagnostics& diag);
 
 }  // namespace igi

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/file_bytes.h"
+#include "scene/obj_loader.h"
 #include "scene/scene.h"
 
 namespace igi {
@@ -138,6 +139,7 @@ bool has_external(const json& doc, const char* array) {
 }  // namespace
 
 SceneFile scene_file_for_workers(const std::string& path) {
+  if (is_obj_file(path)) return {fs::path(path).stem().string() + ".glb", obj_as_glb(path), true};
   std::optional<std::vector<uint8_t>> bytes = read_file_bytes(path);
   if (!bytes) throw SceneError(path + ": cannot read the scene file");
   SceneFile file{fs::path(path).filename().string(), std::move(*bytes), false};

@@ -17,7 +17,7 @@ struct SceneFile {
 };
 
 // The scene file's bytes; packed when it is a .gltf with external buffers or
-// images. The external files must lie in the scene's folder, as the loader
+// images, converted when it is an .obj (scene/obj_loader.h). The external files must lie in the scene's folder, as the loader
 // asks. Throws SceneError naming the file that cannot be read.
 SceneFile scene_file_for_workers(const std::string& path);
 

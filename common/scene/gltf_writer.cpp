@@ -1,10 +1,12 @@
 #include "scene/gltf_writer.h"
+#include "scene/light_units.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <set>
+#include <sstream>
 
 #include <glm/gtc/quaternion.hpp>
 #include <tiny_gltf.h>
@@ -217,11 +219,12 @@ tinygltf::Light to_gltf(const PunctualLight& light) {
   out.type = light.type == LightType::Point  ? "point"
              : light.type == LightType::Spot ? "spot"
                                              : "directional";
-  // color in [0, 1], intensity carrying the magnitude, as glTF authors write it
+  // color in [0, 1], intensity carrying the magnitude, as glTF authors write
+  // it, in the specification's candela and lux (scene/light_units.h)
   const float peak = std::max({light.intensity.r, light.intensity.g, light.intensity.b});
   const glm::vec3 color = peak > 0.0f ? light.intensity / peak : glm::vec3(1.0f);
   out.color = {color.r, color.g, color.b};
-  out.intensity = std::max(peak, 0.0f);
+  out.intensity = std::max(double(peak), 0.0) * kLumensPerWatt;
   out.spot.innerConeAngle = light.inner_cone;
   out.spot.outerConeAngle = light.outer_cone;
   return out;
@@ -286,6 +289,18 @@ tinygltf::Model to_model(const Scene& scene, const std::string& stem) {
 }
 
 }  // namespace
+
+std::vector<uint8_t> write_glb_bytes(const Scene& scene, const std::string& name) {
+  check_writable(scene, name);
+  tinygltf::Model model = to_model(scene, fs::path(name).stem().string());
+  for (tinygltf::Buffer& buffer : model.buffers) buffer.uri.clear();
+  tinygltf::TinyGLTF writer;
+  writer.SetImageWriter(&tinygltf::WriteImageData, nullptr);  // images embedded: no files
+  std::ostringstream out;
+  if (!writer.WriteGltfSceneToStream(&model, out, false, true)) throw SceneError(name + ": cannot encode the scene as .glb");
+  const std::string bytes = std::move(out).str();
+  return {bytes.begin(), bytes.end()};
+}
 
 void write_gltf(const Scene& scene, const std::string& path) {
   check_writable(scene, path);

@@ -12,10 +12,14 @@
 //   Glass     -> KHR_materials_transmission 1 + KHR_materials_ior
 //   emission  -> emissiveFactor in [0, 1], KHR_materials_emissive_strength
 //                carrying the largest component when it exceeds 1
+// Lights are written in glTF's units: point and spot intensity in candela,
+// directional in lux, at 683 lm/W (scene/light_units.h).
 // Geometry is one mesh with one primitive per material, each with its own
 // compacted vertices; lights and the camera are nodes whose rotation turns
 // local -Z onto their direction.
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "scene/scene.h"
 
@@ -24,5 +28,9 @@ namespace igi {
 // Throws SceneError naming the file when it cannot be written, or the
 // element when the scene is inconsistent (an index out of range).
 void write_gltf(const Scene& scene, const std::string& path);
+
+// The same as one .glb in memory (images embedded), for a scene read from
+// another format (scene/obj_loader.h); `name` stands for the file in errors.
+std::vector<uint8_t> write_glb_bytes(const Scene& scene, const std::string& name);
 
 }  // namespace igi

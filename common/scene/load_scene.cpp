@@ -6,6 +6,7 @@
 
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
+#include "scene/obj_loader.h"
 
 namespace igi {
 
@@ -42,7 +43,7 @@ void check_scene_name(const std::string& name) {
   namespace fs = std::filesystem;
   std::string extension = fs::path(name).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (extension == ".gltf" || extension == ".glb") return;
+  if (extension == ".gltf" || extension == ".glb" || extension == ".obj") return;
   std::error_code error;
   if (!extension.empty()) {
     if (!fs::exists(name, error)) return;  // load_gltf says "no such file"
@@ -51,7 +52,7 @@ void check_scene_name(const std::string& name) {
     if (extension == ".blend")
       how = "export it as glTF 2.0 with Blender: blender -b " + name +
             " --python-expr \"import bpy; bpy.ops.export_scene.gltf(filepath='scene.glb')\"";
-    throw SceneError(name + ": igi-cluster reads glTF 2.0 scenes (.gltf, .glb) and its built-in scenes, not " +
+    throw SceneError(name + ": igi-cluster reads glTF 2.0 (.gltf, .glb) and OBJ (.obj) scenes and its built-in scenes, not " +
                      extension + " files; " + how);
   }
   if (fs::exists(name, error)) return;  // a glTF file without an extension
@@ -69,8 +70,8 @@ void check_scene_name(const std::string& name) {
 
 }  // namespace
 
-Scene load_scene(const std::string& name_or_path, std::vector<std::string>* warnings,
-                 const std::optional<SkyChoice>& sky) {
+Scene load_scene(const std::string& name_or_path, const SceneOptions& options, SceneMessages* messages) {
+  const std::optional<SkyChoice>& sky = options.sky;
   std::shared_ptr<const EnvironmentMap> map = load_map(sky);
   const std::optional<glm::vec3> radiance = sky ? std::optional(sky->radiance) : std::nullopt;
   if (is_builtin_scene(name_or_path)) {
@@ -83,12 +84,20 @@ Scene load_scene(const std::string& name_or_path, std::vector<std::string>* warn
     return scene;
   }
   check_scene_name(name_or_path);
-  LoadedScene loaded = load_gltf(name_or_path, radiance);
+  LoadedScene loaded;
+  if (is_obj_file(name_or_path)) {  // as glTF: the bytes workers are sent (scene/obj_loader.h)
+    std::vector<std::string> obj_warnings;
+    const std::vector<uint8_t> glb = obj_as_glb(name_or_path, &obj_warnings);
+    loaded = load_gltf_memory(glb, name_or_path, "", {radiance, options.light_units});
+    loaded.warnings.insert(loaded.warnings.begin(), obj_warnings.begin(), obj_warnings.end());
+  } else {
+    loaded = load_gltf(name_or_path, {radiance, options.light_units});
+  }
   if (map) {
     loaded.scene.environment_map = std::move(map);
     loaded.scene.validate();  // a black map lights nothing
   }
-  if (warnings) *warnings = std::move(loaded.warnings);
+  if (messages) *messages = {std::move(loaded.warnings), std::move(loaded.notices), loaded.file_lamps};
   return std::move(loaded.scene);
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/gltf_loader.h"
 #include "scene/scene.h"
 
 namespace igi {
@@ -17,10 +18,22 @@ struct SkyChoice {
   float rotation = 0.0f;  // the map's, degrees about +y
 };
 
+// How the command line asks a scene to be read; a worker reads the
+// master's scene as the master's Welcome says.
+struct SceneOptions {
+  std::optional<SkyChoice> sky;  // replaces the scene's own (--environment)
+  LightUnits light_units = LightUnits::Photometric;  // a glTF file's lamps (--light-units)
+};
+
+// What loading a file said (gltf_loader.h's LoadedScene): features mapped or
+// ignored, and what it read or assumed (units, a supplied camera or light).
+struct SceneMessages {
+  std::vector<std::string> warnings, notices;
+  size_t file_lamps = 0;  // KHR_lights_punctual lamps read (--light-units applies to them)
+};
+
 // Throws SceneError with a message naming the file or scene on failure.
-// Warnings about glTF features that were mapped or ignored go to `warnings`.
-// `sky`, when given, replaces the scene's own (--environment).
-Scene load_scene(const std::string& name_or_path, std::vector<std::string>* warnings = nullptr,
-                 const std::optional<SkyChoice>& sky = std::nullopt);
+Scene load_scene(const std::string& name_or_path, const SceneOptions& options = {},
+                 SceneMessages* messages = nullptr);
 
 }  // namespace igi

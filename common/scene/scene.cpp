@@ -44,16 +44,28 @@ bool Scene::has_light() const {
   return false;
 }
 
+// From above, on the diagonal the lights face most: the view Blender opens
+// with (its default camera at x, -y, +z, Z up) in the quadrant the scene is
+// lit from, so a file without a camera shows its lit side.
 Camera Scene::auto_camera() const {
   Bounds b = bounds();
   Camera cam;
   if (b.empty()) return cam;
-  glm::vec3 c = b.center();
-  glm::vec3 extent = b.upper - b.lower;
-  float radius = 0.5f * glm::length(extent);
-  float distance = radius / std::tan(0.5f * cam.vfov);
-  cam.position = c + glm::vec3(0.0f, 0.0f, 0.5f * extent.z + distance);
-  cam.forward = glm::vec3(0.0f, 0.0f, -1.0f);
+  const glm::vec3 c = b.center();
+  glm::vec3 toward_lights(0.0f);  // unit vectors from the centre towards each light
+  for (const PunctualLight& light : lights) {
+    const glm::vec3 v = light.type == LightType::Directional ? -light.direction : light.position - c;
+    if (glm::length(v) > 0.0f) toward_lights += glm::normalize(v);
+  }
+  glm::vec3 best(0.0f);
+  float best_dot = -INFINITY;
+  for (const glm::vec2 side : {glm::vec2(1, 1), glm::vec2(-1, 1), glm::vec2(-1, -1), glm::vec2(1, -1)}) {
+    const glm::vec3 d = glm::normalize(glm::vec3(side.x, 0.7f, side.y));
+    if (const float dot = glm::dot(d, toward_lights); dot > best_dot + 1e-4f) best = d, best_dot = dot;
+  }
+  const float radius = 0.5f * glm::length(b.upper - b.lower);
+  cam.position = c + best * (radius / std::sin(0.5f * cam.vfov));
+  cam.forward = -best;
   return cam;
 }
 

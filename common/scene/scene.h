@@ -126,7 +126,9 @@ struct Scene {
   glm::vec3 sky(glm::vec3 direction) const {
     return environment_map ? environment * environment_map->radiance(direction) : environment;
   }
-  // A camera that frames the bounding box from the +z side, looking down -z.
+  // A camera that frames the bounding box from above, on the one of its four
+  // diagonals (+-x, +-z) that faces the punctual lights most, +x +z first
+  // (Blender's default view), looking at its centre.
   Camera auto_camera() const;
   Camera camera_or_auto() const { return camera ? *camera : auto_camera(); }
   // Cheap structural checks shared by every producer of scenes; throws

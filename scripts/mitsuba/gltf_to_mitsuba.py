@@ -11,7 +11,9 @@ reads it (README "Conventions"), for an independent reference render.
                            their vertex normals, since Mitsuba's area emitter
                            emits on the side of the shading normal
   KHR_lights_punctual   -> point (W/sr), directional (W/m^2), spot (W/sr, glTF's
-                           smooth falloff as a texture over a sharp Mitsuba cone)
+                           smooth falloff as a texture over a sharp Mitsuba cone),
+                           from glTF's candela and lux at 683 lm/W as igi reads
+                           them (light_units "radiometric": as written)
   first perspective camera -> perspective, fov_axis y, box-filtered hdrfilm
   scene extras.environment [r, g, b] -> constant emitter of that radiance
                            (igi's constant sky; a map's file name is not mapped)
@@ -36,6 +38,7 @@ OTHER_TEXTURES = ("normalTexture", "occlusionTexture", "emissiveTexture")
 SPOT_PROFILE_TEXELS = 1024
 MAX_SPOT_CONE = math.radians(85.0)  # Mitsuba's spot texture is projected over tan(cutoff)
 NEAR_CLIP, FAR_CLIP = 1e-4, 1e8     # igi's camera rays are unclipped
+LUMENS_PER_WATT = 683.0             # common/scene/light_units.h
 
 
 class UnsupportedFeature(GltfError):
@@ -280,7 +283,7 @@ def spot_light(gltf, light, position, direction, intensity, element):
             "texture": spot_profile(inner, outer)}
 
 
-def punctual_light(gltf, node_index, node, world):
+def punctual_light(gltf, node_index, node, world, light_units):
     """The node's KHR_lights_punctual light as a Mitsuba emitter dict."""
     index = node["extensions"]["KHR_lights_punctual"].get("light")
     lights = gltf.doc.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
@@ -291,6 +294,8 @@ def punctual_light(gltf, node_index, node, world):
     if "range" in light:
         unsupported(gltf, element, "light range")
     intensity = np.asarray(light.get("color", [1, 1, 1]), dtype=np.float64) * light.get("intensity", 1.0)
+    if light_units == "photometric":
+        intensity /= LUMENS_PER_WATT
     position = world[:3, 3]
     direction = world[:3, :3] @ np.array([0.0, 0.0, -1.0])
     direction /= np.linalg.norm(direction)
@@ -343,8 +348,11 @@ def environment(gltf):
     unsupported(gltf, "scenes", "extras.environment other than a constant [r, g, b] (a map)")
 
 
-def scene_dict(path, width, height):
-    """The Mitsuba scene dict of the glTF file at `path`, for a width x height image."""
+def scene_dict(path, width, height, light_units="photometric"):
+    """The Mitsuba scene dict of the glTF file at `path`, for a width x height
+    image; its lamps read in `light_units` (igi's --light-units)."""
+    if light_units not in ("photometric", "radiometric"):
+        raise ValueError(f"light_units: expected photometric or radiometric, got '{light_units}'")
     gltf = Gltf(path)
     check_file_features(gltf)
     nodes = gltf.world_nodes()
@@ -355,7 +363,7 @@ def scene_dict(path, width, height):
         if "mesh" in node:
             out.update(node_meshes(gltf, node_index, node, world, materials))
         if "KHR_lights_punctual" in node.get("extensions", {}):
-            out[f"light_{node_index}"] = punctual_light(gltf, node_index, node, world)
+            out[f"light_{node_index}"] = punctual_light(gltf, node_index, node, world, light_units)
     sky = environment(gltf)
     if sky:
         out["environment"] = sky

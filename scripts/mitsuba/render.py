@@ -3,7 +3,7 @@
 as a reference for igi: gltf_to_mitsuba.py maps the scene, this writes a linear
 float EXR and prints the image mean (per channel and luminance) and seconds.
 
-  render.py SCENE.gltf|.glb -o OUT.exr --size WxH --spp N [--seed S]
+  render.py SCENE.gltf|.glb -o OUT.exr --size WxH --spp N [--seed S] [--light-units U]
 """
 import argparse
 import sys
@@ -32,12 +32,14 @@ def parse_args(argv):
     parser.add_argument("--size", type=size, required=True, metavar="WxH")
     parser.add_argument("--spp", type=int, required=True, metavar="N", help="samples per pixel")
     parser.add_argument("--seed", type=int, default=0, metavar="S", help="sampler seed [0]")
+    parser.add_argument("--light-units", choices=("photometric", "radiometric"), default="photometric",
+                        help="the lamps' units, as igi's --light-units [photometric]")
     return parser.parse_args(argv)
 
 
-def render(path, width, height, spp, seed):
+def render(path, width, height, spp, seed, light_units="photometric"):
     """The rendered image as a (height, width, 3) float32 array."""
-    scene = mi.load_dict(scene_dict(path, width, height))
+    scene = mi.load_dict(scene_dict(path, width, height, light_units))
     return np.array(mi.render(scene, spp=spp, seed=seed), dtype=np.float32)
 
 
@@ -45,7 +47,7 @@ def main(argv):
     args = parse_args(argv)
     start = time.perf_counter()
     try:
-        image = render(args.scene, *args.size, args.spp, args.seed)
+        image = render(args.scene, *args.size, args.spp, args.seed, args.light_units)
     except GltfError as error:
         print(f"render.py: {error}", file=sys.stderr)
         return 1

@@ -247,11 +247,12 @@ class MappingTest(unittest.TestCase):
             with self.subTest(v=v):
                 self.assertAlmostEqual(float(mesh.bsdf().eval_diffuse_reflectance(si)[0]), expected, delta=1e-4)
 
-    def test_point_and_directional_lights_are_radiometric(self):
-        # Diffuse albedo 0.5 facing +z: radiance = 0.5 / pi x irradiance.
+    def test_point_and_directional_lights_are_photometric(self):
+        # Diffuse albedo 0.5 facing +z: radiance = 0.5 / pi x irradiance; glTF's
+        # candela and lux are W/sr and W/m^2 times 683.
         for light, node, irradiance in (
-                ({"type": "point", "intensity": 8.0}, {"translation": [0, 0, 1]}, 8.0),
-                ({"type": "directional", "intensity": 3.0}, {}, 3.0)):  # node -z: straight down onto the quad
+                ({"type": "point", "intensity": 8.0 * 683}, {"translation": [0, 0, 1]}, 8.0),
+                ({"type": "directional", "intensity": 3.0 * 683}, {}, 3.0)):  # node -z: straight down onto the quad
             with self.subTest(light["type"]):
                 scene = SceneFile()
                 scene.camera(yfov=0.01, translation=[0, 0, 0.5])
@@ -264,7 +265,7 @@ class MappingTest(unittest.TestCase):
         scene = SceneFile()
         scene.camera()
         inner, outer = math.radians(14), math.radians(20)
-        scene.light({"type": "spot", "intensity": 40.0, "spot": {"innerConeAngle": inner, "outerConeAngle": outer}})
+        scene.light({"type": "spot", "intensity": 40.0 * 683, "spot": {"innerConeAngle": inner, "outerConeAngle": outer}})
         path = scene.write(self.path("scene.gltf"))
         emitter = mi.load_dict(next(v for k, v in scene_dict(path, SIZE, SIZE).items() if k.startswith("light")))
         for degrees in (0, 10, 15, 17, 19, 19.9, 21):

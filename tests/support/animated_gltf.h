@@ -109,7 +109,7 @@ inline nlohmann::json animated_document(bool camera_moves = false) {
   nlohmann::json doc;
   doc["asset"] = {{"version", "2.0"}};
   doc["extensionsUsed"] = {"KHR_lights_punctual"};
-  doc["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}, {"intensity", 2.0}, {"color", {1, 0.9, 0.8}}}};
+  doc["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}, {"intensity", 2.0 * 683}, {"color", {1, 0.9, 0.8}}}};
   doc["materials"] = {{{"name", "grey"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.7, 0.7, 0.7, 1}}, {"metallicFactor", 0}}}},
                       {{"name", "red"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.2, 0.1, 1}}, {"metallicFactor", 0}}}},
                       {{"name", "lamp"}, {"emissiveFactor", {1, 1, 1}}}};

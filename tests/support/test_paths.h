@@ -8,6 +8,7 @@ namespace igi::test::paths {
 extern const char* const kTestOutputDir;
 extern const char* const kFlipDataDir;
 extern const char* const kBadScenesDir;
+extern const char* const kDataDir;
 extern const char* const kFuzzRegressionsDir;
 extern const char* const kRenderBinary;
 extern const char* const kMasterBinary;
@@ -20,6 +21,7 @@ extern const char* const kWindowScriptsDir;
 #define IGI_TEST_OUTPUT_DIR (::igi::test::paths::kTestOutputDir)
 #define IGI_FLIP_DATA_DIR (::igi::test::paths::kFlipDataDir)
 #define IGI_BAD_SCENES_DIR (::igi::test::paths::kBadScenesDir)
+#define IGI_TEST_DATA_DIR (::igi::test::paths::kDataDir)  // tests/data: the sample scenes
 #define IGI_FUZZ_REGRESSIONS_DIR (::igi::test::paths::kFuzzRegressionsDir)
 #define IGI_RENDER_BINARY (::igi::test::paths::kRenderBinary)
 #define IGI_MASTER_BINARY (::igi::test::paths::kMasterBinary)

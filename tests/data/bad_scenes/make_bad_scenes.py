@@ -147,9 +147,6 @@ gltf("infinite-camera.gltf", doc, "nodes[1]: the transform puts cameras[0] at (0
 
 # Scene content.
 doc = copy.deepcopy(base)
-doc["materials"][0]["emissiveFactor"] = [0, 0, 0]
-gltf("no-light.gltf", doc, "no light")
-doc = copy.deepcopy(base)
 doc["scenes"][0]["nodes"] = []
 gltf("no-geometry.gltf", doc, "no geometry")
 
