@@ -12,9 +12,11 @@ packages=(
   libzmq3-dev cppzmq-dev
   libxxhash-dev                        # XXH3 content hashes (scenes, VPL sets)
   libtinygltf-dev nlohmann-json3-dev libstb-dev
+  libtinyobjloader-dev                 # OBJ scenes (common/scene/obj_loader.cpp: the header alone)
   libcli11-dev                         # command-line options of every program
   libgtest-dev
   xvfb xauth libgl1-mesa-dri
+  fonts-dejavu-core                    # the window panel's text at the sizes a small window needs
   xdotool                              # the window test that drags the mouse as a user does
   python3-venv
   clang-14 libclang-rt-14-dev
