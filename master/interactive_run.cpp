@@ -255,8 +255,10 @@ void window_loop(const MasterOptions& o, const Scene& scene, MasterSession& sess
     const PanelActions actions = panel.draw(int(history.weight()));
     window.set_input_captured(panel.wants_mouse(), panel.wants_keyboard());
     if (std::string m = act(actions, panel.options(), controller, speed, history, panel.settings().exposure(), shots);
-        !m.empty())
+        !m.empty()) {
+      std::fprintf(stderr, "igi-master: %s\n", m.c_str());  // on the terminal, and on screen for a few seconds
       panel.set_message(m);
+    }
     if (actions.load_camera) seen_camera = ~controller.generation();  // a new controller: a new view
     const int settled = animated ? shower.shown_frames : int(history.weight());  // an animation never accumulates
     if (fresh && edited && !o.render.screenshot.empty() && settled >= o.screenshot_after) {

@@ -12,6 +12,7 @@
 #include "display/cluster_panel.h"
 #include "display/settings_panel.h"
 #include "display/tile_overlay.h"
+#include "display/panel_layout.h"
 #include "image/metrics.h"
 #include "scene/load_scene.h"
 #include "support/image_compare.h"
@@ -175,6 +176,59 @@ TEST(WindowPanel, WorkerLoadIsTilesPerSecondAndTheShareOfItsThreadsBusy) {
   EXPECT_DOUBLE_EQ(load.tiles_per_second, 80.0);
   EXPECT_DOUBLE_EQ(load.busy_share, 0.75);
   EXPECT_EQ(worker_load(PeerView{"worker-4", 4, 4, 0.0, 0.0}, f).tiles_per_second, 0.0) << "no tiles in this frame";
+}
+
+// A third of the window at most, and from 640 pixels up every column of the
+// cluster table inside it, in the font size the layout picks. At 320x240 it
+// opens folded to its title bar (opened, the table's right columns are cut).
+TEST(WindowPanel, TheClusterTableFitsThePanelAtEverySize) {
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;
+  load_panel_fonts();
+  unsigned char* pixels;
+  int w, h;
+  io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+  std::vector<PeerView> peers;
+  FrameRecord f;
+  f.seconds = 0.04;
+  for (uint32_t n : {8u, 9u, 10u, 11u}) {  // two-digit names, three-digit rates: the widest rows
+    peers.push_back(PeerView{"worker-" + std::to_string(n), n, 128, 10.25, 0.52});
+    f.workers["worker-" + std::to_string(n)] = {40, 0.04 * 128, 0, 0};
+  }
+  for (const glm::vec2 size : {glm::vec2(640, 480), glm::vec2(680, 510), glm::vec2(720, 540), glm::vec2(800, 600),
+                               glm::vec2(1024, 768), glm::vec2(1920, 1080), glm::vec2(320, 240)}) {
+    io.DisplaySize = ImVec2(size.x, size.y);
+    const PanelLayout layout = panel_layout(size.x);
+    EXPECT_LE(layout.width, size.x / 3.0f);
+    EXPECT_EQ(layout.start_folded, size.x < 480.0f);
+    const PanelFont font = panel_font(layout.font_pixels);
+    // The table's needs in a window of any width, and the room the panel gives it.
+    auto measure = [&](const char* name, float width, float& room) {  // the table's need; the window's room
+      float table = 0.0f;
+      for (int frame = 0; frame < 2; ++frame) {  // ImGui sizes a new window in its first frame
+        ImGui::NewFrame();
+        ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0), ImVec2(width, size.y));
+        if (font.font) ImGui::PushFont(font.font);
+        ImGui::Begin(name, nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+        ImGui::SetWindowFontScale(font.scale);
+        room = ImGui::GetContentRegionAvail().x;
+        table = draw_cluster_panel(peers, f);
+        ImGui::End();
+        if (font.font) ImGui::PopFont();
+        ImGui::Render();
+      }
+      return table;
+    };
+    float room = 0.0f, wide_room = 0.0f;
+    const float table = measure("panel", layout.width, room);
+    EXPECT_EQ(measure("wide", 2000.0f, wide_room), table) << "what the table needs is its content's, not the window's";
+    std::printf("%.0fx%.0f: panel %.0f px, %.0f-pixel text, table %.1f of %.1f px\n", size.x, size.y, layout.width,
+                layout.font_pixels, table, room);
+    EXPECT_GT(table, 0.0f);
+    if (size.x >= 640.0f) EXPECT_LE(table, room) << size.x << "x" << size.y << ": the table's last columns are cut off";
+  }
+  ImGui::DestroyContext();
 }
 
 TEST(CameraBookmark, RoundTripsAndNamesTheBadField) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include <imgui.h>
+#include <imgui_internal.h>  // ImGuiTable::ColumnsAutoFitWidth
 
 #include "display/tile_overlay.h"
 
@@ -15,14 +16,19 @@ WorkerLoad worker_load(const PeerView& peer, const FrameRecord& frame) {
   return {double(it->second.tiles) / frame.seconds, it->second.busy_seconds / (threads * frame.seconds)};
 }
 
-void draw_cluster_panel(const std::vector<PeerView>& peers, const FrameRecord& f) {
-  ImGui::Text("%zu workers; frame %llu: %llu tiles in %.1f ms", peers.size(), (unsigned long long)f.frame_id,
+float draw_cluster_panel(const std::vector<PeerView>& peers, const FrameRecord& f) {
+  ImGui::TextWrapped("%zu workers; frame %llu: %llu tiles in %.1f ms", peers.size(), (unsigned long long)f.frame_id,
               (unsigned long long)f.tiles, 1e3 * f.seconds);
-  ImGui::Text("reissued %llu  duplicated %llu  late %llu  quarantined %llu", (unsigned long long)f.reissued,
+  ImGui::TextWrapped("reissued %llu  duplicated %llu  late %llu  quarantined %llu", (unsigned long long)f.reissued,
               (unsigned long long)f.duplicated, (unsigned long long)f.late_dropped, (unsigned long long)f.quarantined);
-  const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit;
-  if (!ImGui::BeginTable("workers", 6, flags)) return;
-  for (const char* heading : {"worker", "thr", "tiles/s", "busy", "rtt ms", "heard s"}) ImGui::TableSetupColumn(heading);
+  // As wide as its columns (NoHostExtendX), narrow enough for a third of a 640-pixel window.
+  const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit |
+                                ImGuiTableFlags_NoHostExtendX;
+  ImGui::PushStyleVar(ImGuiStyleVar_CellPadding, ImVec2(3.0f, 1.0f));
+  const bool shown = ImGui::BeginTable("workers", 5, flags);
+  ImGui::PopStyleVar();
+  if (!shown) return 0.0f;
+  for (const char* heading : {"worker", "tiles/s", "busy", "rtt", "heard"}) ImGui::TableSetupColumn(heading);
   ImGui::TableHeadersRow();
   for (const PeerView& p : peers) {
     const WorkerLoad load = worker_load(p, f);
@@ -30,8 +36,7 @@ void draw_cluster_panel(const std::vector<PeerView>& peers, const FrameRecord& f
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
     ImGui::TextColored(ImVec4(c[0] / 255.0f, c[1] / 255.0f, c[2] / 255.0f, 1.0f), "%s", p.name.c_str());
-    ImGui::TableNextColumn();
-    ImGui::Text("%u", p.threads);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s: %u threads", p.name.c_str(), p.threads);
     ImGui::TableNextColumn();
     ImGui::Text("%.0f", load.tiles_per_second);
     ImGui::TableNextColumn();
@@ -41,7 +46,11 @@ void draw_cluster_panel(const std::vector<PeerView>& peers, const FrameRecord& f
     ImGui::TableNextColumn();
     ImGui::Text("%.2f", p.since_heard_s);
   }
+  // What the columns need for nothing to be clipped (ImGui narrows the table to the window, cutting them off).
+  const float width = ImGui::GetCurrentTable()->ColumnsAutoFitWidth;
   ImGui::EndTable();
+  ImGui::TextDisabled("rtt: round trip, ms; heard: s ago; threads: hover a name");
+  return width;
 }
 
 }  // namespace igi

@@ -16,7 +16,8 @@ struct WorkerLoad {
 };
 WorkerLoad worker_load(const PeerView& peer, const FrameRecord& frame);
 
-// Inside an ImGui window.
-void draw_cluster_panel(const std::vector<PeerView>& peers, const FrameRecord& last_frame);
+// Inside an ImGui window. Returns the width the workers table needs for no
+// column to be cut off (the panel's layout is sized so that it fits).
+float draw_cluster_panel(const std::vector<PeerView>& peers, const FrameRecord& last_frame);
 
 }  // namespace igi

@@ -6,7 +6,9 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 
 #include "display/cluster_panel.h"
@@ -44,10 +46,15 @@ void corner_text(const char* text, ImVec2 pivot) {
 
 }  // namespace
 
-float panel_width(float window_width) { return std::clamp(window_width / 3.0f, 240.0f, 420.0f); }
-
 WindowPanel::WindowPanel(GLFWwindow* window, const RenderSettings& settings, float exposure, PanelOptions options)
-    : gui_(window), settings_(settings, exposure), options_(std::move(options)) {}
+    : gui_(window), settings_(settings, exposure), options_(std::move(options)) {
+  load_panel_fonts();
+}
+
+void WindowPanel::set_message(std::string message) {
+  message_ = std::move(message);
+  message_at_ = ImGui::GetTime();
+}
 
 void WindowPanel::frame_shown(const FrameRecord& record, std::vector<PeerView> peers, double fps, std::string level) {
   graph_.add(1e3 * record.seconds);
@@ -83,6 +90,14 @@ void WindowPanel::draw_bookmarks(PanelActions& a) {
   if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
 }
 
+// The last action's outcome (F5, F9, F12), top right for a few seconds
+// (the panel is top left, the read-out bottom right), whether or not the
+// panel and its section are open.
+void WindowPanel::draw_message() {
+  constexpr double kShownSeconds = 4.0;
+  if (!message_.empty() && ImGui::GetTime() - message_at_ < kShownSeconds) corner_text(message_.c_str(), ImVec2(1, 0));
+}
+
 PanelActions WindowPanel::draw(int accumulated) {
   const PanelActions actions = build(accumulated);
   gui_.render();
@@ -98,18 +113,24 @@ PanelActions WindowPanel::build(int accumulated) {
     draw_readout(accumulated);
   }
   if (options_.help) draw_help();
+  draw_message();
   ImGui::EndFrame();
   return actions;
 }
 
-// Top left, a third of the window's width at most where it can (240 px at
-// least), as tall as its open sections; settings open, the rest closed.
+// Top left, a third of the window's width (panel_layout), as tall as its
+// open sections; settings open, the rest closed.
 void WindowPanel::draw_panel(PanelActions& actions) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  const float width = panel_width(display.x);
+  const PanelLayout layout = panel_layout(display.x);
+  const PanelFont font = panel_font(layout.font_pixels);
+  const float width = layout.width;
   ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Once);
+  ImGui::SetNextWindowCollapsed(layout.start_folded, ImGuiCond_Once);
   ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0), ImVec2(width, 0.95f * display.y));
+  if (font.font) ImGui::PushFont(font.font);
   ImGui::Begin("igi-master (Tab hides, F1 help)", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::SetWindowFontScale(font.scale);
   ImGui::PushItemWidth(0.45f * width);  // the rest for labels of 15 characters
   settings_.draw();
   draw_preview_choice();
@@ -124,6 +145,7 @@ void WindowPanel::draw_panel(PanelActions& actions) {
   if (ImGui::CollapsingHeader("camera and images")) draw_bookmarks(actions);
   ImGui::PopItemWidth();
   ImGui::End();
+  if (font.font) ImGui::PopFont();
 }
 
 // What frames take while the view changes: the budget's choice, or a level pinned.

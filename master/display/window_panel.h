@@ -13,6 +13,7 @@
 
 #include "display/frame_graph.h"
 #include "display/gui.h"
+#include "display/panel_layout.h"
 #include "display/settings_panel.h"
 #include "display/tile_overlay.h"
 #include "master_session.h"
@@ -21,8 +22,7 @@ struct GLFWwindow;
 
 namespace igi {
 
-// The panel's width for a window this wide: a third, within 240 and 420 pixels.
-float panel_width(float window_width);
+
 
 struct PanelOptions {
   bool shown = true;  // the panel and the frame rate
@@ -55,7 +55,8 @@ class WindowPanel {
   void set_overlay(OverlayMode mode) { options_.overlay = mode; }
   SettingsPanel& settings() { return settings_; }
   const PanelOptions& options() const { return options_; }
-  void set_message(std::string message) { message_ = std::move(message); }
+  // The outcome of F5, F9 or F12: on screen (top right) for a few seconds.
+  void set_message(std::string message);
   bool wants_mouse() const { return gui_.wants_mouse(); }
   bool wants_keyboard() const { return gui_.wants_keyboard(); }
 
@@ -66,6 +67,7 @@ class WindowPanel {
   void draw_preview_choice();
   void draw_help();
   void draw_bookmarks(PanelActions& actions);
+  void draw_message();
   Gui gui_;
   SettingsPanel settings_;
   PanelOptions options_;
@@ -73,6 +75,7 @@ class WindowPanel {
   FrameRecord last_;
   std::vector<PeerView> peers_;
   std::string message_;
+  double message_at_ = -1e9;  // ImGui time it was set: shown on screen for a while
   double fps_ = 0.0, waiting_ = 0.0;
   std::string level_;
   uint64_t frames_ = 0;  // shown
