@@ -215,6 +215,7 @@ void add_render_options(CLI::App& app, RenderOptions& o) {
 SceneOptions scene_options(const RenderOptions& o) {
   SceneOptions options;
   options.light_units = o.light_units;
+  options.camera_given = !o.camera_file.empty();
   if (!o.environment) return options;
   options.sky = *o.environment;
   options.sky->radiance *= o.environment_scale;

@@ -442,16 +442,10 @@ TEST(Distributed, WorkerWithoutTheSceneFileReceivesItFromTheMaster) {
   EXPECT_TRUE(test::images_identical("dist-scene", read_image(out), single_process(scene)));
 }
 
-// What --export-gltf writes (box.gltf and box.bin beside it) reaches a worker in another folder whole:
-// the master packs it into one .glb (it used to send the .gltf alone; the worker exited 6, "box.bin not found").
-TEST(Distributed, AGltfWithItsBufferBesideItTravelsWhole) {
-  const fs::path dir = fs::path(test::output_path("dist-gltf"));
-  fs::remove_all(dir);
-  fs::create_directories(dir / "master");
-  fs::create_directories(dir / "worker");
-  const std::string scene = (dir / "master" / "box.gltf").string();
-  write_gltf(make_cornell_box(), scene);
-  ASSERT_TRUE(fs::exists(dir / "master" / "box.bin"));
+// A master in DIR/master serving SCENE (made there by the caller) to one worker
+// in DIR/worker that has no copy: both exit 0, the master says it sent
+// box.glb, and the frame (returned) is the one-process frame.
+Image serve_to_a_worker_elsewhere(const fs::path& dir, const std::string& scene) {
   const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(test::free_port());
   const std::string out = (dir / "out.exr").string(), log = (dir / "master.log").string();
   pid_t m = test::start(master("--workers 0 --frames 1 --quiet --listen " + endpoint + " -o " + out, scene) + " 2>" + log);
@@ -463,16 +457,33 @@ TEST(Distributed, AGltfWithItsBufferBesideItTravelsWhole) {
   const std::string said((std::istreambuf_iterator<char>(text)), std::istreambuf_iterator<char>());
   EXPECT_NE(said.find("goes to workers as box.glb"), std::string::npos) << said;
   EXPECT_EQ(std::distance(fs::directory_iterator(dir / "worker" / "cache"), fs::directory_iterator{}), 1);
-  EXPECT_TRUE(test::images_identical("dist-gltf", read_image(out), single_process(scene)));
+  const Image image = read_image(out);
+  EXPECT_TRUE(test::images_identical(dir.filename().string(), image, single_process(scene)));
+  return image;
+}
+
+fs::path fresh_master_and_worker_dirs(const std::string& name) {
+  const fs::path dir = fs::path(test::output_path(name));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "master");
+  fs::create_directories(dir / "worker");
+  return dir;
+}
+
+// What --export-gltf writes (box.gltf and box.bin beside it) reaches a worker in another folder whole:
+// the master packs it into one .glb (it used to send the .gltf alone; the worker exited 6, "box.bin not found").
+TEST(Distributed, AGltfWithItsBufferBesideItTravelsWhole) {
+  const fs::path dir = fresh_master_and_worker_dirs("dist-gltf");
+  const std::string scene = (dir / "master" / "box.gltf").string();
+  write_gltf(make_cornell_box(), scene);
+  ASSERT_TRUE(fs::exists(dir / "master" / "box.bin"));
+  serve_to_a_worker_elsewhere(dir, scene);
 }
 
 // An OBJ scene (its MTL and texture beside it) reaches a worker in another
 // folder as the .glb the master made of it, and the frame is igi-render's.
 TEST(Distributed, AnObjSceneTravelsAsAGlbAndMatchesOneProcess) {
-  const fs::path dir = fs::path(test::output_path("dist-obj"));
-  fs::remove_all(dir);
-  fs::create_directories(dir / "master");
-  fs::create_directories(dir / "worker");
+  const fs::path dir = fresh_master_and_worker_dirs("dist-obj");
   Image boards(4, 4);
   for (int i = 0; i < 16; ++i) boards.pixels[size_t(i)] = glm::vec3(0.2f + 0.1f * float(i % 4), 0.3f, 0.2f);
   write_image(boards, (dir / "master" / "boards.png").string());
@@ -484,20 +495,8 @@ TEST(Distributed, AnObjSceneTravelsAsAGlbAndMatchesOneProcess) {
          "v -0.3 1.99 -0.3\nv 0.3 1.99 -0.3\nv 0.3 1.99 0.3\nv -0.3 1.99 0.3\nvt 0 0\nvt 2 0\nvt 2 2\nvt 0 2\n"
          "usemtl floor\nf 4/1 3/2 2/3 1/4\nusemtl wall\nf 1 2 6 5\nf 4 1 5 8\nf 2 3 7 6\nf 5 6 7 8\n"
          "usemtl lamp\nf 9 10 11 12\n";
-  const std::string scene = (dir / "master" / "box.obj").string();
-  const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(test::free_port());
-  const std::string out = (dir / "out.exr").string(), log = (dir / "master.log").string();
-  pid_t m = test::start(master("--workers 0 --frames 1 --quiet --listen " + endpoint + " -o " + out, scene) + " 2>" + log);
-  auto r = test::run(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 1 --scene-dir " +
-                     (dir / "worker").string() + " --cache " + (dir / "worker" / "cache").string(), 60);
-  EXPECT_EQ(test::wait_exit(m, 60), 0);
-  EXPECT_EQ(r.exit_code, 0) << r.output;
-  std::ifstream text(log);
-  const std::string said((std::istreambuf_iterator<char>(text)), std::istreambuf_iterator<char>());
-  EXPECT_NE(said.find("goes to workers as box.glb"), std::string::npos) << said;
-  const Image image = read_image(out);
+  const Image image = serve_to_a_worker_elsewhere(dir, (dir / "master" / "box.obj").string());
   EXPECT_GT(image.mean().x, 0.01f) << "lit by its Ke lamp";
-  EXPECT_TRUE(test::images_identical("dist-obj", image, single_process(scene)));
 }
 
 }  // namespace

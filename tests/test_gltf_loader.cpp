@@ -298,7 +298,7 @@ TEST(GltfLoader, LightUnitsSayHowIntensitiesAreRead) {
   ASSERT_EQ(photometric.lights.size(), 2u);
   expect_near(photometric.lights[0].intensity, glm::vec3(float(100.0 / (4 * std::numbers::pi))));
   expect_near(photometric.lights[1].intensity, glm::vec3(3.0f));
-  const LoadedScene radiometric = load_gltf(path.string(), GltfOptions{std::nullopt, LightUnits::Radiometric});
+  const LoadedScene radiometric = load_gltf(path.string(), GltfOptions{std::nullopt, LightUnits::Radiometric, false});
   ASSERT_EQ(radiometric.scene.lights.size(), 2u);
   expect_near(radiometric.scene.lights[1].intensity, glm::vec3(3.0f * 683), 1e-3f);
   ASSERT_EQ(radiometric.notices.size(), 2u) << "the units, and the framing camera";

@@ -265,7 +265,7 @@ WorkerSession::LoadResult WorkerSession::find_and_load(const SceneCache& cache, 
     sky.map = *map;
     sky.rotation = w.environment_rotation;
   }
-  return load(scene, {sky, w.light_units}, fail);
+  return load(scene, {sky, w.light_units, false}, fail);
 }
 
 WorkerSession::LoadResult WorkerSession::load(const std::string& scene, const SceneOptions& options, bool fail) {

@@ -325,10 +325,12 @@ std::string light_units_notice(LightUnits units, const GltfDiagnostics& diag, co
 
 // A file without a light or a camera (Blender exports neither by default):
 // a sun over the camera's shoulder, and the framing camera, each named.
-void supply_light_and_camera(const GltfDiagnostics& diag, Scene& scene, std::vector<std::string>& notices) {
+void supply_light_and_camera(const GltfDiagnostics& diag, bool camera_given, Scene& scene,
+                             std::vector<std::string>& notices) {
   if (!scene.has_light()) {
     const Camera camera = scene.camera_or_auto();
-    const glm::vec3 right = glm::normalize(glm::cross(camera.forward, camera.up));
+    const glm::vec3 across = glm::cross(camera.forward, camera.up);
+    const glm::vec3 right = glm::length(across) > 1e-6f ? glm::normalize(across) : glm::vec3(1.0f, 0.0f, 0.0f);
     const glm::vec3 up = glm::cross(right, camera.forward);
     PunctualLight sun;
     sun.type = LightType::Directional;
@@ -340,7 +342,7 @@ void supply_light_and_camera(const GltfDiagnostics& diag, Scene& scene, std::vec
                       " W/m^2 from over the camera's shoulder. Export the lamps with the file "
                       "(Blender: Include > Punctual Lights) or light it with --environment 1,1,1");
   }
-  if (!scene.camera) {
+  if (!scene.camera && !camera_given) {
     const Camera camera = scene.auto_camera();
     notices.push_back(diag.file + ": no camera: framing the scene from " + show(camera.position) +
                       ", looking at its centre from the side its lights face (--camera FILE, or the window, "
@@ -391,7 +393,7 @@ LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& 
   scene.name = nodes.scene_name.empty() ? fs::path(name).stem().string() : nodes.scene_name;
   // The command line's sky replaces the file's (a worker's copy: the master's sky, its map sent apart).
   scene.environment = options.environment ? *options.environment : read_environment(model, resource_dir, diag, scene);
-  if (!scene.triangles.empty()) supply_light_and_camera(diag, scene, loaded.notices);
+  if (!scene.triangles.empty()) supply_light_and_camera(diag, options.camera_given, scene, loaded.notices);
   validate_scene(scene, diag);
   loaded.warnings = std::move(diag.warnings);
   return loaded;

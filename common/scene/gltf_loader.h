@@ -34,6 +34,7 @@ struct GltfOptions {
   // The sky, replacing the file's (the command line's, or the master's on a worker).
   std::optional<glm::vec3> environment;
   LightUnits light_units = LightUnits::Photometric;
+  bool camera_given = false;  // the command line brings a camera: a file without one needs no notice of the framing one
 };
 
 struct LoadedScene {

@@ -23,6 +23,7 @@ struct SkyChoice {
 struct SceneOptions {
   std::optional<SkyChoice> sky;  // replaces the scene's own (--environment)
   LightUnits light_units = LightUnits::Photometric;  // a glTF file's lamps (--light-units)
+  bool camera_given = false;  // --camera FILE: a file without a camera gets no notice of the framing one
 };
 
 // What loading a file said (gltf_loader.h's LoadedScene): features mapped or

@@ -6,9 +6,7 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <functional>
 
 #include "display/cluster_panel.h"
