@@ -252,7 +252,7 @@ void window_loop(const MasterOptions& o, const Scene& scene, MasterSession& sess
     if (!fresh && shower.rate.waiting(now) > 1.0) window.set_status(waiting_line(shower.rate.waiting(now)));
     if (!fresh) panel.set_waiting(shower.rate.waiting(now));
     window.draw(panel.settings().exposure());
-    const PanelActions actions = panel.draw(int(history.weight()));
+    const PanelActions actions = panel.draw(int(history.weight()), window.take_panel_taps());
     window.set_input_captured(panel.wants_mouse(), panel.wants_keyboard());
     if (std::string m = act(actions, panel.options(), controller, speed, history, panel.settings().exposure(), shots);
         !m.empty()) {

@@ -1,6 +1,7 @@
 #include "display/interactive_window.h"
 
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #define GLFW_INCLUDE_NONE
@@ -43,11 +44,12 @@ InteractiveWindow::~InteractiveWindow() {
   glfwTerminate();
 }
 
-void InteractiveWindow::on_key(GLFWwindow* window, int key, int, int action, int) {
+void InteractiveWindow::on_key(GLFWwindow* window, int key, int, int action, int mods) {
   auto* self = static_cast<InteractiveWindow*>(glfwGetWindowUserPointer(window));
   if (action == GLFW_PRESS && !self->keyboard_captured_) {
     self->held_.insert(key);
     self->tapped_.insert(key);
+    self->panel_taps_.insert(mods & GLFW_MOD_SHIFT ? key | kShifted : key);
   } else if (action == GLFW_RELEASE) {
     self->held_.erase(key);
   }
@@ -90,6 +92,8 @@ bool InteractiveWindow::poll(CameraController& camera) {
   tapped_.clear();
   return !glfwWindowShouldClose(window_);
 }
+
+std::set<int> InteractiveWindow::take_panel_taps() { return std::exchange(panel_taps_, {}); }
 
 void InteractiveWindow::show(const Image& image, float exposure) {
   upload(image);

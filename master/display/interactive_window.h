@@ -36,6 +36,11 @@ class InteractiveWindow {
   void set_status(const std::string& status);
   // Saves what the window shows (the back buffer) as an image file.
   void screenshot(const std::string& path);
+  // The keys pressed since the last call, for the panel (which draws less
+  // often than events come: a tap between two of its frames is not lost).
+  // A key pressed with Shift is key | kShifted.
+  static constexpr int kShifted = 1 << 16;
+  std::set<int> take_panel_taps();
 
  private:
   static void on_key(GLFWwindow* window, int key, int scancode, int action, int mods);
@@ -48,6 +53,7 @@ class InteractiveWindow {
   double last_time_ = 0.0, last_x_ = 0.0, last_y_ = 0.0;
   double look_x_ = 0.0, look_y_ = 0.0;  // cursor motion while dragging, since the last poll
   std::set<int> held_, tapped_;         // keys down now; keys pressed since the last poll
+  std::set<int> panel_taps_;            // keys pressed since the panel last took them
   bool dragging_ = false, mouse_captured_ = false, keyboard_captured_ = false;
   int width_, height_;
   std::unique_ptr<ImageView> view_;

@@ -10,6 +10,7 @@
 #include <functional>
 
 #include "display/cluster_panel.h"
+#include "display/interactive_window.h"
 #include "display/window_keys.h"
 
 namespace igi {
@@ -64,17 +65,20 @@ void WindowPanel::frame_shown(const FrameRecord& record, std::vector<PeerView> p
   peers_ = std::move(peers);
 }
 
-// ImGui 1.86 indexes keys by GLFW's codes: IsKeyPressed sees each press once.
-PanelActions WindowPanel::read_keys() {
+// The window's taps (GLFW key codes; with Shift, | kShifted), not ImGui's
+// IsKeyPressed: ImGui 1.86 sees a key only if it is still down at one of the
+// panel's frames (20 a second when nothing else comes), and a quick tap is not.
+PanelActions WindowPanel::read_keys(const std::set<int>& taps) {
   PanelActions a;
   if (gui_.wants_keyboard()) return a;  // typing a file name
-  if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false)) options_.shown = !options_.shown;
-  const bool question = ImGui::IsKeyPressed(GLFW_KEY_SLASH, false) && ImGui::GetIO().KeyShift;
-  if (ImGui::IsKeyPressed(GLFW_KEY_F1, false) || question) options_.help = !options_.help;
-  if (ImGui::IsKeyPressed(GLFW_KEY_F2, false)) options_.overlay = next_overlay(options_.overlay);
-  a.save_camera = ImGui::IsKeyPressed(GLFW_KEY_F5, false);
-  a.load_camera = ImGui::IsKeyPressed(GLFW_KEY_F9, false);
-  a.save_image = ImGui::IsKeyPressed(GLFW_KEY_F12, false);
+  auto tapped = [&](int key) { return taps.count(key) || taps.count(key | InteractiveWindow::kShifted); };
+  if (tapped(GLFW_KEY_TAB)) options_.shown = !options_.shown;
+  const bool question = taps.count(GLFW_KEY_SLASH | InteractiveWindow::kShifted) > 0;
+  if (tapped(GLFW_KEY_F1) || question) options_.help = !options_.help;
+  if (tapped(GLFW_KEY_F2)) options_.overlay = next_overlay(options_.overlay);
+  a.save_camera = tapped(GLFW_KEY_F5);
+  a.load_camera = tapped(GLFW_KEY_F9);
+  a.save_image = tapped(GLFW_KEY_F12);
   return a;
 }
 
@@ -96,15 +100,15 @@ void WindowPanel::draw_message() {
   if (!message_.empty() && ImGui::GetTime() - message_at_ < kShownSeconds) corner_text(message_.c_str(), ImVec2(1, 0));
 }
 
-PanelActions WindowPanel::draw(int accumulated) {
-  const PanelActions actions = build(accumulated);
+PanelActions WindowPanel::draw(int accumulated, const std::set<int>& taps) {
+  const PanelActions actions = build(accumulated, taps);
   gui_.render();
   return actions;
 }
 
-PanelActions WindowPanel::build(int accumulated) {
+PanelActions WindowPanel::build(int accumulated, const std::set<int>& taps) {
   gui_.begin_frame();
-  PanelActions actions = read_keys();
+  PanelActions actions = read_keys(taps);
   draw_tile_overlay(last_.tile_sources, options_.overlay);
   if (options_.shown) {
     draw_panel(actions);

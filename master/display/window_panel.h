@@ -8,6 +8,7 @@
 // comes with each frame (FrameRecord, PeerView), copied by the session thread.
 #include <cstdint>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -49,8 +50,10 @@ class WindowPanel {
   // No frame came for this long (the read-out says so past a second).
   void set_waiting(double seconds) { waiting_ = seconds; }
   // Builds the panels and draws them into the back buffer (over the image): build() then render().
-  PanelActions draw(int accumulated);
-  PanelActions build(int accumulated);  // ImGui's lists only (CPU)
+  // `taps`: the keys pressed since the last frame (InteractiveWindow::take_panel_taps),
+  // so that a key tapped between two of the panel's frames still counts.
+  PanelActions draw(int accumulated, const std::set<int>& taps = {});
+  PanelActions build(int accumulated, const std::set<int>& taps = {});  // ImGui's lists only (CPU)
   void render() { gui_.render(); }      // the lists into the back buffer
   void set_overlay(OverlayMode mode) { options_.overlay = mode; }
   SettingsPanel& settings() { return settings_; }
@@ -61,7 +64,7 @@ class WindowPanel {
   bool wants_keyboard() const { return gui_.wants_keyboard(); }
 
  private:
-  PanelActions read_keys();
+  PanelActions read_keys(const std::set<int>& taps);
   void draw_panel(PanelActions& actions);
   void draw_readout(int accumulated);
   void draw_preview_choice();
