@@ -63,6 +63,7 @@ newmtl textured
 Kd 1 1 1
 map_Kd checker.png
 map_bump bumps.png
+Pr 0.4
 )";
 
 Scene load(const fs::path& path, std::vector<std::string>* warnings = nullptr) {
@@ -110,7 +111,7 @@ TEST(ObjLoader, MaterialsMapOntoTheFourModelsAsTheReadmeSays) {
   // OBJ's v grows up, glTF's down: the corner at vt (0, 0) is uv (0, 1).
   EXPECT_EQ(scene.uvs[scene.triangles[10][0]], glm::vec2(0.0f, 1.0f));
   EXPECT_EQ(scene.normals[scene.triangles[10][0]], glm::vec3(0, 0, 1));
-  for (const char* feature : {"Ka", "bump map", "d (dissolve)", "Kd beside a brighter Ks"})
+  for (const char* feature : {"Ka", "bump map", "Pr (the PBR extension)", "d (dissolve)", "Kd beside a brighter Ks"})
     EXPECT_EQ(said(warnings, feature), 1u) << feature << " not reported once";
   EXPECT_EQ(said(warnings, "room.obj"), warnings.size()) << "every line names the file";
 }

@@ -121,6 +121,11 @@ void ObjConverter::report_unmapped(const tinyobj::material_t& m) {
       {"norm", &m.normal_texname}};
   for (const auto& [key, name] : maps)
     if (!name->empty()) diag_.warn_once(key, std::string(key) + " ignored: materials take Kd, Ks, Ns, Ke, d, Ni and map_Kd");
+  const std::pair<const char*, tinyobj::real_t> pbr[] = {{"Pr", m.roughness},   {"Pm", m.metallic},
+                                                        {"Ps", m.sheen},       {"Pc", m.clearcoat_thickness},
+                                                        {"Pcr", m.clearcoat_roughness}, {"aniso", m.anisotropy}};
+  for (const auto& [key, value] : pbr)
+    if (value != 0) diag_.warn_once(key, std::string(key) + " (the PBR extension) ignored: materials take Kd, Ks, Ns, Ke, d, Ni and map_Kd");
   if (luminance(rgb(m.ambient)) > 0.0f)
     diag_.warn_once("Ka", "Ka (ambient colour) ignored: light comes from the scene's emitters");
   for (const auto& [key, value] : m.unknown_parameter) diag_.warn_once(key, key + " ignored (" + m.name + ")");
