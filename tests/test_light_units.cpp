@@ -110,6 +110,9 @@ TEST(ExposureAdvice, AWhiteImageGetsTheExposureThatShowsIt) {
   EXPECT_NE(said->find("--light-units photometric"), std::string::npos) << *said;
   EXPECT_FALSE(exposure_advice(image, {.clips = false})) << "an EXR keeps every value";
   EXPECT_FALSE(exposure_advice(image, {.exposure = 0.018f})) << "the suggestion, taken, is not said again";
+  Image lamp_in_the_dark = uniform(glm::vec3(0.0f));
+  for (int i = 0; i < 12; ++i) lamp_in_the_dark.pixels[size_t(i)] = glm::vec3(50.0f);  // 1 % of the pixels: a lamp
+  EXPECT_FALSE(exposure_advice(lamp_in_the_dark, {})) << "a lamp in view of a dark room is not a white image";
 }
 
 TEST(ExposureAdvice, ANearlyBlackImageGetsTheExposureAndAnExposedOneNothing) {

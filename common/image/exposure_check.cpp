@@ -10,7 +10,8 @@ namespace igi {
 namespace {
 
 constexpr float kBlack = 1e-6f;          // luminance that counts as no light
-constexpr float kMostlyClipped = 0.5f;   // of the pixels
+constexpr float kMostlyClipped = 0.5f;   // of the lit pixels
+constexpr float kFewLit = 0.75f;         // black pixels past this share: a dark scene with a lamp in view, not white
 constexpr float kTooDark = 0.02f;        // the 99th percentile, after exposure: under 1/50 of white
 constexpr float kTarget = 0.9f;          // where the suggested exposure puts the 99th percentile
 
@@ -59,7 +60,7 @@ std::optional<std::string> exposure_advice(const Image& image, const ExposureCon
            (c.file_lamps && photometric ? "; lamps written in W/sr and W/m^2 need --light-units radiometric" : "");
   if (!c.clips) return std::nullopt;
   const std::string exposure = "--exposure " + number(f.suggested_exposure);
-  if (f.clipped > kMostlyClipped)
+  if (f.clipped > kMostlyClipped && f.black < kFewLit)
     return "the image is mostly white: " + number(100.0 * f.clipped) + " % of its lit pixels clip at exposure " +
            number(c.exposure) + "; " + exposure + " would show them" +
            (c.file_lamps && !photometric ? ", or --light-units photometric if the lamps are in candela and lux (glTF's, Blender's)" : "");

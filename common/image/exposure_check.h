@@ -27,8 +27,9 @@ struct ExposureContext {
 };
 
 // One line for the user, or nothing when the image looks exposed: black
-// (always said), or, when `clips`, over half the lit pixels clipped or the
-// brightest 1 % under 0.02.
+// (always said), or, when `clips`, over half the lit pixels clipped (a
+// quarter of the image lit at least: a lamp in view of a dark room is not a
+// white image) or the brightest 1 % under 0.02.
 std::optional<std::string> exposure_advice(const Image& image, const ExposureContext& context);
 
 }  // namespace igi
