@@ -60,13 +60,12 @@ Image single_process(const std::string& scene = "cornell") {
 // one-process render with igi's settings (8 light paths) as `edit` changes them.
 void expect_workers_match_one_process(const std::string& name, const std::string& options, const std::string& scene,
                                       const std::function<void(RenderSettings&)>& edit,
-                                      const std::optional<SkyChoice>& sky = std::nullopt,
-                                      std::string* output = nullptr) {
+                                      const SceneOptions& read_as = {}, std::string* output = nullptr) {
   const std::string out = test::output_path(name + ".exr");
   auto r = test::run(master("--workers 2 --frames 1 " + options + " -o " + out, scene));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   if (output) *output = r.output;
-  test::Prepared p(load_scene(scene, {sky}));
+  test::Prepared p(load_scene(scene, read_as));
   RenderSettings s;
   s.method = MethodKind::Igi;
   s.paths_per_set = 8;
@@ -143,7 +142,19 @@ TEST(Distributed, WaveletFilterMatchesOneProcess) {
 // master's sky (the Cornell box's open front shows it), not the file's none.
 TEST(Distributed, EnvironmentLightMatchesOneProcess) {
   expect_workers_match_one_process("dist-environment", "--environment 0.2,0.3,0.4", "cornell",
-                                   [](RenderSettings&) {}, SkyChoice{glm::vec3(0.2f, 0.3f, 0.4f)});
+                                   [](RenderSettings&) {},
+                                   SceneOptions{SkyChoice{glm::vec3(0.2f, 0.3f, 0.4f)}, LightUnits::Photometric, false});
+}
+
+// --light-units travels in the Welcome: workers read a glTF file's lamps in
+// the master's units (a spot lamp's candela here read as W/sr, 683 times
+// brighter), and their frame is the one-process frame read so.
+TEST(Distributed, LampsReadInTheMastersUnitsMatchOneProcess) {
+  const std::string scene = test::output_path("dist-units-corner.glb");
+  write_gltf(make_builtin_scene("corner"), scene);
+  expect_workers_match_one_process("dist-light-units", "--light-units radiometric", scene,
+                                   [](RenderSettings&) {},
+                                   SceneOptions{std::nullopt, LightUnits::Radiometric, false});
 }
 
 // An environment map, scaled and turned: the workers have no copy and ask the
@@ -161,7 +172,9 @@ TEST(Distributed, EnvironmentMapTravelsToWorkersAndMatchesOneProcess) {
   std::string output;
   expect_workers_match_one_process("dist-environment-map",
                                    "--environment " + path + " --environment-scale 0.5 --environment-rotation 30",
-                                   "corner", [](RenderSettings&) {}, SkyChoice{glm::vec3(0.5f), path, 30.0f}, &output);
+                                   "corner", [](RenderSettings&) {},
+                                   SceneOptions{SkyChoice{glm::vec3(0.5f), path, 30.0f}, LightUnits::Photometric, false},
+                                   &output);
   EXPECT_NE(output.find("has no copy of dist-sky-map.exr"), std::string::npos) << output;
 }
 
