@@ -13,6 +13,7 @@
 #include <tiny_gltf.h>
 
 #include "io/file_bytes.h"
+#include "sampling/warp.h"  // max_component
 #include "scene/animation.h"
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_animation.h"
@@ -47,7 +48,6 @@ std::string show(glm::vec3 p) {
   return "(" + format_number(p.x) + ", " + format_number(p.y) + ", " + format_number(p.z) + ")";
 }
 
-float max_component(glm::vec3 c) { return std::max({c.x, c.y, c.z}); }
 
 std::vector<unsigned char> read_file(const std::string& path) {
   std::error_code error;
