@@ -24,6 +24,29 @@ double rel_mse(const Image& image, const Image& reference, float epsilon) {
   return sum / (3.0 * double(image.pixels.size()));
 }
 
+double rel_mse_two_references(const Image& image, const Image& a, const Image& b, float epsilon) {
+  check_sizes(image, a);
+  check_sizes(image, b);
+  const int w = image.width, h = image.height;
+  double sum = 0.0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      // r: both references' mean over the pixel's neighbours (8 inside the image).
+      glm::dvec3 r(0.0);
+      int n = 0;
+      for (int j = std::max(0, y - 1); j <= std::min(h - 1, y + 1); ++j)
+        for (int i = std::max(0, x - 1); i <= std::min(w - 1, x + 1); ++i) {
+          if (i == x && j == y) continue;
+          r += glm::dvec3(a.at(i, j)) + glm::dvec3(b.at(i, j));
+          n += 2;
+        }
+      if (n > 0) r /= double(n);
+      const glm::vec3 v = image.at(x, y), ra = a.at(x, y), rb = b.at(x, y);
+      for (int c = 0; c < 3; ++c) sum += (double(v[c]) - ra[c]) * (double(v[c]) - rb[c]) / (r[c] * r[c] + epsilon);
+    }
+  return sum / (3.0 * double(image.pixels.size()));
+}
+
 double rmse(const Image& image, const Image& reference) {
   check_sizes(image, reference);
   double sum = 0.0;
