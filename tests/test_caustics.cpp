@@ -165,6 +165,24 @@ TEST(PhotonGrid, TheSparseRadiusRelaxesWithPassesDownToTheBouncedRadius) {
   EXPECT_FLOAT_EQ(sparse_radius_scale(1000000), CausticMap::kBouncedRadiusScale);
 }
 
+// Progressive photon mapping's radius reduction: r_k^2 / r_(k-1)^2 = (k +
+// alpha) / (k + 1), so r_k^2 falls as k^(alpha - 1) and the blur vanishes.
+TEST(PhotonGrid, EveryRadiusShrinksWithPassesAsProgressivePhotonMappingsDoes) {
+  EXPECT_EQ(ppm_radius_scale(0), 1.0f) << "a moving view's pass keeps --caustic-radius";
+  const double alpha = CausticMap::kPpmAlpha;
+  for (uint32_t k = 1; k < 300; ++k) {
+    const double ratio = double(ppm_radius_scale(k)) * ppm_radius_scale(k) /
+                         (double(ppm_radius_scale(k - 1)) * ppm_radius_scale(k - 1));
+    EXPECT_NEAR(ratio, (k + alpha) / (k + 1.0), 1e-6) << "pass " << k;
+  }
+  // prod (j + alpha) / (j + 1) = Gamma(k + 1 + alpha) / (Gamma(1 + alpha) Gamma(k + 2)) ~ k^(alpha - 1) / Gamma(1 + alpha).
+  for (uint32_t k : {100u, 1000u, 10000u}) {
+    const double closed = std::exp(std::lgamma(k + 1.0 + alpha) - std::lgamma(1.0 + alpha) - std::lgamma(k + 2.0));
+    EXPECT_NEAR(double(ppm_radius_scale(k)), std::sqrt(closed), 1e-5) << "pass " << k;
+  }
+  EXPECT_NEAR(ppm_radius_scale(255), 0.4176f, 1e-3f);
+}
+
 // --- The map: a pure function of scene, settings and seed.
 
 const test::Prepared& glass_scene() {
@@ -178,6 +196,35 @@ RenderSettings caustic_settings(int photons, MethodKind method = MethodKind::Igi
   s.caustics = true;
   s.caustic_photons = photons;
   return s;
+}
+
+// The map at a late pass: the same photons (one seed) gathered over a
+// smaller disc, so the caustic covers fewer floor points and is as bright in
+// sum (each kernel integrates to 1).
+TEST(CausticMap, ALatePassGathersTheSamePhotonsOverASmallerDisc) {
+  const test::Prepared p(make_glass_cornell());
+  const RenderSettings s = caustic_settings(20000);
+  const std::vector<GSample> points = p.visible_points(160, 120);
+  auto lit = [&](uint32_t pass, double& sum) {
+    CausticMap map(p.context(), s);
+    map.build(5, 0, pass);
+    int count = 0;
+    sum = 0.0;
+    for (const GSample& g : points) {
+      if (!g.valid() || g.surface.material->type != MaterialType::Diffuse) continue;
+      const double v = luminance(map.radiance(g));
+      count += v > 0.0;
+      sum += v;
+    }
+    return count;
+  };
+  double first_sum = 0.0, late_sum = 0.0;
+  const int first = lit(0, first_sum), late = lit(255, late_sum);
+  std::printf("[ppm] points the caustic reaches: pass 0 %d, pass 255 %d; sum %.4g / %.4g\n", first, late, first_sum,
+              late_sum);
+  ASSERT_GT(first, 200);
+  EXPECT_LT(late, 0.8 * first) << "r_255 = 0.42 r: the support shrinks";
+  EXPECT_NEAR(late_sum / first_sum, 1.0, 0.15) << "a smaller disc, the same light";
 }
 
 TEST(CausticMap, IsTheSameOnAnyThreadCountAndChangesWithTheSeed) {

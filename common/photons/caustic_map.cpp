@@ -33,6 +33,14 @@ CausticMap::CausticMap(const SceneContext& context, const RenderSettings& settin
       radius_(settings.caustic_radius * context.scene.bounds().diagonal()),
       paths_(uint32_t(settings.caustic_photons)) {}
 
+float ppm_radius_scale(uint32_t pass) {
+  // The product in double, factor by factor: plain IEEE arithmetic, so every
+  // peer gets the same radius (lgamma's last bits depend on the libm).
+  double area = 1.0;
+  for (uint32_t j = 1; j <= pass; ++j) area *= (j + CausticMap::kPpmAlpha) / (j + 1.0);
+  return float(std::sqrt(area));
+}
+
 float sparse_radius_scale(uint32_t pass) {
   return std::max(CausticMap::kBouncedRadiusScale,
                   CausticMap::kSparseRadiusScale / std::sqrt(std::sqrt(float(pass) + 1.0f)));
@@ -46,14 +54,15 @@ void CausticMap::build(uint32_t frame_seed, int threads, uint32_t pass) {
   std::vector<Photon> focused, bounced;
   for (const Photon& p : photons) (p.bounced ? bounced : focused).push_back(p);
   const glm::vec3 origin = context_.scene.bounds().lower;
+  const float r = ppm_radius_scale(pass) * radius_;
   // Sparse photons of both sets share one wide grid: one lookup, not two.
   std::vector<Photon> dense_focused, dense_bounced, sparse, sparse_bounced;
-  split_by_density(focused, radius_, origin, kDenseNeighbours, dense_focused, sparse);
-  split_by_density(bounced, kBouncedRadiusScale * radius_, origin, kDenseNeighbours, dense_bounced, sparse_bounced);
+  split_by_density(focused, r, origin, kDenseNeighbours, dense_focused, sparse);
+  split_by_density(bounced, kBouncedRadiusScale * r, origin, kDenseNeighbours, dense_bounced, sparse_bounced);
   sparse.insert(sparse.end(), sparse_bounced.begin(), sparse_bounced.end());
-  focused_ = PhotonGrid(dense_focused, radius_, origin);
-  bounced_ = PhotonGrid(dense_bounced, kBouncedRadiusScale * radius_, origin);
-  sparse_ = PhotonGrid(sparse, sparse_radius_scale(pass) * radius_, origin);
+  focused_ = PhotonGrid(dense_focused, r, origin);
+  bounced_ = PhotonGrid(dense_bounced, kBouncedRadiusScale * r, origin);
+  sparse_ = PhotonGrid(sparse, sparse_radius_scale(pass) * r, origin);
 }
 
 glm::vec3 CausticMap::radiance(const GSample& g) const {

@@ -35,6 +35,15 @@
 // round corners; near such edges the disc is partly empty and the estimate
 // darkens (boundary bias, as any fixed-radius estimate).
 //
+// Every radius shrinks with the progressive pass as progressive photon
+// mapping's does (Hachisuka, Ogaki, Jensen 2008; each pass an independent
+// estimate, as in Knaus and Zwicker 2011): r_k = ppm_radius_scale(k) r, with
+// r_k^2 = r^2 prod_{j=1..k} (j + alpha) / (j + 1), alpha = 2/3. The blur
+// (bias ~ r_k^2 ~ k^(alpha - 1)) vanishes while each pass's variance grows
+// only as k^(1 - alpha), so the mean of the passes converges to the caustic
+// itself. A frame that starts the accumulation (pass 0: every moving view)
+// keeps r.
+//
 // Thread-safety: build() single caller; radiance() const, any threads.
 #include <cstdint>
 #include <vector>
@@ -51,19 +60,20 @@ class CausticMap {
   static constexpr float kBouncedRadiusScale = 2.0f;
   static constexpr int kDenseNeighbours = 8;      // photons within the radius, itself included
   static constexpr float kSparseRadiusScale = 4.0f;  // sparse photons' radius over r at one pass
+  static constexpr double kPpmAlpha = 2.0 / 3.0;     // the fraction of photons a pass keeps (PPM's alpha)
 
   CausticMap(const SceneContext& context, const RenderSettings& settings);
 
   // `threads` trace the paths (0: all hardware threads); the map does not
   // depend on it. `pass`: the progressive pass (0-based), which sets the
-  // sparse photons' radius (sparse_radius_scale).
+  // radii (ppm_radius_scale, sparse_radius_scale).
   void build(uint32_t frame_seed, int threads = 0, uint32_t pass = 0);
   glm::vec3 radiance(const GSample& g) const;
 
   uint64_t hash() const { return hash_; }
   uint32_t paths() const { return paths_; }
   size_t photon_count() const { return focused_.size() + bounced_.size() + sparse_.size(); }
-  float radius() const { return radius_; }
+  float radius() const { return radius_; }  // r, at pass 0
   // Rays traced by the last build().
   const RayCounts& rays() const { return rays_; }
 
@@ -80,7 +90,12 @@ class CausticMap {
 
 uint64_t hash_photons(const std::vector<Photon>& photons);
 
-// The sparse photons' radius over r at progressive pass k (0-based):
+// r_k / r at progressive pass k (0-based): sqrt(prod_{j=1..k} (j + alpha) /
+// (j + 1)), about (0.90 k^(1/3))^(-1/2) for large k: 1 at pass 0, 0.67 at
+// pass 15, 0.42 at pass 255.
+float ppm_radius_scale(uint32_t pass);
+
+// The sparse photons' radius over r_k at progressive pass k (0-based):
 // kSparseRadiusScale / (k + 1)^(1/4), as the clamp relaxes (core/clamp.h),
 // but never below kBouncedRadiusScale, so no sparse photon is gathered
 // sharper than the dense ones of its set: 4 r at one pass, 2 r from pass 16 on.
