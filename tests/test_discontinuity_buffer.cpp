@@ -347,5 +347,94 @@ TEST(DiscontinuityBuffer, RejectsMalformedArguments) {
   EXPECT_NO_THROW(filter_discontinuity(in, s, Rect{12, 11, 3, 4}, out));
 }
 
+// The hand-over: full weight for the first K passes, then sqrt(K / (k + 1)),
+// so the mean weight over n passes, the blur the mean carries, falls as
+// 1 / sqrt(n) and its square as 1 / n.
+TEST(FilterHandover, TheFirstPassesAreFilteredInFullAndTheBlurVanishesAfter) {
+  const uint32_t k_full = kFilterFullPasses;
+  for (uint32_t k = 0; k < k_full; ++k) EXPECT_EQ(filter_weight_at_pass(k), 1.0f) << "pass " << k;
+  for (uint32_t k = k_full; k < 4096; ++k) {
+    EXPECT_LT(filter_weight_at_pass(k), filter_weight_at_pass(k - 1)) << "pass " << k;
+    EXPECT_NEAR(filter_weight_at_pass(k), std::sqrt(double(k_full) / (k + 1.0)), 1e-6);
+  }
+  auto mean_weight = [](uint32_t n) {
+    double sum = 0.0;
+    for (uint32_t k = 0; k < n; ++k) sum += filter_weight_at_pass(k);
+    return sum / n;
+  };
+  EXPECT_EQ(mean_weight(k_full), 1.0);
+  EXPECT_LT(mean_weight(16 * k_full), 0.5);
+  EXPECT_NEAR(mean_weight(1024 * k_full) * std::sqrt(1024.0), 2.0, 0.1) << "~ 2 sqrt(K / n)";
+}
+
+// The hand-over on a plane with a depth step, noisy values and one spike:
+// w F(u - h) + (1 - w)(u - h) + F(h), checked against the filter called on
+// the parts; no spikes gives the plain blend; weight 1 is the filter bit for
+// bit; the spike's excess is spread, not dropped; tiles agree bit for bit.
+TEST(FilterHandover, BlendsTheLowerPartAndKeepsTheSpikesFiltered) {
+  const int kSpikeX = 13, kSpikeY = 17;
+  const Scene scene = [&](int x, int y) {
+    Sample s = depth_step(x, y);
+    if (x == kSpikeX && y == kSpikeY) s.value = glm::vec3(40.0f, 1.0f, 25.0f);
+    return s;
+  };
+  const FilterInput in = cut(scene, 0, 0, 48, 40);
+  FilterSettings fs;
+  fs.window = 6;
+  const Rect inner{3, 3, 42, 34};
+  const size_t n = size_t(inner.w) * inner.h;
+  auto run = [&](const FilterInput& input, float w, float level) {
+    std::vector<glm::vec3> out(n);
+    filter_handed_over(input, fs, inner, w, level, out);
+    return out;
+  };
+  auto filtered = [&](const FilterInput& input) {
+    std::vector<glm::vec3> out(n);
+    filter_discontinuity(input, fs, inner, out);
+    return out;
+  };
+  auto at = [&](const FilterInput& input, size_t i) {
+    return input.value[size_t(inner.y + int(i) / inner.w) * input.width + size_t(inner.x + int(i) % inner.w)];
+  };
+  // Weight 1: the filter itself.
+  const std::vector<glm::vec3> full = filtered(in), one = run(in, 1.0f, 2.0f);
+  EXPECT_EQ(0, std::memcmp(full.data(), one.data(), n * sizeof(glm::vec3)));
+  // A level above every value: the plain blend.
+  const std::vector<glm::vec3> plain = run(in, 0.25f, INFINITY);
+  for (size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(plain[i][c], 0.25f * full[i][c] + 0.75f * at(in, i)[c], 1e-5f);
+  // Level 2: the values of the plane lie in [0.5, 1.5], the spike's red and blue above.
+  FilterInput low = in, high = in;
+  for (size_t p = 0; p < in.value.size(); ++p)
+    for (int c = 0; c < 3; ++c) {
+      high.value[p][c] = std::max(in.value[p][c] - 2.0f, 0.0f);
+      low.value[p][c] = in.value[p][c] - high.value[p][c];
+    }
+  const std::vector<glm::vec3> split = run(in, 0.25f, 2.0f), f_low = filtered(low), f_high = filtered(high);
+  double out_sum = 0.0, in_sum = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(split[i][c], 0.25f * f_low[i][c] + 0.75f * at(low, i)[c] + f_high[i][c], 1e-5f) << i;
+    out_sum += split[i].x;
+    in_sum += at(in, i).x;
+  }
+  const size_t spike = size_t(kSpikeY - inner.y) * inner.w + size_t(kSpikeX - inner.x);
+  EXPECT_LT(split[spike].x, 3.0f) << "the spike is spread over its window, not handed over whole";
+  EXPECT_GT(split[spike - 1].x, 1.5f) << "its neighbours take their share";
+  EXPECT_NEAR(out_sum, in_sum, 0.01 * in_sum) << "spread, not dropped";
+  EXPECT_EQ(in.value[size_t(kSpikeY) * in.width + kSpikeX].x, 40.0f) << "the input is left as it was";
+  // Tiles: the same pixels from a region cut elsewhere.
+  const FilterInput other = cut(scene, 5, 8, 30, 20);
+  const Rect part{8, 11, 24, 14};
+  std::vector<glm::vec3> tile(size_t(part.w) * part.h);
+  filter_handed_over(other, fs, part, 0.25f, 2.0f, tile);
+  for (int y = 0; y < part.h; ++y)
+    for (int x = 0; x < part.w; ++x) {
+      const glm::vec3 a = tile[size_t(y) * part.w + x];
+      const glm::vec3 b = split[size_t(part.y - inner.y + y) * inner.w + size_t(part.x - inner.x + x)];
+      ASSERT_EQ(0, std::memcmp(&a, &b, sizeof a)) << "pixel " << part.x + x << ", " << part.y + y;
+    }
+}
+
 }  // namespace
 }  // namespace igi

@@ -137,6 +137,32 @@ TEST(TileInvarianceOverPasses, ProgressivePassesTiledEqualTheWholeFrameBitForBit
                                      p.render(s, 64, 48, 4, 1, 1, 128)));
 }
 
+// Passes hand the discontinuity buffer over to the pixels' own sums
+// (filter/discontinuity_buffer.h, tested there): pass 15 is still the
+// filtered pass bit for bit, pass 63 is not, and a late pass is tile-invariant
+// like any other (here with its spikes, sub-samples, glossy gather and caustics).
+TEST(FilterHandover, ALatePassIsTileInvariantAndThe16thIsFilteredInFull) {
+  const test::Prepared& p = cornell();
+  const RenderSettings s = vpl_settings(MethodKind::Igi, 8);
+  auto render = [&](const test::Prepared& scene, const RenderSettings& settings, uint32_t pass, int tile) {
+    auto method = make_method(scene.context(), settings);
+    FrameSetup frame = scene.frame(48, 36, 5);
+    frame.sample_begin = pass;
+    method->begin_frame(frame);
+    return render_tiled(*method, frame, tile_border(settings), tile, tile, 0, 0);
+  };
+  const Image first = render(p, s, 0, 48);
+  EXPECT_TRUE(test::images_identical("handover-pass15", render(p, s, 15, 48), first));
+  EXPECT_GT(max_abs_error(render(p, s, 63, 48), first), 1e-3) << "pass 63 is handed over";
+  const test::Prepared glossy(load_scene("glossy"));
+  RenderSettings all = vpl_settings(MethodKind::Igi, 8, 0.3f, true, 2, 4);
+  all.caustics = true;
+  all.caustic_photons = 3000;
+  for (uint32_t pass : {40u, 300u})
+    EXPECT_TRUE(test::images_identical("handover-tiles-" + std::to_string(pass), render(glossy, all, pass, 13),
+                                       render(glossy, all, pass, 48)));
+}
+
 // Path-traced reference of the Cornell box, computed once per test run.
 const Image& cornell_reference() {
   static Image reference = [] {

@@ -86,4 +86,35 @@ void filter_discontinuity(const FilterInput& in, const FilterSettings& s, Rect i
 // is zero, negative or not finite gives the default 2^32.
 double filter_fixed_scale(double typical_value);
 
+// Passes hand the filter over to the pixels' own sums. The window's blur
+// (irradiance averaged over N x N neighbours on a surface) is a bias that
+// more passes would not remove, so progressive pass k (0-based) takes
+//   w_k filtered + (1 - w_k) unfiltered,  w_k = min(1, sqrt(K / (k + 1))),
+// K = kFilterFullPasses: the first K passes are filtered in full, and the
+// mean of n passes carries a blur of weight mean(w) ~ 2 sqrt(K / n), whose
+// square falls as 1 / n, as the noise does. By pass k every pixel has seen k
+// independent sets of its own, so the unfiltered part's noise averages out
+// too. A moving view (pass 0) is filtered in full.
+//
+// Spikes are not handed over: the part of a value above the spike level
+// stays filtered at every pass (filter_handed_over). A VPL close to a surface,
+// which the relaxing clamp (core/clamp.h) lets through, would otherwise land
+// whole on one pixel (rooms at 128x128, 256 passes, relMSE against pt: 0.00069
+// with the spikes handed over, 0.00023 with them filtered, 0.00015 with every
+// pass filtered in full, whose FLIP is higher, 0.0213 against 0.0191). The level is the frame's typical demodulated
+// irradiance (one set's flux over the scene diagonal squared) times
+// ((k + 1) / K)^(1/4): it rises as the clamp's distance falls, so the spikes'
+// blur vanishes too.
+constexpr uint32_t kFilterFullPasses = 16;
+float filter_weight_at_pass(uint32_t pass);
+float filter_spike_level(float typical_value, uint32_t pass);
+
+// The discontinuity buffer at hand-over weight w < 1 and spike level L: with
+// h = max(u - L, 0) per channel and F the filter above,
+//   out = w F(u - h) + (1 - w) (u - h) + F(h).
+// w >= 1 is filter_discontinuity itself. Pure and tile-invariant as it is
+// (the split is per pixel, L one number for the frame); `in` is not changed.
+void filter_handed_over(const FilterInput& in, const FilterSettings& s, Rect inner, float weight, float spike_level,
+                        std::span<glm::vec3> out);
+
 }  // namespace igi

@@ -94,6 +94,7 @@ void VplMethod::begin_frame(const FrameSetup& frame) {
   frame_ = frame;
   clamp_bound_ = clamp_bound(settings_.clamp, context_.accel.mean_chord(), frame.sample_begin);
   wavelet_levels_ = wavelet_levels_at_pass(settings_.wavelet_levels, frame.sample_begin);
+  filter_weight_ = filter_weight_at_pass(frame.sample_begin);
   setup_rays_ = RayCounts{};
   {
     PartTimer timer(parts_, FramePart::Vpls, setup_rays_);
@@ -105,11 +106,14 @@ void VplMethod::begin_frame(const FrameSetup& frame) {
   }
   draws_.reset();
   if (settings_.vpl_draws > 0) draws_.emplace(context_.scene, vpls_, frame.seed);
-  // A typical demodulated irradiance: one set's flux spread over the scene.
+  // A typical demodulated irradiance: one set's flux spread over the scene
+  // (the filter's fixed-point scale and the hand-over's spike level).
   double flux = 0.0;
   for (const Vpl& v : vpls_.vpls) flux += (v.flux.x + v.flux.y + v.flux.z) / 3.0;
   double diagonal = context_.scene.bounds().diagonal();
-  fixed_scale_ = filter_fixed_scale(flux / std::max(1, vpls_.set_count()) / (diagonal * diagonal));
+  const double typical = flux / std::max(1, vpls_.set_count()) / (diagonal * diagonal);
+  fixed_scale_ = filter_fixed_scale(typical);
+  spike_level_ = filter_spike_level(float(typical), frame.sample_begin);
 }
 
 uint64_t VplMethod::frame_state_hash() const {
@@ -331,7 +335,7 @@ void VplMethod::filter_layer(const GBuffer& gbuffer, int l, const Rect& core, Sc
     fs.normal_cos = settings_.filter_normal_cos;
     fs.depth_ratio = settings_.filter_depth_ratio;
     fs.fixed_scale = fixed_scale_;
-    filter_discontinuity(in, fs, core, std::span<glm::vec3>(out, inner));
+    filter_handed_over(in, fs, core, filter_weight_, spike_level_, std::span<glm::vec3>(out, inner));
     return;
   }
   for (int y = 0; y < core.h; ++y)

@@ -103,7 +103,9 @@ class VplMethod final : public Method {
   std::optional<VplDraws> draws_;  // --vpl-draws: the light tree over this frame's VPLs
   float clamp_bound_ = INFINITY;
   int wavelet_levels_ = 0;  // this pass's (wavelet_levels_at_pass)
+  float filter_weight_ = 1.0f;  // this pass's share of the filtered value (filter_weight_at_pass)
   double fixed_scale_ = 0x1p32;
+  float spike_level_ = INFINITY;  // demodulated irradiance above which a handed-over pass still filters
   RayLog* log_ = nullptr;
   FrameParts* parts_ = nullptr;
 };
