@@ -13,7 +13,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 size=160x120
 ref_spp=4096
-scenes=cornell,corner,rooms,glossy,glossy-rough,large,glass
+scenes=cornell,corner,rooms,glossy,glossy-medium,glossy-rough,large,glass
 extra=()
 while [ $# -gt 0 ]; do
   case "$1" in

@@ -17,7 +17,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 size=128x128
 ref_spp=1024
-scenes=cornell,corner,rooms,rooms-10,corridor,tilted-light,glossy,glossy-rough,glass
+scenes=cornell,corner,rooms,rooms-10,corridor,tilted-light,glossy-medium,glossy,glossy-rough,glass
 target=0.1
 cap=30
 only=""

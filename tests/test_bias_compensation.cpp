@@ -71,6 +71,36 @@ TEST(BiasCompensation, CornerRegainsTheClampedEnergy) {
   }
 }
 
+// a'. A GGX floor rough enough for VPLs (alpha 0.25) is clamped on f G, its
+// lobe times G (core/clamp.h), so the clamp cuts the lobe's peak at any
+// distance, not only close VPLs; compensation draws from the lobe and brings
+// it back. Region: the floor's pixels.
+TEST(BiasCompensation, AGlossyFloorRegainsWhatTheClampCutFromItsLobe) {
+  const test::Prepared p(make_builtin_scene("glossy-medium"));
+  RenderSettings pt;
+  pt.method = MethodKind::PathTracer;
+  const Image ref = p.render(pt, kWidth, kHeight, 1024, 7);
+  const std::vector<GSample> g = p.visible_points(kWidth, kHeight);
+  auto bias = [&](const Image& image) {
+    double a = 0, b = 0;
+    for (size_t i = 0; i < g.size(); ++i)
+      if (g[i].valid() && g[i].surface.material->type == MaterialType::Conductor) {
+        a += luminance(image.pixels[i]);
+        b += luminance(ref.pixels[i]);
+      }
+    return a / b - 1.0;
+  };
+  auto render = [&](float clamp, int samples) {
+    return p.render_frames(vpl_settings(MethodKind::Igi, 16, clamp, true, samples), kWidth, kHeight, 8);
+  };
+  const double unclamped = bias(render(0.0f, 0)), without = bias(render(0.3f, 0)), with = bias(render(0.3f, 4));
+  std::printf("[glossy floor] igi M=16 x 8 frames against pt: unclamped %+.1f %%, clamp 0.3 without compensation "
+              "%+.1f %%, with 4 samples %+.1f %%\n", 100 * unclamped, 100 * without, 100 * with);
+  EXPECT_LT(without, unclamped - 0.05) << "the clamp cuts the lobe";
+  EXPECT_GT(with - without, -0.5 * (without - unclamped)) << "at least half of it comes back";
+  EXPECT_LT(std::abs(with - unclamped), 0.05);
+}
+
 // b. Inside the furnace sphere, G = cos_x cos_y / r^2 = 1 / (4 R^2) for any
 // two points: a clamp below that scales every VPL by c = b / G, and one level
 // of compensation gives, per unit of reflected radiance R = Le a / (1 - a),

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/settings.h"
 #include "lighting/lights.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
@@ -75,7 +76,7 @@ void expect_round_trip(const std::string& name) {
 }
 
 TEST(SuiteScenes, NamesAreRegistered) {
-  for (const char* name : {"corner", "rooms", "rooms-1", "rooms-7", "rooms-10", "corridor", "glossy", "large", "glass"})
+  for (const char* name : {"corner", "rooms", "rooms-1", "rooms-7", "rooms-10", "corridor", "glossy", "glossy-medium", "large", "glass"})
     EXPECT_TRUE(is_builtin_scene(name)) << name;
   for (const char* name : {"rooms-0", "rooms-11", "rooms-", "rooms-x", "roomsy"})
     EXPECT_FALSE(is_builtin_scene(name)) << name;
@@ -147,6 +148,22 @@ TEST(SuiteScenes, GlossyIsTheCornellBoxWithAMetalFloor) {
       for (int k = 0; k < 3; ++k) EXPECT_NEAR(s.positions[s.triangles[t][k]].y, 0.0f, 1e-6f) << "on the floor";
   EXPECT_EQ(emissive_triangles(s), 2u);
   expect_round_trip("glossy");
+}
+
+TEST(SuiteScenes, GlossyMediumIsTheTiltedLightRoomWithAMediumRoughMetalFloor) {
+  const Scene s = load_scene("glossy-medium");
+  EXPECT_NO_THROW(s.validate());
+  EXPECT_EQ(s.triangles.size(), load_scene("tilted-light").triangles.size());
+  EXPECT_EQ(triangles_of(s, MaterialType::Conductor), 2u);
+  for (size_t t = 0; t < s.triangles.size(); ++t) {
+    const Material& m = s.materials[s.triangle_material[t]];
+    if (m.type != MaterialType::Conductor) continue;
+    EXPECT_GT(m.alpha, RenderSettings{}.glossy_threshold) << "VPLs shade it";
+    EXPECT_LT(m.alpha, 0.3f) << "medium rough";
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(s.positions[s.triangles[t][k]].y, 0.0f, 1e-6f) << "on the floor";
+  }
+  EXPECT_EQ(emissive_triangles(s), 2u);
+  expect_round_trip("glossy-medium");
 }
 
 TEST(SuiteScenes, GlassHasAMirrorBlockAndASmoothGlassSphereClearOfTheFloor) {

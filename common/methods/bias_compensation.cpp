@@ -31,12 +31,16 @@ void BiasCompensation::add(const GBuffer& gbuffer, uint32_t frame_seed, std::vec
 glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int l, int k, uint32_t frame_seed,
                                       RayCounts& rays) const {
   const SurfacePoint& sp = g.surface;
-  // GGX receivers would need f cos / pdf from their lobe, not the albedo:
-  // skipped, they keep the clamp's loss.
-  if (sp.material->type != MaterialType::Diffuse) return glm::vec3(0.0f);
+  // Only what VPLs shade was clamped: not mirrors, glass or the sharp GGX lobes that gather theirs.
+  const bool lambert = sp.material->type == MaterialType::Diffuse;
+  if (!lambert && (sp.material->type != MaterialType::Conductor ||
+                   !receives_vpls(*sp.material, shading_.min_emitter_alpha)))
+    return glm::vec3(0.0f);
   // The hemisphere on the viewer's side, as VPL shading uses it.
   const glm::vec3 n = sp.shading_normal_facing(g.wo), ng = sp.geometric_normal_facing(g.wo);
   const Onb frame(n);
+  SurfacePoint white = sp;  // demodulated: the lobe with albedo 1
+  white.albedo = glm::vec3(1.0f);
   // The pixel's n rays are one stratified sequence shared out over its S
   // sub-samples (at least one each): sub-sample k takes indices [k r, (k+1) r);
   // each glass branch b = l / S of the pixel has a sequence of its own.
@@ -46,11 +50,27 @@ glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int l, int
   const int group = group_of_subsample(x, y, k, vpls_.groups);
   glm::vec3 sum(0.0f);
   for (int i = 0; i < per_sample; ++i) {
-    const glm::vec3 wi = frame.to_world(cosine_hemisphere(sample_2d(uint32_t(k * per_sample + i), 0, seed)));
+    const glm::vec2 u = sample_2d(uint32_t(k * per_sample + i), 0, seed);
+    // Lambert: wi with density cos_x / pi, so f cos / pdf = 1 and the lobe
+    // value f = 1 / pi. GGX: wi drawn from the lobe, weight f cos / pdf.
+    glm::vec3 wi, weight(1.0f);
+    float f_white = kInvPi;
+    if (lambert) {
+      wi = frame.to_world(cosine_hemisphere(u));
+    } else {
+      const auto bs = bsdf_sample(white, g.wo, u, 0.0f);
+      if (!bs) continue;
+      wi = bs->wi;
+      weight = bs->weight;
+      f_white = max_component(VplShading::demodulated_bsdf(sp, g.wo, wi));
+    }
     const float cos_x = glm::dot(wi, n);
-    if (cos_x <= 0.0f || glm::dot(wi, ng) <= 0.0f) continue;  // below the surface: no light
-    // Past this distance G <= cos_x / d^2 <= b: the clamp cut nothing there.
-    const Ray ray{offset_origin(sp, wi), wi, 0.0f, std::sqrt(cos_x / bound_)};
+    if (cos_x <= 0.0f || glm::dot(wi, ng) <= 0.0f || !(f_white > 0.0f)) continue;  // no light from below
+    // The clamp scales f G down to b / pi (core/clamp.h; for a Lambertian,
+    // G to b). Past this distance f G <= f cos_x / d^2 <= b / pi: it cut
+    // nothing there.
+    const float reach = lambert ? std::sqrt(cos_x / bound_) : std::sqrt(kPi * f_white * cos_x / bound_);
+    const Ray ray{offset_origin(sp, wi), wi, 0.0f, reach};
     Hit hit;
     ++rays.secondary;
     if (!accel_.intersect(ray, hit)) continue;
@@ -66,10 +86,13 @@ glm::vec3 BiasCompensation::at_sample(const GSample& g, int x, int y, int l, int
     const float d2 = glm::dot(hit_sample.surface.position - sp.position, hit_sample.surface.position - sp.position);
     const float cos_y = std::abs(glm::dot(wi, hit_sample.surface.shading_normal));
     const float geometry_term = cos_x * cos_y / d2;
-    if (!(geometry_term > bound_)) continue;
+    // The share the clamp cut: 1 - (b / pi) / (f G), for a Lambertian (G - b) / G.
+    const float cut = lambert ? (geometry_term - bound_) / geometry_term
+                              : 1.0f - bound_ * kInvPi / (f_white * geometry_term);
+    if (!(cut > 0.0f)) continue;
     // Le(y) too: the clamp cut the same share of the area VPLs' direct light (see the header).
     const glm::vec3 radiance = hit_sample.surface.emitted() + radiance_towards(hit_sample, set, group, rays);
-    sum += radiance * ((geometry_term - bound_) / geometry_term);
+    sum += weight * radiance * cut;
   }
   return sum / float(per_sample);
 }

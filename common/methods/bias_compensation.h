@@ -11,6 +11,15 @@
 // since f cos / pdf = albedo for a Lambertian x. Values here are demodulated
 // (albedo_x left out), like the VPL sums they are added to.
 //
+// A GGX receiver (rough enough to take VPL light) is clamped on f G, its
+// lobe with albedo 1 times G, at b / pi (core/clamp.h), so the clamp cuts
+// its sharp peak at any distance, not only close VPLs: there wi is drawn
+// from the lobe, weighted f cos / pdf, traced at most sqrt(pi f cos_x / b),
+// and the cut share is 1 - (b / pi) / (f G). On glossy-medium (a GGX 0.25
+// floor beside a small bright lamp), 128x128 against pt, seed 1: mean 0.980
+// -> 0.998 at one pass and 0.980 -> 0.991 at 16; relMSE 0.0154 -> 0.0024 and
+// 0.0087 -> 0.0011; FLIP 0.090 -> 0.067 and 0.066 -> 0.048.
+//
 // One level only: L(y -> x) is itself clamped, and its own missing share
 // needs two short hops in a row, a second-order term that is left out.
 // Emission at y IS added, unlike pbrt-v2's igi: there direct light is

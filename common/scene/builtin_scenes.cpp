@@ -173,7 +173,7 @@ Scene make_large_moving(int triangles) {
 
 // "rooms-N" takes any N in 1..kMaxRooms; the list names the largest as an example.
 std::vector<std::string> builtin_scene_names() {
-  return {"cornell", "cornell-blob", "cornell-blob-moving", "large-moving", "furnace", "corner", "courtyard", "rooms", "rooms-10", "corridor", "tilted-light", "glossy", "glossy-rough", "large", "glass"};
+  return {"cornell", "cornell-blob", "cornell-blob-moving", "large-moving", "furnace", "corner", "courtyard", "rooms", "rooms-10", "corridor", "tilted-light", "glossy-medium", "glossy", "glossy-rough", "large", "glass"};
 }
 
 bool is_builtin_scene(const std::string& name) {
@@ -192,6 +192,7 @@ Scene make_builtin_scene(const std::string& name) {
   if (name == "corner") return make_corner_scene();
   if (name == "courtyard") return make_courtyard_scene();
   if (name == "tilted-light") return make_tilted_light_scene();
+  if (name == "glossy-medium") return make_glossy_medium_scene();
   if (const int rooms = parse_rooms_name(name)) return make_rooms_scene(rooms);
   if (name == "corridor") return make_corridor_scene();
   if (name == "glossy") return make_glossy_cornell();

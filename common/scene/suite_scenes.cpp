@@ -181,6 +181,26 @@ Scene make_tilted_light_scene() {
   return s;
 }
 
+Scene make_glossy_medium_scene() {
+  Scene s = make_tilted_light_scene();
+  s.name = "glossy-medium";
+  Material metal;
+  metal.name = "metal";
+  metal.type = MaterialType::Conductor;
+  metal.base_color = {0.95f, 0.93f, 0.88f};
+  metal.alpha = 0.25f;
+  const uint32_t floor = uint32_t(std::find_if(s.materials.begin(), s.materials.end(),
+                                               [](const Material& m) { return m.name == "floor"; }) -
+                                  s.materials.begin());
+  const uint32_t metal_id = add_material(s, metal);
+  for (uint32_t& m : s.triangle_material)
+    if (m == floor) m = metal_id;
+  // Lower than tilted-light's view: half of it is the floor and the lit corner's reflection in it.
+  s.camera = look_at({0.5f, 1.6f, 0.5f}, {3.6f, 0.4f, 3.6f}, 60.0f);
+  group_by_material(s);
+  return s;
+}
+
 Scene make_rooms_scene(int n) {
   if (n < 1 || n > kMaxRooms)
     throw SceneError("rooms scene: N = " + std::to_string(n) + ", expected 1.." + std::to_string(kMaxRooms));

@@ -32,6 +32,9 @@
 //   tilted-light  closed 4 x 3 x 4 m room lit by a small one-sided quad
 //           tilted towards a corner: the walls beside it see the light at
 //           grazing angles (area-light sampling far from the normal).
+//   glossy-medium  the tilted-light room with a medium-rough metal floor
+//           (GGX alpha 0.25, just above --glossy-threshold, so VPLs shade
+//           it): a glossy lobe beside a small, bright emitter near a corner.
 #include <string>
 
 #include "scene/scene.h"
@@ -43,6 +46,7 @@ inline constexpr int kMaxRooms = 10;
 Scene make_corner_scene();
 Scene make_courtyard_scene();
 Scene make_tilted_light_scene();
+Scene make_glossy_medium_scene();
 // 1 <= n <= kMaxRooms; throws SceneError otherwise.
 Scene make_rooms_scene(int n);
 inline constexpr float kCorridorLamp = 100.0f;  // the lamp's radiance (red channel), W/(m^2 sr)
