@@ -102,11 +102,13 @@ TEST(BiasCompensation, AGlossyFloorRegainsWhatTheClampCutFromItsLobe) {
 }
 
 // b. Inside the furnace sphere, G = cos_x cos_y / r^2 = 1 / (4 R^2) for any
-// two points: a clamp below that scales every VPL by c = b / G, and one level
-// of compensation gives, per unit of reflected radiance R = Le a / (1 - a),
-//   Le + c R + a (1 - c) (Le + c R)       (exact: Le + R)
-// the rest is the second-order term one level leaves out.
-TEST(BiasCompensation, FurnaceHoldsAndOneLevelIsExactlyOneLevel) {
+// two points: a clamp below that scales every VPL by c = b / G, and each
+// level of compensation adds a (1 - c) times the level below it, per unit of
+// reflected radiance R = Le a / (1 - a):
+//   one level  X1 = Le + c R + a (1 - c) (Le + c R)
+//   two levels X2 = Le + c R + a (1 - c) X1              (exact: Le + R)
+// the rest is the third-order term two levels leave out.
+TEST(BiasCompensation, FurnaceHoldsAndTwoLevelsAreExactlyTwoLevels) {
   const float albedo = 0.5f, le = 1.0f;
   const test::Prepared p(make_furnace(albedo, le));
   const double exact = le / (1.0 - albedo), reflected = exact - le;
@@ -121,12 +123,14 @@ TEST(BiasCompensation, FurnaceHoldsAndOneLevelIsExactlyOneLevel) {
   const float far = p.clamp_at(float(diagonal));
   const double clamped = mean(far, 0), compensated = mean(far, 4);
   const double one_level = le + c * reflected + albedo * (1 - c) * (le + c * reflected);
+  const double two_levels = le + c * reflected + albedo * (1 - c) * one_level;
   std::printf("[furnace] exact %.3f; clamp at 0.35 m + compensation %.4f; at the diagonal: %.4f (analytic %.4f), "
-              "compensated %.4f (one level, analytic %.4f)\n",
-              exact, mild, clamped, le + c * reflected, compensated, one_level);
+              "compensated %.4f (two levels, analytic %.4f; one level %.4f)\n",
+              exact, mild, clamped, le + c * reflected, compensated, two_levels, one_level);
   EXPECT_NEAR(mild, exact, 0.02 * exact) << "bound: 2 %, the VPL estimate's spread at this size";
   EXPECT_NEAR(clamped, le + c * reflected, 0.03 * exact) << "bound: 3 %, the tessellated sphere's G is not constant";
-  EXPECT_NEAR(compensated, one_level, 0.03 * exact) << "bound: 3 %, as above";
+  EXPECT_NEAR(compensated, two_levels, 0.03 * exact) << "bound: 3 %, as above";
+  EXPECT_GT(compensated, one_level + 0.5 * (two_levels - one_level)) << "the second level is there";
 }
 
 // c. Per-pixel random numbers hash the GLOBAL pixel and frame seed only.

@@ -20,8 +20,13 @@
 // -> 0.998 at one pass and 0.980 -> 0.991 at 16; relMSE 0.0154 -> 0.0024 and
 // 0.0087 -> 0.0011; FLIP 0.090 -> 0.067 and 0.066 -> 0.048.
 //
-// One level only: L(y -> x) is itself clamped, and its own missing share
-// needs two short hops in a row, a second-order term that is left out.
+// Two levels: L(y -> x) is itself clamped, and its own missing share is
+// estimated the same way from y, one more short hop (a second sample
+// dimension of the same sequence); the third order is left out. In the
+// furnace at a clamp that cuts 2/3 everywhere: 1.922 against the two-level
+// analytic 1.926 and the exact 2 (one level: 1.778). The second level costs
+// 1-3 % of a frame (640x480, Cornell box, corner, glossy-medium) and took
+// the corner scene's mean at 256 passes from 0.995 to 0.998 of pt.
 // Emission at y IS added, unlike pbrt-v2's igi: there direct light is
 // computed apart and never clamped, so Le(y) would count it twice. Here the
 // direct light of emissive triangles reaches x only through Area VPLs, which
@@ -38,7 +43,7 @@
 // (never clamped, core/direct_lights.h) light y too: their light reflected
 // over the short hop is what the clamp cut from the VPLs their paths left on y.
 //
-// Random numbers: sample_2d(k n / S + i, 0, hash(hash(x, y, frame seed), b))
+// Random numbers: sample_2d(k n / S + i, level - 1, hash(hash(x, y, frame seed), b))
 // in GLOBAL pixel coordinates (x, y), sub-sample k, glass branch b of G-buffer
 // layer l = b S + k (core/gbuffer.h), so a pixel's compensation is the
 // same in whatever tile, thread or process renders it. All methods are const
@@ -76,7 +81,11 @@ class BiasCompensation {
  private:
   glm::vec3 at_sample(const GSample& g, int x, int y, int layer, int subsample, uint32_t frame_seed,
                       RayCounts& rays) const;
+  glm::vec3 hop(const SurfacePoint& sp, glm::vec3 wo, uint32_t index, uint32_t seed, int set, int group, int level,
+                RayCounts& rays) const;
   glm::vec3 radiance_towards(const GSample& y, int set, int group, RayCounts& rays) const;
+
+  static constexpr int kLevels = 2;
 
   const Accel& accel_;
   const VplShading& shading_;
