@@ -23,5 +23,7 @@ done
 xdotool mouseup 1
 pause 3
 echo "after: $(title)"
-xdotool key --window "$window" Escape
+# The window may close on the key's press, before xdotool sends its release
+# to it (BadWindow, exit 1, seen under load): the master's exit status judges.
+xdotool key --window "$window" Escape || true
 wait $pid
