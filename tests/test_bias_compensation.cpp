@@ -31,26 +31,39 @@ using test::vpl_settings;
 
 constexpr int kWidth = 48, kHeight = 36;
 
+// A region of a scene's image against pt: sum(image) / sum(pt) - 1 over the
+// pixels whose visible point `in_region` accepts.
+class RegionBias {
+ public:
+  template <class InRegion>
+  RegionBias(const test::Prepared& p, int pt_spp, InRegion in_region) {
+    RenderSettings pt;
+    pt.method = MethodKind::PathTracer;
+    reference_ = p.render(pt, kWidth, kHeight, pt_spp, 7);
+    const std::vector<GSample> g = p.visible_points(kWidth, kHeight);
+    for (size_t i = 0; i < g.size(); ++i)
+      if (g[i].valid() && in_region(g[i])) pixels_.push_back(i);
+  }
+  double operator()(const Image& image) const {
+    double a = 0, b = 0;
+    for (size_t i : pixels_) {
+      a += luminance(image.pixels[i]);
+      b += luminance(reference_.pixels[i]);
+    }
+    return a / b - 1.0;
+  }
+
+ private:
+  Image reference_;
+  std::vector<size_t> pixels_;
+};
 
 // a. The spot lights one corner; the clamp cuts the VPLs crowded there.
 // Region: visible points within 0.5 m of the corner, as in test_stability.cpp.
 TEST(BiasCompensation, CornerRegainsTheClampedEnergy) {
   const test::Prepared p(make_builtin_scene("corner"));
-  RenderSettings pt;
-  pt.method = MethodKind::PathTracer;
-  const Image ref = p.render(pt, kWidth, kHeight, 512, 7);
-  const std::vector<GSample> g = p.visible_points(kWidth, kHeight);
   const glm::vec3 corner(4.0f, 0.0f, 4.0f);
-  // sum(image) / sum(pt) - 1 over the corner region.
-  auto bias = [&](const Image& image) {
-    double a = 0, b = 0;
-    for (size_t i = 0; i < g.size(); ++i)
-      if (g[i].valid() && glm::distance(g[i].surface.position, corner) < 0.5f) {
-        a += luminance(image.pixels[i]);
-        b += luminance(ref.pixels[i]);
-      }
-    return a / b - 1.0;
-  };
+  const RegionBias bias(p, 512, [&](const GSample& g) { return glm::distance(g.surface.position, corner) < 0.5f; });
   // 8 frames of one clamp each (no relaxation across them).
   auto render = [&](float clamp, int samples) {
     return p.render_frames(vpl_settings(MethodKind::InstantRadiosity, 8, clamp, true, samples), kWidth, kHeight, 8);
@@ -77,19 +90,7 @@ TEST(BiasCompensation, CornerRegainsTheClampedEnergy) {
 // it back. Region: the floor's pixels.
 TEST(BiasCompensation, AGlossyFloorRegainsWhatTheClampCutFromItsLobe) {
   const test::Prepared p(make_builtin_scene("glossy-medium"));
-  RenderSettings pt;
-  pt.method = MethodKind::PathTracer;
-  const Image ref = p.render(pt, kWidth, kHeight, 1024, 7);
-  const std::vector<GSample> g = p.visible_points(kWidth, kHeight);
-  auto bias = [&](const Image& image) {
-    double a = 0, b = 0;
-    for (size_t i = 0; i < g.size(); ++i)
-      if (g[i].valid() && g[i].surface.material->type == MaterialType::Conductor) {
-        a += luminance(image.pixels[i]);
-        b += luminance(ref.pixels[i]);
-      }
-    return a / b - 1.0;
-  };
+  const RegionBias bias(p, 1024, [](const GSample& g) { return g.surface.material->type == MaterialType::Conductor; });
   auto render = [&](float clamp, int samples) {
     return p.render_frames(vpl_settings(MethodKind::Igi, 16, clamp, true, samples), kWidth, kHeight, 8);
   };
