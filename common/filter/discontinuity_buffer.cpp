@@ -377,31 +377,32 @@ void filter_handed_over(const FilterInput& in, const FilterSettings& s, Rect inn
   if (weight >= 1.0f) return filter_discontinuity(in, s, inner, out);
   bool any_spike = false;
   for (const glm::vec3& v : in.value) any_spike |= v.x > spike_level || v.y > spike_level || v.z > spike_level;
-  thread_local FilterInput low, high;
-  thread_local std::vector<glm::vec3> high_out;
-  const FilterInput* lower = &in;
+  // With spikes: one copy of the input, its values the lower part u - h
+  // first, then (after the blend has read them) the spikes h.
+  thread_local FilterInput split;
+  thread_local std::vector<glm::vec3> spikes, spikes_out;
   if (any_spike) {
-    low = in;
-    high = in;
+    split = in;
+    spikes.resize(in.value.size());
     for (size_t p = 0; p < in.value.size(); ++p)
       for (int c = 0; c < 3; ++c) {
-        const float excess = std::max(in.value[p][c] - spike_level, 0.0f);
-        high.value[p][c] = excess;
-        low.value[p][c] = in.value[p][c] - excess;
+        spikes[p][c] = std::max(in.value[p][c] - spike_level, 0.0f);
+        split.value[p][c] = in.value[p][c] - spikes[p][c];
       }
-    lower = &low;
   }
-  filter_discontinuity(*lower, s, inner, out);
+  const FilterInput& lower = any_spike ? split : in;
+  filter_discontinuity(lower, s, inner, out);
   const int region_x = inner.x - in.x0, region_y = inner.y - in.y0;
   for (int y = 0; y < inner.h; ++y)
     for (int x = 0; x < inner.w; ++x) {
       glm::vec3& o = out[size_t(y) * inner.w + x];
-      o = weight * o + (1.0f - weight) * lower->value[size_t(region_y + y) * in.width + size_t(region_x + x)];
+      o = weight * o + (1.0f - weight) * lower.value[size_t(region_y + y) * in.width + size_t(region_x + x)];
     }
   if (!any_spike) return;
-  high_out.resize(size_t(inner.w) * inner.h);
-  filter_discontinuity(high, s, inner, high_out);
-  for (size_t i = 0; i < high_out.size(); ++i) out[i] += high_out[i];
+  split.value.swap(spikes);
+  spikes_out.resize(size_t(inner.w) * inner.h);
+  filter_discontinuity(split, s, inner, spikes_out);
+  for (size_t i = 0; i < spikes_out.size(); ++i) out[i] += spikes_out[i];
 }
 
 float filter_spike_level(float typical_value, uint32_t pass) {
