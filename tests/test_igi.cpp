@@ -83,6 +83,7 @@ std::vector<TileCase> tile_cases() {
           {"igi_aa_sky", "courtyard", all},
           {"lightcuts_sky", "courtyard", vpl_settings(MethodKind::Lightcuts, 4, 0.05f)},
           {"igi_draws_aa_glossy_compensation", "glossy", draws},
+          {"igi_aa_ggx_floor_compensation", "glossy-medium", all},  // compensation drawn from a GGX lobe, two levels
           {"igi_draws_wavelet_sky", "courtyard", draws_wavelet},
           {"ir_draws", "corner", ir_draws}};
 }
