@@ -21,6 +21,6 @@ share() { line "$1" "igi / raw Embree throughput" | sed 's/.*: //'; }
 aa_pairs() { line "$1" "median of 5 frame pairs" | sed -E 's/4x AA costs ([0-9.]+x).*/\1/'; }
 results_set igi-cornell-fps "$(fps cornell 'igi, 2 threads') / $(fps cornell 'igi, 1 thread') fps"
 results_set igi-cornell-aa "$(fps cornell 'igi 4x AA, 2 threads') fps ($(aa_pairs cornell) the plain frame, median of 5 frame pairs)"
-share1() { line "$1" "shadow rays one at a time, as igi traces them" | sed 's/.*: //'; }
-results_set igi-embree-share "$(share cornell) (Cornell box), $(share cornell-blob) (cornell-blob); against Embree tracing the shadow rays one at a time as igi does: $(share1 cornell), $(share1 cornell-blob)"
+share1() { line "$1" "with the shadow rays one at a time" | sed 's/.*: //'; }
+results_set igi-embree-share "$(share cornell) (Cornell box), $(share cornell-blob) (cornell-blob); against Embree tracing the shadow rays one at a time: $(share1 cornell), $(share1 cornell-blob)"
 results_set igi-blob-aa "$(fps cornell-blob 'igi 4x AA, 2 threads') fps"

@@ -1,11 +1,16 @@
 // The ir and igi methods: tiles independent of tiling and threads, and
 // convergence to the path-traced reference.
 #include <algorithm>
+#include <cmath>
+#include <random>
 
 #include <gtest/gtest.h>
 
 #include "image/metrics.h"
+#include "core/vpl_contribution.h"
 #include "methods/vpl_method.h"
+#include "render/frame_renderer.h"
+#include "sampling/sobol.h"
 #include "scene/builtin_scenes.h"
 #include "scene/load_scene.h"
 #include "support/image_compare.h"
@@ -136,6 +141,97 @@ TEST(TileInvarianceOverPasses, ProgressivePassesTiledEqualTheWholeFrameBitForBit
   s.interleave = 6;
   EXPECT_TRUE(test::images_identical("passes-cornell-igi-6x6", p.render(s, 64, 48, 4, 1, 1, 16),
                                      p.render(s, 64, 48, 4, 1, 1, 128)));
+}
+
+// Shadow rays go to Embree as 16-wide packets (methods/shadow_batch.cpp),
+// whose lanes are tested against every triangle of the leaves any lane
+// reaches: a lane whose answer hangs on a rounding could answer differently
+// beside other rays, and tiles cut packets differently. Each logged packet of
+// these renders (the settings under which 16-pixel tiles once differed from
+// the whole frame, and the defaults; passes 0-3, several scenes) is traced
+// again as a packet, lane by lane alone, and as a random half of itself:
+// every lane answers the same each way. With the rays aimed at the VPL itself
+// instead of off its surface (shadow_target undone) 3 of the 12 cases fail.
+TEST(ShadowPackets, EveryLaneAnswersAsItWouldAloneOrBesideOtherRays) {
+  RenderSettings grazing = vpl_settings(MethodKind::InstantRadiosity, 8, 0.3f, true, 0, 4);
+  RenderSettings defaults;
+  defaults.method = MethodKind::Igi;
+  std::mt19937 rng(3);
+  size_t all_lanes = 0, all_occluded = 0;
+  for (const char* name : {"cornell", "glossy-rough", "corner", "tilted-light", "rooms", "glass"}) {
+    const test::Prepared p(load_scene(name));
+    for (const RenderSettings& settings : {grazing, defaults}) {
+      RayLog log;
+      for (uint32_t pass = 0; pass < 8; ++pass) {
+        VplMethod method(p.context(), settings);
+        method.record_rays(&log);
+        // Pass pass / 2 of render_offline: its seed and sub-pixel position.
+        FrameSetup frame = p.frame(64, 48, 1 + pass / 2);
+        frame.sample_begin = pass / 2;
+        const glm::vec2 jitter = sample_2d(pass / 2, 0, 1);
+        frame.jitter_x = jitter.x;
+        frame.jitter_y = jitter.y;
+        method.begin_frame(frame);
+        FrameOptions one;
+        one.threads = 1;
+        one.tile_size = pass % 2 ? 16 : 64;  // small tiles cut packets where the whole frame's are whole
+        RayCounts rays;
+        render_frame(method, frame, tile_border(settings), one, rays);
+      }
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      size_t lanes = 0, occluded = 0, alone = 0, halved = 0;
+      for (const LoggedShadow& logged : log.shadow) {
+        LoggedShadow packet = logged, half = logged;
+        rtcOccluded16(packet.valid, p.accel->handle(), &context, &packet.rays);
+        for (int k = 0; k < 16; ++k) half.valid[k] = logged.valid[k] && (rng() & 1) ? -1 : 0;
+        rtcOccluded16(half.valid, p.accel->handle(), &context, &half.rays);
+        for (int k = 0; k < 16; ++k) {
+          if (!logged.valid[k]) continue;
+          const bool blocked = packet.rays.tfar[k] < 0.0f;
+          RTCRay ray{logged.rays.org_x[k], logged.rays.org_y[k], logged.rays.org_z[k], logged.rays.tnear[k],
+                     logged.rays.dir_x[k], logged.rays.dir_y[k], logged.rays.dir_z[k], 0.0f, logged.rays.tfar[k],
+                     logged.rays.mask[k], 0u, 0u};
+          rtcOccluded1(p.accel->handle(), &context, &ray);
+          ++lanes;
+          occluded += blocked;
+          alone += (ray.tfar < 0.0f) != blocked;
+          if (half.valid[k]) halved += (half.rays.tfar[k] < 0.0f) != blocked;
+        }
+      }
+      SCOPED_TRACE(std::string(name) + (&settings == &grazing ? ", grazing" : ", defaults"));
+      EXPECT_GT(lanes, 20000u);
+      EXPECT_EQ(alone, 0u) << "lanes answered differently in a packet and alone, of " << lanes;
+      EXPECT_EQ(halved, 0u) << "lanes answered differently in a packet and in half of it, of " << lanes;
+      all_lanes += lanes;
+      all_occluded += occluded;
+    }
+  }
+  EXPECT_GT(all_occluded, all_lanes / 20) << "the rooms and the Cornell box's blocks hide VPLs";
+}
+
+// A ray from a wall to a VPL on the same wall ends off the wall's plane on
+// the lit side, by more than the plane's rounding, as it starts off it.
+TEST(ShadowPackets, ARayAlongAWallEndsOffItsPlane) {
+  const float ceiling = 0.5488f;
+  Vpl vpl;
+  vpl.kind = VplKind::Surface;
+  vpl.position = {0.40f, ceiling, 0.05f};
+  vpl.normal = {0.0f, -1.0f, 0.0f};
+  SurfacePoint sp;
+  sp.position = {0.02f, ceiling, 0.30f};
+  sp.geometric_normal = sp.shading_normal = {0.0f, -1.0f, 0.0f};
+  const glm::vec3 target = shadow_target(vpl);
+  const Ray ray = shadow_ray(sp, glm::normalize(target - sp.position), target, glm::length(target - sp.position));
+  const glm::vec3 end = ray.origin + ray.tfar * ray.direction;
+  const float ulp = std::nextafter(ceiling, 1.0f) - ceiling;
+  EXPECT_LT(ray.origin.y, ceiling - 8 * ulp);
+  EXPECT_LT(end.y, ceiling - 8 * ulp) << "the ray's end lies within a rounding of the ceiling";
+  EXPECT_LT(target.y, ceiling);
+  EXPECT_EQ(target.x, vpl.position.x);
+  // Lights with no surface are aimed at as they are.
+  vpl.kind = VplKind::Point;
+  EXPECT_EQ(shadow_target(vpl), vpl.position);
 }
 
 // Passes hand the discontinuity buffer over to the pixels' own sums

@@ -17,6 +17,19 @@
 
 namespace igi {
 
+// Where a shadow ray to `v` aims: a VPL that lies on a surface (a bounce, or
+// a point of an area light), nudged off that surface to its lit side as the
+// ray's origin is nudged off its own. Aimed at the VPL itself, a ray from a
+// point of the same wall ran along the wall and ended 1e-4 of its length
+// short of the VPL: within a rounding of the wall's plane, where Embree's
+// 16-wide packets and single rays answered differently (the packet tests a
+// lane against every triangle of the leaves its neighbours reach). The light
+// such a ray carries is nil (cos at the receiver about 1e-3); what changes is
+// that its answer no longer depends on the packet (methods/shadow_batch.cpp).
+inline glm::vec3 shadow_target(const Vpl& v) {
+  return v.kind == VplKind::Surface || v.kind == VplKind::Area ? offset_point(v.position, v.normal) : v.position;
+}
+
 struct ShadowQuery {
   glm::vec3 origin, direction;
   float tfar = 0.0f;
@@ -95,7 +108,7 @@ struct VplShading {
     glm::vec3 c = f * emitted * g_term;
     // Nothing, or a VPL on the point itself (unclamped: infinite or NaN).
     if (!(c.x + c.y + c.z > 0.0f) || !std::isfinite(c.x + c.y + c.z)) return glm::vec3(0.0f);
-    const Ray ray = shadow_ray(sp, wi, v.position, distance);
+    const Ray ray = shadow_ray(sp, wi, shadow_target(v), distance);
     q = ShadowQuery{ray.origin, ray.direction, ray.tfar};
     return c;
   }

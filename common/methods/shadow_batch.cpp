@@ -56,6 +56,8 @@ namespace {
 void fill_fast_lanes(const PixelBatch& b, size_t first, const Vpl& vpl, float bound, float* __restrict g_out,
                      RTCRay16& rays) {
   const float vx = vpl.position.x, vy = vpl.position.y, vz = vpl.position.z;
+  const glm::vec3 target = shadow_target(vpl);
+  const float tx = target.x, ty = target.y, tz = target.z;
   const float mx = vpl.normal.x, my = vpl.normal.y, mz = vpl.normal.z;
   const float* __restrict px = b.px.data() + first;
   const float* __restrict py = b.py.data() + first;
@@ -87,8 +89,8 @@ void fill_fast_lanes(const PixelBatch& b, size_t first, const Vpl& vpl, float bo
     // point itself (dist2 0, unclamped) gives an infinite or NaN g: no light.
     const bool visible = (cos_x > 0.0f) & (side > 0.0f) & (cos_y > 0.0f) & (g <= FLT_MAX);
     g_lane[k] = visible ? g : 0.0f;
-    // The ray aims from the nudged origin at the VPL itself (scene/surface.h shadow_ray).
-    const float rx = vx - ox[k], ry = vy - oy[k], rz = vz - oz[k];
+    // The ray aims from the nudged origin at the nudged VPL (shadow_target, scene/surface.h shadow_ray).
+    const float rx = tx - ox[k], ry = ty - oy[k], rz = tz - oz[k];
     const float length = std::sqrt(rx * rx + ry * ry + rz * rz);
     dir_x[k] = rx / length; dir_y[k] = ry / length; dir_z[k] = rz / length;
     tfar[k] = length * (1.0f - kShadowEpsilon);
@@ -164,40 +166,24 @@ int accumulate_shadow_packet(const ShadowPacket& packet, size_t first, PixelBatc
   return traced;
 }
 
-// Each valid lane as a ray of its own (rtcOccluded1), not the packet as one
-// rtcOccluded16: Embree's packet traversal can answer a ray that grazes an
-// edge differently depending on the other rays of its packet (why inside
-// Embree is not verified; its hybrid traversal finishes a thinned packet ray
-// by ray), and which points share a packet depends on how the frame is cut
-// into tiles. Measured: at 64x48, 4 passes, 8 paths a set, 4 sub-samples,
-// 16-pixel tiles differed from the whole frame in 4 of 36 runs (a few pixels
-// each, by about 1e-5), never with single rays; RTC_SCENE_FLAG_ROBUST did not
-// help. The cost is 1.1-1.3x an igi frame, 0.9x on cornell-blob
-// (tests/bench/history/RESULTS-to-2026-12-05.md, "Shadow rays one at a time").
-// Packets that no tiling can change were measured on 2026-12-06 and did not
-// pay: a point's own rays to its set's VPLs, 16 to a packet (the one layout
-// whose rays are the tile's business alone), replay at 1.35x single rays on
-// the Cornell box and 1.03x on cornell-blob (igi-bench), but in the renderer
-// a frame of 4 sub-samples (4 or 5 VPLs a group: a few lanes a packet) took
-// 1.4-1.6x as long on the Cornell box and 1.8x on cornell-blob, and one of
-// 1 sub-sample 0.85x and 1.2x; packets of one
-// VPL and 4 x 4 pixels on a grid that ignores tiles need the pixels of the
-// blocks a tile cuts, about 1.5x the shading at 6 x 6 sets.
+// The packet as one rtcOccluded16. Embree's packet traversal tests a lane
+// against every triangle of every leaf that any lane of the packet reaches,
+// where a single ray tests only the leaves whose boxes it passes, so a lane
+// whose answer hangs on a rounding could be answered differently beside
+// other rays; and which points share a packet depends on how the frame is cut
+// into tiles. From 2026-12-04 to 2026-12-07 every lane was therefore traced
+// alone (rtcOccluded1): at 64x48, 4 passes, 8 paths a set, 4 sub-samples,
+// 16-pixel tiles had differed from the whole frame in 6 of 12 renders (a few
+// pixels each, by about 1e-5). Every lane that answered differently (56 in
+// that test, traced both ways) was one ray: from a point of the Cornell box's
+// ceiling to a VPL on the ceiling, running along it and ending 1e-4 of its
+// length short of the VPL, within a rounding of the ceiling's plane. Such a
+// ray now ends off the VPL's surface as it starts off its own
+// (shadow_target, core/vpl_contribution.h), and no lane of the test suite
+// answers differently as a packet and alone (counted over the whole suite,
+// every render traced both ways; tests/bench/RESULTS.md, "Shadow packets").
 void trace_shadow_lanes(const Accel& accel, RTCIntersectContext& context, ShadowPacket& packet) {
-  RTCRay ray;
-  for (int k = 0; k < 16; ++k) {
-    if (!packet.valid[k]) continue;
-    ray.org_x = packet.rays.org_x[k]; ray.org_y = packet.rays.org_y[k]; ray.org_z = packet.rays.org_z[k];
-    ray.dir_x = packet.rays.dir_x[k]; ray.dir_y = packet.rays.dir_y[k]; ray.dir_z = packet.rays.dir_z[k];
-    ray.tnear = packet.rays.tnear[k];
-    ray.tfar = packet.rays.tfar[k];
-    ray.mask = packet.rays.mask[k];
-    ray.time = 0.0f;
-    ray.id = 0;
-    ray.flags = 0;
-    rtcOccluded1(accel.handle(), &context, &ray);
-    packet.rays.tfar[k] = ray.tfar;
-  }
+  rtcOccluded16(packet.valid, accel.handle(), &context, &packet.rays);
 }
 
 void shade_batch(PixelBatch& batch, std::span<const Vpl> vpls, const VplShading& shading, const Accel& accel,

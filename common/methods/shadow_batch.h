@@ -4,8 +4,10 @@
 // case (diffuse receiver, diffuse or area-light VPL) runs as plain 16-lane
 // arithmetic the compiler vectorises; other lanes take the general path in
 // vpl_contribution.h. Each lane's arithmetic is independent of its
-// neighbours, and each lane's shadow ray is traced alone (shadow_batch.cpp
-// says why), so a pixel's result does not depend on the packet it is in.
+// neighbours, and the packet is traced as one 16-wide Embree packet whose
+// rays stop off every surface at both ends, where a lane answers as it would
+// alone (shadow_batch.cpp says why; ctest -R ShadowPackets), so a pixel's
+// result does not depend on the packet it is in.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -50,7 +52,7 @@ void fill_shadow_packet(const PixelBatch& batch, size_t first, const Vpl& vpl, c
 // Returns the number of rays the packet traced.
 int accumulate_shadow_packet(const ShadowPacket& packet, size_t first, PixelBatch& batch);
 
-// Traces each valid lane's shadow ray on its own; an occluded lane's tfar becomes -inf.
+// Traces the packet's valid lanes (one rtcOccluded16); an occluded lane's tfar becomes -inf.
 void trace_shadow_lanes(const Accel& accel, RTCIntersectContext& context, ShadowPacket& packet);
 
 // Every VPL of `vpls` against every point of the padded batch, one packet

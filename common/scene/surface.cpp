@@ -32,12 +32,15 @@ SurfacePoint surface_at(const Scene& scene, const Hit& hit, glm::vec3 ray_direct
   return sp;
 }
 
-glm::vec3 offset_origin(const SurfacePoint& sp, glm::vec3 direction) {
-  const glm::vec3 p = sp.position;
+glm::vec3 offset_point(glm::vec3 p, glm::vec3 n) {
   float scale = std::max(std::max(std::abs(p.x), std::abs(p.y)), std::abs(p.z));
   float eps = 2e-5f * scale + 1e-7f;
-  glm::vec3 n = sp.geometric_normal;
-  return p + (glm::dot(direction, n) >= 0.0f ? eps : -eps) * n;
+  return p + eps * n;
+}
+
+glm::vec3 offset_origin(const SurfacePoint& sp, glm::vec3 direction) {
+  const glm::vec3 n = sp.geometric_normal;
+  return offset_point(sp.position, glm::dot(direction, n) >= 0.0f ? n : -n);
 }
 
 Ray shadow_ray(const SurfacePoint& sp, glm::vec3 wi, glm::vec3 target, float distance) {

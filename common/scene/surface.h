@@ -32,6 +32,9 @@ SurfacePoint surface_at(const Scene& scene, const Hit& hit, glm::vec3 ray_direct
 // A ray origin nudged off the surface, to the side `direction` leaves from,
 // so the new ray does not re-hit the triangle it starts on.
 glm::vec3 offset_origin(const SurfacePoint& sp, glm::vec3 direction);
+// `p` nudged along the unit vector `n` by offset_origin's distance (which
+// grows with the coordinates' magnitude, as their rounding does).
+glm::vec3 offset_point(glm::vec3 p, glm::vec3 n);
 // tfar that stops a shadow ray just short of `target`, relative to its length.
 inline constexpr float kShadowEpsilon = 1e-4f;
 

@@ -61,7 +61,8 @@ Timing time_frames(const Method& method, const FrameSetup& frame, int border, in
 }
 
 // A logged packet's valid lanes, each as a ray of its own (rtcOccluded1), as
-// the renderer traces shadow rays (methods/shadow_batch.cpp). Returns the rays traced.
+// the renderer traced shadow rays from 2026-12-04 to 2026-12-07
+// (methods/shadow_batch.cpp). Returns the rays traced.
 size_t trace_one_at_a_time(const Accel& accel, RTCIntersectContext& context, const LoggedShadow& s) {
   size_t traced = 0;
   for (int k = 0; k < 16; ++k) {
@@ -76,8 +77,8 @@ size_t trace_one_at_a_time(const Accel& accel, RTCIntersectContext& context, con
 
 // Replays the logged packets through Embree alone, on one thread: incoherent
 // as the renderer traces them (scene/accel.h), or with the coherent flag;
-// shadow rays as 16-wide packets of one VPL and 16 pixels, or one at a time
-// as the renderer traces them (methods/shadow_batch.cpp).
+// shadow rays as 16-wide packets of one VPL and 16 pixels as the renderer
+// traces them (methods/shadow_batch.cpp), or one at a time.
 Timing time_replay(const Accel& accel, RayLog& log, int frames,
                    RTCIntersectContextFlags flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, bool single_shadow = false) {
   std::vector<double> wall, cpu;
@@ -104,7 +105,7 @@ Timing time_replay(const Accel& accel, RayLog& log, int frames,
   return {median(wall), median(cpu), rays};
 }
 
-// Replays the shadow rays one at a time (as the renderer traces them), as
+// Replays the shadow rays one at a time, as
 // the packets they were logged in (16 pixels, one VPL), and as packets of
 // one point each: what packets would gain in this scene.
 void replay_breakdown(const Accel& accel, const RayLog& log) {
@@ -233,7 +234,7 @@ void bench_scene(const std::string& name, int width, int height, int frames, int
   double raw_rate = (raw.rays.primary + raw.rays.shadow) / raw.cpu;
   std::printf("igi / raw Embree throughput (primary + shadow, per cpu-s, 1 thread): %.0f %%\n", 100.0 * igi_rate / raw_rate);
   const Timing raw1 = time_replay(accel, log, frames, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, true);
-  std::printf("igi / raw Embree with shadow rays one at a time, as igi traces them: %.0f %%\n",
+  std::printf("igi / raw Embree with the shadow rays one at a time (igi traces packets): %.0f %%\n",
               100.0 * igi_rate / ((raw1.rays.primary + raw1.rays.shadow) / raw1.cpu));
   std::printf("2-thread speed-up: %.2fx\n", t1.wall / t2.wall);
   const Timing coherent = time_replay(accel, log, frames, RTC_INTERSECT_CONTEXT_FLAG_COHERENT);
@@ -337,7 +338,7 @@ void bench_defaults(const std::vector<std::string>& scenes, int width, int heigh
     RayCounts logged;
     render_frame(method, frame, border, one, logged);
     method.record_rays(nullptr);
-    const Timing raw = time_replay(accel, log, 1, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, true);
+    const Timing raw = time_replay(accel, log, 1);
     const double pixels = double(width) * height * frames;
     const RayCounts setup_rays = parts.rays[size_t(FramePart::Vpls)];
     std::printf("\n== %s: igi defaults (aa %d, %d paths a set, compensation %d, caustics %s), %dx%d, 1 thread, %d frames\n",
@@ -346,7 +347,7 @@ void bench_defaults(const std::vector<std::string>& scenes, int width, int heigh
     std::printf("frame %.1f ms (%.1f ms with the part timers), %.1f rays a pixel (%.1f in the frame's tiles)\n",
                 median(plain) * 1e3, total / frames * 1e3, (rays.total() + setup_rays.total()) / pixels,
                 rays.total() / pixels);
-    std::printf("raw Embree on the frame's camera and VPL shadow rays (shadow rays one at a time): %.2f Mrays/cpu-s\n",
+    std::printf("raw Embree on the frame's camera and VPL shadow rays (16-wide packets, as igi): %.2f Mrays/cpu-s\n",
                 raw.rays.total() * 1e-6 / raw.cpu);
     std::printf("%-40s %9s %7s %12s %12s\n", "part", "ms/frame", "share", "rays/pixel", "Mrays/s");
     double counted = 0.0;
