@@ -166,12 +166,12 @@ int accumulate_shadow_packet(const ShadowPacket& packet, size_t first, PixelBatc
   return traced;
 }
 
-// The packet as one rtcOccluded16. Embree's packet traversal tests a lane
-// against every triangle of every leaf that any lane of the packet reaches,
-// where a single ray tests only the leaves whose boxes it passes, so a lane
-// whose answer hangs on a rounding could be answered differently beside
-// other rays; and which points share a packet depends on how the frame is cut
-// into tiles. From 2026-12-04 to 2026-12-07 every lane was therefore traced
+// The packet as one rtcOccluded16 (in small scenes: below). Embree's packet
+// traversal tests a lane against every triangle of every leaf that any lane
+// of the packet reaches, where a single ray tests only the leaves whose boxes
+// it passes, so a lane whose answer hangs on a rounding could be answered
+// differently beside other rays; and which points share a packet depends on
+// how the frame is cut into tiles. From 2026-12-04 to 2026-12-07 every lane was therefore traced
 // alone (rtcOccluded1): at 64x48, 4 passes, 8 paths a set, 4 sub-samples,
 // 16-pixel tiles had differed from the whole frame in 6 of 12 renders (a few
 // pixels each, by about 1e-5). Every lane that answered differently (56 in
@@ -182,8 +182,37 @@ int accumulate_shadow_packet(const ShadowPacket& packet, size_t first, PixelBatc
 // (shadow_target, core/vpl_contribution.h), and no lane of the test suite
 // answers differently as a packet and alone (counted over the whole suite,
 // every render traced both ways; tests/bench/RESULTS.md, "Shadow packets").
+//
+// Packets pay in small scenes only, where a packet's rays stay together
+// through a shallow tree: one thread, 640x480, the defaults, medians of 5
+// alternating runs (2026-12-07), frame time one at a time over packets:
+// Cornell box (32 triangles) 1.39x, glossy (32) 1.27x, rooms (188) 1.45x,
+// corridor (282) 1.20x, rooms-10 (1,292) 1.46x, courtyard (2,230) 1.04x,
+// cornell-blob (316,980) 0.84x, large (1,058,844) 0.92x. Above
+// kPacketTriangles each lane goes alone; it answers as it would in the packet
+// (the same test), so the choice never shows in an image, and every peer
+// makes the same one.
+constexpr size_t kPacketTriangles = 65536;
+
 void trace_shadow_lanes(const Accel& accel, RTCIntersectContext& context, ShadowPacket& packet) {
-  rtcOccluded16(packet.valid, accel.handle(), &context, &packet.rays);
+  if (accel.scene().triangles.size() < kPacketTriangles) {
+    rtcOccluded16(packet.valid, accel.handle(), &context, &packet.rays);
+    return;
+  }
+  RTCRay ray;
+  for (int k = 0; k < 16; ++k) {
+    if (!packet.valid[k]) continue;
+    ray.org_x = packet.rays.org_x[k]; ray.org_y = packet.rays.org_y[k]; ray.org_z = packet.rays.org_z[k];
+    ray.dir_x = packet.rays.dir_x[k]; ray.dir_y = packet.rays.dir_y[k]; ray.dir_z = packet.rays.dir_z[k];
+    ray.tnear = packet.rays.tnear[k];
+    ray.tfar = packet.rays.tfar[k];
+    ray.mask = packet.rays.mask[k];
+    ray.time = 0.0f;
+    ray.id = 0;
+    ray.flags = 0;
+    rtcOccluded1(accel.handle(), &context, &ray);
+    packet.rays.tfar[k] = ray.tfar;
+  }
 }
 
 void shade_batch(PixelBatch& batch, std::span<const Vpl> vpls, const VplShading& shading, const Accel& accel,

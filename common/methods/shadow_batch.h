@@ -4,9 +4,9 @@
 // case (diffuse receiver, diffuse or area-light VPL) runs as plain 16-lane
 // arithmetic the compiler vectorises; other lanes take the general path in
 // vpl_contribution.h. Each lane's arithmetic is independent of its
-// neighbours, and the packet is traced as one 16-wide Embree packet whose
-// rays stop off every surface at both ends, where a lane answers as it would
-// alone (shadow_batch.cpp says why; ctest -R ShadowPackets), so a pixel's
+// neighbours, and the packet is traced as one 16-wide Embree packet (in
+// scenes small enough for packets to pay) whose rays stop off every surface
+// at both ends, where a lane answers as it would alone (shadow_batch.cpp says why; ctest -R ShadowPackets), so a pixel's
 // result does not depend on the packet it is in.
 #include <cstdint>
 #include <span>
