@@ -583,7 +583,11 @@ TEST(Distributed, ACancelledFramesQueuedJobsAreNeverRendered) {
   protocol::Welcome welcome;
   welcome.session = 1;
   welcome.scene_name = "cornell";
-  welcome.settings = test::vpl_settings(MethodKind::Igi, 8);
+  // Tiles slow enough (32 paths a set) that the cancel, sent just after the
+  // jobs, reaches a loaded worker before it renders many: with 8 paths and
+  // shadow packets a tile took about a millisecond, and under a full test
+  // run the bound below failed once.
+  welcome.settings = test::vpl_settings(MethodKind::Igi, 32);
   welcome.credits = protocol::kMaxCredits;
   welcome.timeout_ms = 60000;
   protocol::send_to(router, identity, welcome);

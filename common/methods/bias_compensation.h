@@ -79,11 +79,23 @@ class BiasCompensation {
   void add(const GBuffer& gbuffer, uint32_t frame_seed, std::vector<glm::vec3>& irradiance, RayCounts& rays) const;
 
  private:
-  glm::vec3 at_sample(const GSample& g, int x, int y, int layer, int subsample, uint32_t frame_seed,
-                      RayCounts& rays) const;
-  glm::vec3 hop(const SurfacePoint& sp, glm::vec3 wo, uint32_t index, uint32_t seed, int set, int group, int level,
-                RayCounts& rays) const;
-  glm::vec3 radiance_towards(const GSample& y, int set, int group, RayCounts& rays) const;
+  // A short hop's hit: the point, the hop's weight (f cos / pdf) times the
+  // share the clamp cut there, and where its light goes.
+  struct Hop {
+    GSample y;
+    glm::vec3 weight;
+    float cut = 0.0f;
+    uint32_t owner;  // level 1: the layer sample; level 2: its level-1 hop
+    int set, group;
+  };
+  // The hop from sp, seen from wo, with the sample index's dimension
+  // `level` - 1; false when it finds nothing the clamp cut.
+  bool hop(const SurfacePoint& sp, glm::vec3 wo, uint32_t index, uint32_t seed, int level, Hop& out,
+           RayCounts& rays) const;
+  struct Scratch;  // per-thread buffers (bias_compensation.cpp)
+  // L(y -> x) of every hop: the clamped VPL estimate of its group, in
+  // packets of 16 hops to one VPL (methods/shadow_batch.h), and the exact lights.
+  void radiance_towards(std::span<const Hop* const> hops, std::vector<glm::vec3>& radiance, RayCounts& rays) const;
 
   static constexpr int kLevels = 2;
 
