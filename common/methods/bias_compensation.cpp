@@ -184,7 +184,7 @@ void BiasCompensation::radiance_towards(std::span<const Hop* const> hops, std::v
       for (int v = interleaved_ ? s : 0; v < (interleaved_ ? s + 1 : vpls_.set_count()); ++v) {
         const auto begin = vpls_.vpls.begin() + vpls_.group_first(v, group);
         const auto end = vpls_.vpls.begin() + vpls_.group_end(v, group);
-        shade_batch(batch, std::span<const Vpl>(begin, end), shading_, accel_, rays);
+        shade_batch(batch, std::span<const Vpl>(begin, end), shading_, accel_, rays, log_);
       }
       for (size_t i = 0; i < batch.count; ++i)
         radiance[batch.index[i]] = glm::vec3(batch.sum_r[i], batch.sum_g[i], batch.sum_b[i]) * scale;

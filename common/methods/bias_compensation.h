@@ -65,10 +65,11 @@ class BiasCompensation {
  public:
   // igi (interleaved): a pixel uses its own set; ir: all sets, scaled 1 / S.
   // The references must outlive the object (one tile's work).
+  // `log`, if given, records the shadow packets (benchmarks and tests; one thread only).
   BiasCompensation(const Accel& accel, const VplShading& shading, const VplSets& vpls,
-                   std::span<const Vpl> exact_lights, bool interleaved, int samples)
+                   std::span<const Vpl> exact_lights, bool interleaved, int samples, RayLog* log = nullptr)
       : accel_(accel), shading_(shading), vpls_(vpls), exact_(exact_lights), interleaved_(interleaved),
-        bound_(shading.clamp_bound), samples_(samples) {}
+        bound_(shading.clamp_bound), samples_(samples), log_(log) {}
 
   // Off without samples or without a finite clamp (then nothing is missing).
   bool enabled() const { return samples_ > 0 && bound_ < INFINITY && !vpls_.vpls.empty(); }
@@ -106,6 +107,7 @@ class BiasCompensation {
   bool interleaved_;
   float bound_;
   int samples_;
+  RayLog* log_;
 };
 
 }  // namespace igi

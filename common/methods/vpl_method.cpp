@@ -454,7 +454,7 @@ void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCou
     PartTimer timer(parts_, FramePart::Compensation, rays);
     const VplShading shading{context_.scene, clamp_bound_, settings_.glossy_threshold};
     const BiasCompensation compensation(context_.accel, shading, vpls_, exact_, interleaved(),
-                                        settings_.compensation_samples);
+                                        settings_.compensation_samples, log_);
     compensation.add(gbuffer, frame_.seed, scratch.value, rays);
   }
   PartTimer timer(parts_, FramePart::Filter, rays);

@@ -347,7 +347,7 @@ void bench_defaults(const std::vector<std::string>& scenes, int width, int heigh
     std::printf("frame %.1f ms (%.1f ms with the part timers), %.1f rays a pixel (%.1f in the frame's tiles)\n",
                 median(plain) * 1e3, total / frames * 1e3, (rays.total() + setup_rays.total()) / pixels,
                 rays.total() / pixels);
-    std::printf("raw Embree on the frame's camera and VPL shadow rays (16-wide packets, as igi): %.2f Mrays/cpu-s\n",
+    std::printf("raw Embree on the frame's camera rays and its packets of shadow rays (VPLs, exact lights, compensation): %.2f Mrays/cpu-s\n",
                 raw.rays.total() * 1e-6 / raw.cpu);
     std::printf("%-40s %9s %7s %12s %12s\n", "part", "ms/frame", "share", "rays/pixel", "Mrays/s");
     double counted = 0.0;
