@@ -9,7 +9,8 @@ nlohmann::ordered_json frame_json(const FrameRecord& f) {
   for (const auto& [name, w] : f.workers)
     workers[name] = {{"tiles", w.tiles}, {"busy_seconds", w.busy_seconds}, {"bytes_in", w.bytes_in},
                      {"bytes_out", w.bytes_out}};
-  return {{"frame", f.frame_id}, {"seconds", f.seconds}, {"tiles", f.tiles}, {"rays", f.rays.total()},
+  return {{"frame", f.frame_id}, {"seconds", f.seconds}, {"completed_at", f.completed_at}, {"tiles", f.tiles},
+          {"rays", f.rays.total()},
           {"mrays_per_s", f.seconds > 0 ? double(f.rays.total()) * 1e-6 / f.seconds : 0.0},
           // The scheduler's counts are totals over the run, as of this frame.
           {"reissued_total", f.reissued}, {"duplicated_total", f.duplicated}, {"late_dropped_total", f.late_dropped},

@@ -1,7 +1,9 @@
 #pragma once
 // Per-frame statistics of a master run (--stats FILE), as JSON Lines: one
 // object a line, appended as the run goes on.
-//   {"frame": N, "seconds": ..., "tiles": ..., ..., "workers": {...}}   one per frame, in order
+//   {"frame": N, "seconds": ..., "completed_at": ..., "tiles": ..., ..., "workers": {...}}   one per frame, in order
+// ("seconds": the frame's own latency; "completed_at": since the session began,
+// so the steady rate of overlapping frames is a difference of two of these)
 //   {"complete": false, "outcome": "running", "bad_messages": ..., ...}  the run's totals so far
 // A totals line follows the frames now and then, so a master that is killed
 // leaves its figures; the last line of a run that ended is its totals with

@@ -791,6 +791,7 @@ std::vector<CompletedFrame> MasterSession::take_completed() {
     OpenFrame& f = frames_.at(frame_id);
     const SchedulerStats& s = scheduler_.stats();
     f.record.seconds = f.started ? std::chrono::duration<double>(Clock::now() - *f.started).count() : 0.0;
+    f.record.completed_at = std::chrono::duration<double>(Clock::now() - began_).count();
     f.record.reissued = s.reissued;
     f.record.duplicated = s.duplicated;
     f.record.late_dropped = s.late_dropped;

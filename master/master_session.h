@@ -85,6 +85,7 @@ struct TileSource {
 struct FrameRecord {
   uint64_t frame_id = 0;
   double seconds = 0.0;  // from its first job out to its last result in
+  double completed_at = 0.0;  // seconds from the session's start to its last result (frames overlap: rates from these)
   uint64_t tiles = 0;    // results whose pixels were used
   RayCounts rays;
   uint64_t nonfinite_pixels = 0;  // zeroed by workers (they send finite pixels only)
@@ -292,6 +293,7 @@ class MasterSession {
   std::vector<std::string> congested_;           // peers whose send queue was full: dropped after the batch
   std::vector<std::string> vanished_;            // peers whose connection had closed when sent to: dropped after the batch
   Clock::time_point next_sweep_;
+  const Clock::time_point began_ = Clock::now();
   uint64_t accepted_ = 0;
   uint64_t bad_messages_ = 0;
   uint64_t refused_keys_ = 0, failed_handshakes_ = 0, declared_dead_ = 0;

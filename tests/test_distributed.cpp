@@ -214,6 +214,15 @@ TEST(Distributed, DuplicatedTilesGiveTheSameImage) {
   const nlohmann::json s = test::read_stats(stats);
   EXPECT_GE(s["frames"][3]["duplicated_total"].get<int>(), 40);
   EXPECT_EQ(s["master_hash_frames"].get<int>(), 4) << "each frame's VPL-set hash once, though asked for ahead";
+  // Each frame's completion time since the session began (benchmarks take
+  // rates from them): in order, and no earlier than its own latency allows.
+  double previous = 0.0;
+  for (const auto& f : s["frames"]) {
+    const double at = f["completed_at"].get<double>();
+    EXPECT_GE(at, previous);
+    EXPECT_GE(at, f["seconds"].get<double>());
+    previous = at;
+  }
 }
 
 TEST(Distributed, WorkerKilledMidFrameLosesNothing) {
