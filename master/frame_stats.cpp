@@ -26,6 +26,7 @@ nlohmann::ordered_json totals_json(const RunTotals& t, uint64_t tiles) {
           {"declared_dead", t.declared_dead},
           {"quarantined", t.quarantined}, {"own_tiles", t.own_tiles}, {"benched", t.benched},
           {"master_follows_workers", t.follows_workers}, {"pixel_format", t.pixel_format},
+          {"pixel_codec", t.pixel_codec},
           {"io_threads", t.io_threads},
           {"master_cpu_seconds", t.master_cpu_seconds}, {"session_cpu_seconds", t.session_cpu_seconds},
           {"master_hash_frames", t.hash_frames}, {"master_hash_seconds", t.hash_seconds},
@@ -60,6 +61,7 @@ RunTotals run_totals(const MasterSession& session, int io_threads, double cpu_st
   t.session_cpu_seconds = session.session_cpu_seconds();
   t.wall_seconds = wall_seconds;
   t.pixel_format = pixel_format_name(session.pixel_format());
+  t.pixel_codec = session.pixel_codec();
   t.io_threads = io_threads;
   return t;
 }

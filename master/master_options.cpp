@@ -51,6 +51,10 @@ void add_network_options(CLI::App& app, MasterOptions& o) {
   app.add_option("--pixels", o.pixels, "pixels on the wire: float, half (6 bytes a pixel, display frames) or auto: "
                  "float when -o is a float file (.exr, .hdr, .pfm, .tif), else half [auto]")
       ->check(cli::one_of({"auto", "float", "half"}))->group(group)->type_name("auto|float|half");
+  app.add_option("--pixel-codec", o.pixel_codec, "workers pack their tiles' pixels: raw, or zstd (lossless; about half "
+                 "the bytes of rendered half floats, for a few per cent of the master's and workers' CPU): for links "
+                 "slower than the pixels [raw]")
+      ->check(cli::one_of({"raw", "zstd"}))->group(group)->type_name("raw|zstd");
   app.add_option("--io-threads", o.io_threads, "ZeroMQ I/O threads [1]: more pay only past ~100,000 tiles a second")
       ->check(integer(1, cli::kMaxIoThreads))->group(group)->type_name("N");
 }

@@ -125,6 +125,7 @@ class MasterSession {
                 const protocol::CurveServerKeys* curve = nullptr);
   std::string endpoint() const { return endpoint_; }
   PixelFormat pixel_format() const { return pixel_format_; }
+  const std::string& pixel_codec() const { return options_.pixel_codec; }  // what workers are asked to send
 
   // Judges every worker's VPL sets against the master's own, computed from
   // `scene` as the workers load it (master_renderer.h), instead of by a vote

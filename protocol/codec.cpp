@@ -9,10 +9,50 @@
 #include <numbers>
 #include <type_traits>
 
+#include <zstd.h>
+
 #include "protocol/wire.h"
 
 namespace igi::protocol {
 namespace {
+
+// zstd level 1: the fastest of its levels but the negative ones; a 1080p
+// frame of rendered half floats packs 2.1x there (2.5x at level 3, for about
+// twice the time), and a display frame must not wait on its packing.
+constexpr int kZstdLevel = 1;
+
+// One context a thread, kept (a fresh one a tile would allocate each time).
+struct ZstdContexts {
+  ZSTD_CCtx* compress = ZSTD_createCCtx();
+  ZSTD_DCtx* decompress = ZSTD_createDCtx();
+  ~ZstdContexts() {
+    ZSTD_freeCCtx(compress);
+    ZSTD_freeDCtx(decompress);
+  }
+};
+ZstdContexts& zstd_contexts() {
+  thread_local ZstdContexts contexts;
+  return contexts;
+}
+
+std::vector<uint8_t> zstd_compress(std::vector<uint8_t> raw) {
+  std::vector<uint8_t> packed(ZSTD_compressBound(raw.size()));
+  const size_t n = ZSTD_compressCCtx(zstd_contexts().compress, packed.data(), packed.size(), raw.data(), raw.size(),
+                                     kZstdLevel);
+  if (ZSTD_isError(n)) return raw;  // cannot happen with a bound-sized buffer; the decoder would then refuse
+  packed.resize(n);
+  return packed;
+}
+
+// Decompresses `frame` into `out`, which must come out exactly `size` bytes;
+// returns "" or what was wrong. Never writes more than `size` bytes.
+std::string zstd_decompress(std::span<const uint8_t> frame, size_t size, std::vector<uint8_t>& out) {
+  out.resize(size);
+  const size_t n = ZSTD_decompressDCtx(zstd_contexts().decompress, out.data(), out.size(), frame.data(), frame.size());
+  if (ZSTD_isError(n)) return std::string("not a zstd frame of the tile's pixels: ") + ZSTD_getErrorName(n);
+  if (n != size) return "the zstd frame holds " + std::to_string(n) + " bytes, the tile's pixels are " + std::to_string(size);
+  return "";
+}
 
 constexpr size_t kHeaderBytes = 8;
 constexpr size_t kSurfaceBytes = 8;  // PixelSurface on the wire: f32 depth, 3 x i8 normal, u8 flags
@@ -200,6 +240,13 @@ void write(Writer& w, const Welcome& m) {
   w.u64(m.environment_map_size);
   w.f32(m.environment_rotation);
   w.u8(static_cast<uint8_t>(m.light_units));
+  w.u8(static_cast<uint8_t>(m.pixel_codec));
+}
+
+PixelCodec read_pixel_codec(Reader& r, const char* field) {
+  const uint8_t codec = r.u8(field);
+  check_range(r, field, codec, 0, static_cast<uint8_t>(PixelCodec::Zstd));
+  return r.ok() ? PixelCodec(codec) : PixelCodec::Raw;
 }
 
 PixelFormat read_pixel_format(Reader& r, const char* field) {
@@ -242,6 +289,7 @@ void read(Reader& r, Welcome& m) {
   if (units > static_cast<uint8_t>(LightUnits::Radiometric))
     r.fail("light_units", std::to_string(units) + ", expected 0 (photometric) or 1 (radiometric)");
   m.light_units = r.ok() ? LightUnits(units) : LightUnits::Photometric;
+  m.pixel_codec = read_pixel_codec(r, "pixel_codec");
 }
 
 void write(Writer& w, const Refuse& m) { w.string(m.reason); }
@@ -338,11 +386,22 @@ void write(Writer& w, const TileResult& m) {
   w.u64(m.rays.secondary);
   w.u32(m.nonfinite_pixels);
   w.u8(static_cast<uint8_t>(m.pixel_format));
+  w.u8(static_cast<uint8_t>(m.pixel_codec));
   w.u32(static_cast<uint32_t>(m.pixels.size()));
-  w.reserve(m.pixels.size() * bytes_per_pixel(m.pixel_format));
   static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
-  if (m.pixel_format == PixelFormat::Float16) w.halves(&m.pixels.data()->x, 3 * m.pixels.size());
-  else w.floats(&m.pixels.data()->x, 3 * m.pixels.size());
+  auto write_pixels = [&](Writer& to) {
+    if (m.pixel_format == PixelFormat::Float16) to.halves(&m.pixels.data()->x, 3 * m.pixels.size());
+    else to.floats(&m.pixels.data()->x, 3 * m.pixels.size());
+  };
+  if (m.pixel_codec == PixelCodec::Zstd) {
+    Writer raw;
+    raw.reserve(m.pixels.size() * bytes_per_pixel(m.pixel_format));
+    write_pixels(raw);
+    w.bytes(zstd_compress(raw.take()));  // u32 length + the zstd frame
+  } else {
+    w.reserve(m.pixels.size() * bytes_per_pixel(m.pixel_format));
+    write_pixels(w);
+  }
   w.u32(static_cast<uint32_t>(m.surfaces.size()));
   w.reserve(m.surfaces.size() * kSurfaceBytes);
   for (const PixelSurface& s : m.surfaces) {
@@ -395,24 +454,38 @@ void read_fields(Reader& r, TileResult& m) {
   m.nonfinite_pixels = r.u32("nonfinite_pixels");
   check_range(r, "nonfinite_pixels", m.nonfinite_pixels, 0, int64_t(m.tile.w) * m.tile.h);
   m.pixel_format = read_pixel_format(r, "pixel_format");
+  m.pixel_codec = read_pixel_codec(r, "pixel_codec");
 }
 
 // The pixel block: its count must match the tile before anything is allocated
-// or read for it. Returns its bytes, unchecked for finiteness.
-std::span<const uint8_t> read_pixel_block(Reader& r, const TileResult& m) {
+// or read for it. Returns its bytes, unchecked for finiteness: the message's
+// own, or for zstd the block decompressed into `storage` (exactly the tile's
+// pixels, or an error: never more bytes than the tile holds).
+std::span<const uint8_t> read_pixel_block(Reader& r, const TileResult& m, std::vector<uint8_t>& storage) {
   const size_t pixel_bytes = bytes_per_pixel(m.pixel_format);
-  const uint32_t n = r.count("pixels", pixel_bytes, size_t(kMaxTileSide) * kMaxTileSide);
+  const bool zstd = m.pixel_codec == PixelCodec::Zstd;
+  // Raw: the count must fit in what is left; zstd: the block is checked below.
+  const uint32_t n = zstd ? r.u32("pixels") : r.count("pixels", pixel_bytes, size_t(kMaxTileSide) * kMaxTileSide);
   const size_t expected = size_t(m.tile.w) * size_t(m.tile.h);
   if (r.ok() && n != expected)
     r.fail("pixels", std::to_string(n) + " pixels, expected " + std::to_string(m.tile.w) + " x " +
                          std::to_string(m.tile.h) + " = " + std::to_string(expected));
   if (!r.ok()) return {};
-  return r.span("pixels", size_t(n) * pixel_bytes);
+  if (!zstd) return r.span("pixels", size_t(n) * pixel_bytes);
+  const uint32_t packed = r.u32("pixels.zstd");
+  const std::span<const uint8_t> frame = r.span("pixels.zstd", packed);
+  if (!r.ok()) return {};
+  if (std::string error = zstd_decompress(frame, size_t(n) * pixel_bytes, storage); !error.empty()) {
+    r.fail("pixels.zstd", error);
+    return {};
+  }
+  return storage;
 }
 
 void read(Reader& r, TileResult& m) {
   read_fields(r, m);
-  const std::span<const uint8_t> block = read_pixel_block(r, m);
+  std::vector<uint8_t> storage;
+  const std::span<const uint8_t> block = read_pixel_block(r, m, storage);
   const std::span<const uint8_t> surfaces = read_surface_block(r, m);
   // Trailing bytes before finiteness: the order decode_tile_result + copy_tile_pixels check them in.
   if (r.ok() && r.remaining() != 0)
@@ -555,7 +628,7 @@ std::optional<TileResultView> decode_tile_result(std::span<const uint8_t> bytes,
   if (r.ok()) {
     r.begin(message_name(MessageType::TileResult));
     read_fields(r, view.fields);
-    view.pixel_bytes = read_pixel_block(r, view.fields);
+    view.pixel_bytes = read_pixel_block(r, view.fields, view.storage);
     view.surface_bytes = read_surface_block(r, view.fields);
     if (r.ok() && r.remaining() != 0)
       r.fail("TileResult: " + std::to_string(r.remaining()) + " trailing bytes after the payload");

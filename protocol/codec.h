@@ -39,6 +39,7 @@ DecodeResult decode(std::span<const uint8_t> bytes);
 struct TileResultView {
   TileResult fields;                      // every field but `pixels`, which stays empty
   std::span<const uint8_t> pixel_bytes;   // tile.w * tile.h pixels in fields.pixel_format
+  std::vector<uint8_t> storage;           // zstd: pixel_bytes decompressed (the view owns them)
   std::span<const uint8_t> surface_bytes; // none, or tile.w * tile.h surfaces (8 bytes each, checked)
 };
 

@@ -19,6 +19,8 @@ const char* message_name(MessageType type) {
   return "Unknown";
 }
 
+const char* pixel_codec_name(PixelCodec codec) { return codec == PixelCodec::Zstd ? "zstd" : "raw"; }
+
 namespace {
 struct TypeOf {
   MessageType operator()(const Hello&) const { return MessageType::Hello; }

@@ -46,7 +46,8 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // 13: settings carry lightcuts_block. 14: FrameSetup carries want_surfaces and
 // TileResult its pixels' surfaces (the window's reprojection); CancelFrame. 15: Hello
 // carries the runtime libraries. 16: Welcome carries the units the scene's lamps are read in.
-inline constexpr uint16_t kVersion = 16;
+// 17: Welcome and TileResult carry the pixel block's codec (raw or zstd).
+inline constexpr uint16_t kVersion = 17;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;
@@ -86,6 +87,14 @@ struct Hello {
   std::string libraries;  // scene/libraries.h: "glibc 2.36, Embree 3.13.5"; named when VPL sets differ
 };
 
+// How a TileResult's pixel block travels: as it is, or compressed with zstd
+// at level 1 (lossless: the decoder gets the very bytes back). A rendered
+// tile of half floats takes about half the bytes; a worker spends about
+// 60 us a 64-pixel tile on it and the master about 15 us undoing it
+// (tests/bench/RESULTS.md, "Pixels on the wire").
+enum class PixelCodec : uint8_t { Raw = 0, Zstd = 1 };
+const char* pixel_codec_name(PixelCodec codec);
+
 struct Welcome {
   uint64_t session = 0;
   std::string scene_name;   // built-in scene name, or the file's name (no directories)
@@ -110,6 +119,7 @@ struct Welcome {
   // How the glTF file's lamps are read (--light-units): the master's choice,
   // so that every copy of the scene is lit alike.
   LightUnits light_units = LightUnits::Photometric;
+  PixelCodec pixel_codec = PixelCodec::Raw;  // how TileResults pack their pixel block
 };
 
 struct Refuse {
@@ -154,6 +164,7 @@ struct TileResult {
   // None, or tile.w * tile.h as the pixels (when the frame wants them): depth
   // finite and >= 0, flags only PixelSurface::kViewDependent. 8 bytes each.
   std::vector<PixelSurface> surfaces;
+  PixelCodec pixel_codec = PixelCodec::Raw;  // the pixel block on the wire (a master accepts either)
 };
 
 struct Heartbeat {};

@@ -225,6 +225,33 @@ TEST(Distributed, DuplicatedTilesGiveTheSameImage) {
   }
 }
 
+// --pixel-codec zstd: the workers pack their pixels, the master unpacks the
+// very bytes (the same image bit for bit) from fewer of them.
+TEST(Distributed, ZstdPackedPixelsGiveTheSameImageFromFewerBytes) {
+  auto bytes_in = [](const nlohmann::json& s) {
+    uint64_t sum = 0;
+    for (const auto& f : s["frames"])
+      for (const auto& [name, w] : f["workers"].items()) sum += w["bytes_in"].get<uint64_t>();
+    return sum;
+  };
+  uint64_t bytes[2];
+  for (const char* codec : {"raw", "zstd"}) {
+    const std::string tag = std::string("dist-") + codec, out = test::output_path(tag + ".exr"),
+                      stats = test::output_path(tag + ".json");
+    auto r = test::run(master("--workers 2 --frames 2 --pixel-codec " + std::string(codec) + " -o " + out +
+                              " --stats " + stats));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    for (int f = 0; f < 2; ++f) {
+      const std::string name = tag + "-000" + std::to_string(f);
+      EXPECT_TRUE(test::images_identical(name, read_image(test::output_path(name + ".exr")), single_process()));
+    }
+    const nlohmann::json s = test::read_stats(stats);
+    EXPECT_EQ(s["pixel_codec"].get<std::string>(), codec);
+    bytes[codec[0] == 'z'] = bytes_in(s);
+  }
+  EXPECT_LT(bytes[1], bytes[0]) << "zstd-packed float pixels of the Cornell box";
+}
+
 TEST(Distributed, WorkerKilledMidFrameLosesNothing) {
   const std::string out = test::output_path("dist-kill.exr"), stats = test::output_path("dist-kill.json");
   auto r = test::run(master("--workers 2 --min-workers 2 --frames 40 --heartbeat-ms 50 --timeout-ms 300 --test-kill-worker-after 30 -o " +

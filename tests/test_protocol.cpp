@@ -55,7 +55,7 @@ bool same(const Welcome& a, const Welcome& b) {
          a.heartbeat_ms == b.heartbeat_ms && a.timeout_ms == b.timeout_ms && a.pixel_format == b.pixel_format &&
          a.environment_map == b.environment_map && a.environment_map_hash == b.environment_map_hash &&
          a.environment_map_size == b.environment_map_size && a.environment_rotation == b.environment_rotation &&
-         a.light_units == b.light_units;
+         a.light_units == b.light_units && a.pixel_codec == b.pixel_codec;
 }
 bool same(const Refuse& a, const Refuse& b) { return a.reason == b.reason; }
 bool same(const SceneRequest& a, const SceneRequest& b) { return a.scene_hash == b.scene_hash; }
@@ -79,7 +79,8 @@ bool same(const TileResult& a, const TileResult& b) {
   return pixels && a.frame_id == b.frame_id && a.job_id == b.job_id && same(a.tile, b.tile) &&
          same(a.render_seconds, b.render_seconds) && a.frame_state_hash == b.frame_state_hash &&
          a.rays.primary == b.rays.primary && a.rays.shadow == b.rays.shadow && a.rays.secondary == b.rays.secondary &&
-         a.nonfinite_pixels == b.nonfinite_pixels && a.pixel_format == b.pixel_format && a.surfaces == b.surfaces;
+         a.nonfinite_pixels == b.nonfinite_pixels && a.pixel_format == b.pixel_format && a.surfaces == b.surfaces &&
+         a.pixel_codec == b.pixel_codec;
 }
 bool same(const Heartbeat&, const Heartbeat&) { return true; }
 bool same(const Bye& a, const Bye& b) { return a.reason == b.reason && a.kind == b.kind; }
@@ -122,7 +123,8 @@ std::vector<Message> samples() {
   return {
       Hello{"igi-1.0-abc123", "avx2", 12, "glibc 2.36, Embree 3.13.5"},
       Welcome{0x1122334455667788ull, "cornell.glb", 0xcbf29ce484222325ull, 123456, {0.5f, 1.0f, 2.0f}, settings, 3, 250, 1700,
-              PixelFormat::Float16, "sky.exr", 0x5eed5eed5eed5eedull, 4096, -30.0f, LightUnits::Radiometric},
+              PixelFormat::Float16, "sky.exr", 0x5eed5eed5eed5eedull, 4096, -30.0f, LightUnits::Radiometric,
+              PixelCodec::Zstd},
       Refuse{"build id mismatch: worker abc, master def"},
       SceneRequest{0xdeadbeefcafef00dull},
       SceneData{0x0123456789abcdefull, "scene.glb", scene},
@@ -294,7 +296,9 @@ TEST(Protocol, HalfFloatTilesRoundTripAndTakeHalfTheBytes) {
 
 // The master's path: a view over the bytes, pixels copied straight into a frame.
 TEST(Protocol, TileResultViewAgreesWithDecodeAndCopiesIntoAFrame) {
-  for (const TileResult& m : {sample_tile_result(), sample_half_tile_result()}) {
+  TileResult packed = sample_tile_result(), packed_half = sample_half_tile_result();
+  packed.pixel_codec = packed_half.pixel_codec = PixelCodec::Zstd;
+  for (const TileResult& m : {sample_tile_result(), sample_half_tile_result(), packed, packed_half}) {
     const std::vector<uint8_t> bytes = encode(m);
     std::string error;
     std::optional<TileResultView> view = decode_tile_result(bytes, error);
@@ -326,6 +330,55 @@ TEST(Protocol, TileResultViewAgreesWithDecodeAndCopiesIntoAFrame) {
   std::string error;
   EXPECT_FALSE(decode_tile_result(encode(Heartbeat{}), error));
   EXPECT_EQ(error, "Heartbeat where a TileResult was expected");
+}
+
+// zstd-packed pixels (--pixel-codec zstd): the same pixels as the raw block,
+// fewer bytes for a rendered-looking tile, and a block that is not the tile's
+// pixels refused with a clear error, never more than the tile allocated.
+TEST(Protocol, ZstdPixelsDecodeToTheRawBlockAndBadBlocksAreRefused) {
+  for (PixelFormat format : {PixelFormat::Float32, PixelFormat::Float16}) {
+    TileResult raw = sample_tile_result();
+    raw.pixel_format = format;
+    raw.tile.w = raw.tile.h = 32;
+    raw.pixels.clear();
+    raw.surfaces.clear();
+    for (int y = 0; y < 32; ++y)  // a smooth wall (rendered tiles' ratios: tests/bench/RESULTS.md)
+      for (int x = 0; x < 32; ++x) raw.pixels.push_back(glm::vec3(0.4f + 0.01f * float(x % 8), 0.3f, 0.2f + 0.005f * float(y % 4)));
+    TileResult zstd = raw;
+    zstd.pixel_codec = PixelCodec::Zstd;
+    const std::vector<uint8_t> raw_bytes = encode(raw), zstd_bytes = encode(zstd);
+    EXPECT_LT(zstd_bytes.size(), raw_bytes.size() * 3 / 4) << pixel_format_name(format);
+    const DecodeResult a = decode_copy(raw_bytes), b = decode_copy(zstd_bytes);
+    ASSERT_TRUE(a.message && b.message) << a.error << b.error;
+    const auto& pa = std::get<TileResult>(*a.message).pixels;
+    const auto& pb = std::get<TileResult>(*b.message).pixels;
+    ASSERT_EQ(pa.size(), pb.size());
+    for (size_t i = 0; i < pa.size(); ++i) ASSERT_TRUE(same(pa[i], pb[i])) << i;
+    std::string error;
+    const std::optional<TileResultView> va = decode_tile_result(raw_bytes, error), vb = decode_tile_result(zstd_bytes, error);
+    ASSERT_TRUE(va && vb) << error;
+    ASSERT_TRUE(std::equal(va->pixel_bytes.begin(), va->pixel_bytes.end(), vb->pixel_bytes.begin(), vb->pixel_bytes.end()));
+    // The zstd block sits after the count: u32 length, then the frame.
+    const size_t block_at = 8 + 16 + 20 + 4 + 8 + 24 + 4 + 1 + 1 + 4;
+    std::vector<uint8_t> bad = zstd_bytes;
+    bad[block_at + 4] ^= 0xFF;  // the frame's magic number
+    EXPECT_EQ(decode_copy(bad).error.rfind("TileResult.pixels.zstd: not a zstd frame of the tile's pixels", 0), 0u)
+        << decode_copy(bad).error;
+    EXPECT_FALSE(decode_tile_result(bad, error));
+    EXPECT_EQ(error, decode_copy(bad).error);
+    bad = zstd_bytes;
+    bad[block_at + 3] = 0x7F;  // a length past the message
+    EXPECT_EQ(decode_copy(bad).error.rfind("TileResult.pixels.zstd: truncated", 0), 0u) << decode_copy(bad).error;
+    // A well-formed frame of the wrong size: a tile that claims 16 x 32 pixels.
+    bad = zstd_bytes;
+    TileResult half_tile = zstd;
+    half_tile.tile.h = 16;
+    half_tile.pixels.resize(16 * 32);
+    const std::vector<uint8_t> small = encode(half_tile);
+    std::copy_n(small.begin() + 24, 20, bad.begin() + 24);      // the tile's rectangle
+    std::copy_n(small.begin() + 86, 4, bad.begin() + 86);       // the pixel count
+    EXPECT_NE(decode_copy(bad).error.find("TileResult.pixels.zstd"), std::string::npos) << decode_copy(bad).error;
+  }
 }
 
 TEST(Protocol, WorkersSendFinitePixelsInTheFormatsRange) {
@@ -514,6 +567,7 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {edited<Welcome>([](Welcome& m) { m.timeout_ms = 49; }), "Welcome.timeout_ms: 49, expected [50, 3600000]"},
       {edited<Welcome>([](Welcome& m) { m.timeout_ms = 3600001; }), "Welcome.timeout_ms"},
       {edited<Welcome>([](Welcome& m) { m.pixel_format = PixelFormat(7); }), "Welcome.pixel_format: 7, expected [0, 1]"},
+      {edited<Welcome>([](Welcome& m) { m.pixel_codec = PixelCodec(2); }), "Welcome.pixel_codec: 2, expected [0, 1]"},
       {edited<Bye>([](Bye& m) { m.kind = ByeKind(3); }), "Bye.kind: 3, expected [0, 2]"},
   };
   for (const Case& c : cases) {
@@ -579,10 +633,11 @@ TEST(Protocol, HugeLengthsAndBadBytesAreRejectedBeforeUse) {
   size_t bytes_at = 8 + 8 + 4 + scene.file_name.size();
   EXPECT_EQ(patched(scene, bytes_at, all_ones), "SceneData.bytes: length 4294967295 over the limit of 536870912");
   EXPECT_EQ(patched(scene, bytes_at, {0, 0, 0, 0x20}), "SceneData.bytes: truncated: length 536870912, 300 bytes left");
-  size_t nonfinite_at = 8 + 16 + 20 + 4 + 8 + 24, pixels_at = nonfinite_at + 4 + 1;
+  size_t nonfinite_at = 8 + 16 + 20 + 4 + 8 + 24, pixels_at = nonfinite_at + 4 + 1 + 1;
   EXPECT_EQ(patched(sample<TileResult>(), nonfinite_at, all_ones),
             "TileResult.nonfinite_pixels: 4294967295, expected [0, 64]");
   EXPECT_EQ(patched(sample<TileResult>(), nonfinite_at + 4, {2}), "TileResult.pixel_format: 2, expected [0, 1]");
+  EXPECT_EQ(patched(sample<TileResult>(), nonfinite_at + 5, {2}), "TileResult.pixel_codec: 2, expected [0, 1]");
   EXPECT_EQ(patched(sample<TileResult>(), pixels_at, all_ones),
             "TileResult.pixels: count 4294967295 over the limit of 1048576");
   EXPECT_EQ(patched(sample_half_tile_result(), pixels_at, {0, 1, 0, 0}),
@@ -593,7 +648,7 @@ TEST(Protocol, HugeLengthsAndBadBytesAreRejectedBeforeUse) {
   EXPECT_EQ(patched(welcome, method_at - 12, {0, 0, 0x80, 0xbf}),  // -1.0f
             "Welcome.environment: -1, expected a radiance from 0 to 1000000");
   // The map's rotation, 4 bytes before the last (the lamps' units): degrees within +-360.
-  const size_t rotation_at = encode(Message{welcome}).size() - 5;
+  const size_t rotation_at = encode(Message{welcome}).size() - 6;  // f32 rotation, u8 light units, u8 pixel codec
   EXPECT_EQ(patched(welcome, rotation_at + 4, {2}), "Welcome.light_units: 2, expected 0 (photometric) or 1 (radiometric)");
   EXPECT_EQ(patched(welcome, rotation_at, {0, 0, 0xc8, 0x43}),  // 400.0f
             "Welcome.environment_rotation: 400, expected degrees within +-360");

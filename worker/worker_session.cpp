@@ -144,6 +144,7 @@ void WorkerSession::send_results(zmq::socket_t& socket) {
         log("frame " + std::to_string(r.frame_id) + ": " + std::to_string(r.nonfinite_pixels) +
             " non-finite pixels sent as black (" + std::to_string(nonfinite_pixels_) + " so far)");
     }
+    r.pixel_codec = welcome_->pixel_codec;
     send(socket, r);
   }
 }

@@ -13,7 +13,7 @@ namespace {
 
 // Where a TileResult's fields sit (protocol/codec.cpp writes them in declaration order
 // after the 8-byte header); checked against the decoder the first time a tile is made.
-constexpr size_t kFrameIdAt = 8, kJobIdAt = 16, kTileAt = 24, kHashAt = 48, kPixelsAt = 89;
+constexpr size_t kFrameIdAt = 8, kJobIdAt = 16, kTileAt = 24, kHashAt = 48, kPixelsAt = 90;
 
 void put_u64(uint8_t* at, uint64_t v) {
   for (int i = 0; i < 8; ++i) at[i] = uint8_t(v >> (8 * i));
@@ -49,6 +49,10 @@ const std::vector<uint8_t>& TileCache::encoded(const TileJob& t, PixelFormat for
   const auto* back = d.message ? std::get_if<protocol::TileResult>(&*d.message) : nullptr;
   if (!back || back->frame_id != 7 || back->job_id != 9 || back->frame_state_hash != 11 || back->tile.x != t.x + 1)
     throw std::logic_error("loadgen: the TileResult layout changed (protocol/codec.cpp): " + d.error);
+  poison(probe, format);
+  d = protocol::decode({probe.data<uint8_t>(), probe.size()});
+  if (d.message || d.error.find("pixel 0 is (nan") == std::string::npos)
+    throw std::logic_error("loadgen: the TileResult's pixels moved (protocol/codec.cpp): " + d.error);
   return *tiles_.emplace(key, std::move(bytes)).first->second;
 }
 
