@@ -41,6 +41,14 @@ struct TileResultView {
   std::span<const uint8_t> pixel_bytes;   // tile.w * tile.h pixels in fields.pixel_format
   std::vector<uint8_t> storage;           // zstd: pixel_bytes decompressed (the view owns them)
   std::span<const uint8_t> surface_bytes; // none, or tile.w * tile.h surfaces (8 bytes each, checked)
+
+  // Moves keep pixel_bytes pointing into storage (a vector's move keeps its
+  // buffer); a copy would point into the original's, so there is none.
+  TileResultView() = default;
+  TileResultView(TileResultView&&) = default;
+  TileResultView& operator=(TileResultView&&) = default;
+  TileResultView(const TileResultView&) = delete;
+  TileResultView& operator=(const TileResultView&) = delete;
 };
 
 // The header's type byte says TileResult (nothing else is checked).
