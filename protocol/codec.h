@@ -30,8 +30,10 @@ struct DecodeResult {
 };
 
 // Never throws on bad bytes, never reads out of bounds, never allocates more
-// than the bytes could justify. A peer speaking another protocol version gets
-// "protocol version N, this build speaks M".
+// than the bytes could justify, but for a zstd pixel block: that unpacks to at
+// most its tile's pixels (at most a 1024 x 1024 float tile, 12.6 MB, the
+// largest raw result a peer may send), or is refused. A peer speaking another
+// protocol version gets "protocol version N, this build speaks M".
 DecodeResult decode(std::span<const uint8_t> bytes);
 
 // A TileResult whose pixels stay where they are (the master copies them
