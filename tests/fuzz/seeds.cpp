@@ -61,6 +61,13 @@ TileResult surface_tile_result() {
   return m;
 }
 
+// --pixel-codec zstd: the half tile's pixel block as one zstd frame.
+TileResult zstd_tile_result() {
+  TileResult m = half_tile_result();
+  m.pixel_codec = PixelCodec::Zstd;
+  return m;
+}
+
 FrameSetupMsg frame_setup() {
   FrameSetupMsg m;
   m.frame.frame_id = 3;
@@ -193,6 +200,7 @@ std::vector<Seed> decode_seeds() {
       {"TileResult", tile_result()},
       {"TileResult-half", half_tile_result()},
       {"TileResult-surfaces", surface_tile_result()},
+      {"TileResult-zstd", zstd_tile_result()},
       {"CancelFrame", CancelFrame{3}},
       {"Heartbeat", Heartbeat{}},
       {"Bye", Bye{"shutting down"}},
