@@ -47,6 +47,14 @@ TEST(Progressive, PathTracingContinuesItsSampleSequenceUnderOneScrambling) {
   }
 }
 
+// igi-render's first `passes` passes of the same view.
+Image offline_passes(int passes) {
+  test::Prepared p(load_scene("cornell"));
+  RenderSettings s;
+  s.paths_per_set = 8;
+  return p.render(s, 96, 72, passes, 5, 2, 16);
+}
+
 std::string master(const std::string& extra) {
   return std::string(IGI_MASTER_BINARY) + " --workers 2 --worker-threads 1 --scene cornell --method igi --vpl-paths 8 "
          "--size 96x72 --tile 16 --seed 5 --progressive --quiet " + extra;
@@ -57,11 +65,7 @@ std::string master(const std::string& extra) {
 TEST(Progressive, FramesAreTheOfflinePassesAndFirstFrameRebuildsTheSum) {
   auto whole = test::run(master("--frames 4 -o " + test::output_path("prog.exr")), 120);
   ASSERT_EQ(whole.exit_code, 0) << whole.output;
-  test::Prepared p(load_scene("cornell"));
-  RenderSettings s;
-  s.paths_per_set = 8;
-  const Image offline = p.render(s, 96, 72, 4, 5, 2, 16);
-  EXPECT_TRUE(test::images_identical("prog-offline", read_image(test::output_path("prog-0003.exr")), offline));
+  EXPECT_TRUE(test::images_identical("prog-offline", read_image(test::output_path("prog-0003.exr")), offline_passes(4)));
   auto resumed = test::run(master("--frames 2 --first-frame 2 -o " + test::output_path("prog-resumed.exr")), 120);
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   EXPECT_NE(resumed.output.find("rendering frames 0-1 again (not written)"), std::string::npos) << resumed.output;
@@ -76,11 +80,7 @@ TEST(Progressive, FramesAreTheOfflinePassesAndFirstFrameRebuildsTheSum) {
 TEST(Progressive, LateFramesHandedOverByTheFilterAreTheOfflinePasses) {
   auto r = test::run(master("--frames 20 -o " + test::output_path("prog-late.exr")), 120);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  test::Prepared p(load_scene("cornell"));
-  RenderSettings s;
-  s.paths_per_set = 8;
-  const Image offline = p.render(s, 96, 72, 20, 5, 2, 16);
-  EXPECT_TRUE(test::images_identical("prog-late", read_image(test::output_path("prog-late-0019.exr")), offline));
+  EXPECT_TRUE(test::images_identical("prog-late", read_image(test::output_path("prog-late-0019.exr")), offline_passes(20)));
 }
 
 }  // namespace

@@ -240,7 +240,7 @@ class Builder {
       const bool lights = light.x + light.y + light.z > 0.0f;
       if (!(density > 0.0f) && !lights) continue;
       if (!lights) {
-        const Ray ray = shadow_ray(p.x.surface, w, c.vpl.position, dist);
+        const Ray ray = shadow_ray(p.x.surface, w, shadow_target(c.vpl), dist);  // as contribution() aims it
         q = ShadowQuery{ray.origin, ray.direction, ray.tfar};
       }
       // The camera path that found the VPL saw it: no ray needed (nor a miss by rounding).
