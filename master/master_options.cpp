@@ -48,9 +48,10 @@ void add_network_options(CLI::App& app, MasterOptions& o) {
   app.add_option("--credits", o.credits, "jobs a worker holds at once [2]")
       ->check(integer<int>(1, protocol::kMaxCredits))->group(group)->type_name("K");
   add_liveness_options(app, o.heartbeat_ms, o.timeout_ms, group);
-  app.add_option("--pixels", o.pixels, "pixels on the wire: float, half (6 bytes a pixel, display frames) or auto: "
-                 "float when -o is a float file (.exr, .hdr, .pfm, .tif), else half [auto]")
-      ->check(cli::one_of({"auto", "float", "half"}))->group(group)->type_name("auto|float|half");
+  app.add_option("--pixels", o.pixels, "pixels on the wire: float, half (6 bytes a pixel, display frames), rgb9e5 "
+                 "(4 bytes: 9 bits a channel under a shared exponent, HDR; display frames over slow links, with "
+                 "--pixel-codec zstd) or auto: float when -o is a float file (.exr, .hdr, .pfm, .tif), else half [auto]")
+      ->check(cli::one_of({"auto", "float", "half", "rgb9e5"}))->group(group)->type_name("auto|float|half|rgb9e5");
   app.add_option("--pixel-codec", o.pixel_codec, "workers pack their tiles' pixels: raw, or zstd (lossless; about half "
                  "the bytes of rendered half floats, for a few per cent of the master's and workers' CPU): for links "
                  "slower than the pixels [raw]")
@@ -183,6 +184,7 @@ std::string master_usage(const std::string& program) {
 PixelFormat session_pixel_format(const MasterOptions& o) {
   if (o.pixels == "float") return PixelFormat::Float32;
   if (o.pixels == "half") return PixelFormat::Float16;
+  if (o.pixels == "rgb9e5") return PixelFormat::Rgb9e5;
   if (o.frames == 0) return PixelFormat::Float16;  // the window
   std::string ext = o.render.output.substr(o.render.output.find_last_of('.') + 1);
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });

@@ -251,7 +251,7 @@ PixelCodec read_pixel_codec(Reader& r, const char* field) {
 
 PixelFormat read_pixel_format(Reader& r, const char* field) {
   const uint8_t format = r.u8(field);
-  check_range(r, field, format, 0, static_cast<uint8_t>(PixelFormat::Float16));
+  check_range(r, field, format, 0, static_cast<uint8_t>(PixelFormat::Rgb9e5));
   return r.ok() ? PixelFormat(format) : PixelFormat::Float32;
 }
 
@@ -390,8 +390,12 @@ void write(Writer& w, const TileResult& m) {
   w.u32(static_cast<uint32_t>(m.pixels.size()));
   static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
   auto write_pixels = [&](Writer& to) {
-    if (m.pixel_format == PixelFormat::Float16) to.halves(&m.pixels.data()->x, 3 * m.pixels.size());
-    else to.floats(&m.pixels.data()->x, 3 * m.pixels.size());
+    const float* values = &m.pixels.data()->x;
+    switch (m.pixel_format) {
+      case PixelFormat::Float32: to.floats(values, 3 * m.pixels.size()); break;
+      case PixelFormat::Float16: to.halves(values, 3 * m.pixels.size()); break;
+      case PixelFormat::Rgb9e5: to.rgb9e5s(values, m.pixels.size()); break;
+    }
   };
   if (m.pixel_codec == PixelCodec::Zstd) {
     Writer raw;
@@ -494,8 +498,12 @@ void read(Reader& r, TileResult& m) {
   const size_t n = block.size() / bytes_per_pixel(m.pixel_format);
   m.pixels.resize(n);
   Reader pixels(block);
-  if (m.pixel_format == PixelFormat::Float16) pixels.halves("pixels", &m.pixels.data()->x, 3 * n);
-  else pixels.floats("pixels", &m.pixels.data()->x, 3 * n);
+  float* values = &m.pixels.data()->x;
+  switch (m.pixel_format) {
+    case PixelFormat::Float32: pixels.floats("pixels", values, 3 * n); break;
+    case PixelFormat::Float16: pixels.halves("pixels", values, 3 * n); break;
+    case PixelFormat::Rgb9e5: pixels.rgb9e5s("pixels", values, n); break;
+  }
   for (size_t i = 0; i < n && r.ok(); ++i) {
     const glm::vec3 p = m.pixels[i];
     if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))

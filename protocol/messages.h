@@ -46,8 +46,9 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // 13: settings carry lightcuts_block. 14: FrameSetup carries want_surfaces and
 // TileResult its pixels' surfaces (the window's reprojection); CancelFrame. 15: Hello
 // carries the runtime libraries. 16: Welcome carries the units the scene's lamps are read in.
-// 17: Welcome and TileResult carry the pixel block's codec (raw or zstd).
-inline constexpr uint16_t kVersion = 17;
+// 17: Welcome and TileResult carry the pixel block's codec (raw or zstd). 18: pixels
+// as rgb9e5 (a shared exponent, 4 bytes).
+inline constexpr uint16_t kVersion = 18;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;
@@ -159,7 +160,8 @@ struct TileResult {
   uint32_t nonfinite_pixels = 0;  // pixels the method left NaN or infinite, sent as 0 (at most w * h)
   PixelFormat pixel_format = PixelFormat::Float32;  // on the wire; `pixels` holds floats either way
   // tile.w * tile.h, row-major, linear RGB, finite; as Float16 each is a half
-  // value (encode() rounds to nearest even; protocol::wire_pixels prepares them).
+  // value (encode() rounds to nearest even; protocol::wire_pixels prepares them),
+  // as Rgb9e5 a shared-exponent colour (encode() rounds, image/rgb9e5.h).
   std::vector<glm::vec3> pixels;
   // None, or tile.w * tile.h as the pixels (when the frame wants them): depth
   // finite and >= 0, flags only PixelSurface::kViewDependent. 8 bytes each.

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "image/half.h"
+#include "image/rgb9e5.h"
 
 namespace igi::protocol {
 
@@ -43,6 +44,14 @@ void Writer::halves(const float* values, size_t n) {
   std::vector<uint16_t> h(n);
   to_half(values, h.data(), n);
   std::memcpy(bytes_.data() + at, h.data(), 2 * n);
+}
+
+void Writer::rgb9e5s(const float* rgb, size_t pixels) {
+  const size_t at = bytes_.size();
+  bytes_.resize(at + 4 * pixels);
+  std::vector<uint32_t> words(pixels);
+  to_rgb9e5(rgb, words.data(), pixels);
+  std::memcpy(bytes_.data() + at, words.data(), 4 * pixels);
 }
 
 void Writer::string(std::string_view s) {
@@ -122,6 +131,15 @@ bool Reader::halves(const char* field, float* out, size_t n) {
   std::vector<uint16_t> h(n);
   std::memcpy(h.data(), p, n * sizeof(uint16_t));
   from_half(h.data(), out, n);
+  return true;
+}
+
+bool Reader::rgb9e5s(const char* field, float* rgb, size_t pixels) {
+  const uint8_t* p = take(field, pixels * sizeof(uint32_t));
+  if (!p) return false;
+  std::vector<uint32_t> words(pixels);
+  std::memcpy(words.data(), p, pixels * sizeof(uint32_t));
+  from_rgb9e5(words.data(), rgb, pixels);
   return true;
 }
 

@@ -33,6 +33,7 @@ class Writer {
   void vec3(glm::vec3 v);
   void floats(const float* values, size_t n);
   void halves(const float* values, size_t n);  // each rounded to a half (image/half.h), 2 bytes
+  void rgb9e5s(const float* rgb, size_t pixels);  // each pixel as one shared-exponent word (image/rgb9e5.h)
   void string(std::string_view s);             // u32 length + bytes
   void bytes(std::span<const uint8_t> bytes);  // u32 length + bytes
 
@@ -67,6 +68,8 @@ class Reader {
   bool floats(const char* field, float* out, size_t n);
   // n halves, widened to floats (exactly); false when too few bytes are left.
   bool halves(const char* field, float* out, size_t n);
+  // n pixels of one shared-exponent word each, as 3n floats (exactly); false when too few bytes are left.
+  bool rgb9e5s(const char* field, float* rgb, size_t pixels);
   // The next n bytes as they are (no copy); empty, with an error, when fewer are left.
   std::span<const uint8_t> span(const char* field, size_t n);
   // u32 length (at most max_bytes) + bytes.

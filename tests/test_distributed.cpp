@@ -20,6 +20,7 @@
 #include <sys/wait.h>
 #include <zmq.hpp>
 
+#include "image/rgb9e5.h"
 #include "photons/caustic_settings.h"
 #include "protocol/codec.h"
 #include "protocol/socket.h"
@@ -234,22 +235,29 @@ TEST(Distributed, ZstdPackedPixelsGiveTheSameImageFromFewerBytes) {
       for (const auto& [name, w] : f["workers"].items()) sum += w["bytes_in"].get<uint64_t>();
     return sum;
   };
-  uint64_t bytes[2];
-  for (const char* codec : {"raw", "zstd"}) {
-    const std::string tag = std::string("dist-") + codec, out = test::output_path(tag + ".exr"),
+  // Shared-exponent pixels (--pixels rgb9e5) are the one-process image, each
+  // pixel rounded as image/rgb9e5.h rounds it, in fewer bytes again.
+  Image rounded = single_process();
+  for (glm::vec3& p : rounded.pixels) p = from_rgb9e5(to_rgb9e5(p));
+  uint64_t bytes[3];
+  int run = 0;
+  for (const char* wire : {"--pixel-codec raw", "--pixel-codec zstd", "--pixel-codec zstd --pixels rgb9e5"}) {
+    const std::string tag = "dist-wire-" + std::to_string(run), out = test::output_path(tag + ".exr"),
                       stats = test::output_path(tag + ".json");
-    auto r = test::run(master("--workers 2 --frames 2 --pixel-codec " + std::string(codec) + " -o " + out +
-                              " --stats " + stats));
+    auto r = test::run(master("--workers 2 --frames 2 " + std::string(wire) + " -o " + out + " --stats " + stats));
     ASSERT_EQ(r.exit_code, 0) << r.output;
     for (int f = 0; f < 2; ++f) {
       const std::string name = tag + "-000" + std::to_string(f);
-      EXPECT_TRUE(test::images_identical(name, read_image(test::output_path(name + ".exr")), single_process()));
+      EXPECT_TRUE(test::images_identical(name, read_image(test::output_path(name + ".exr")),
+                                         run == 2 ? rounded : single_process())) << wire;
     }
     const nlohmann::json s = test::read_stats(stats);
-    EXPECT_EQ(s["pixel_codec"].get<std::string>(), codec);
-    bytes[codec[0] == 'z'] = bytes_in(s);
+    EXPECT_EQ(s["pixel_codec"].get<std::string>(), run == 0 ? "raw" : "zstd");
+    EXPECT_EQ(s["pixel_format"].get<std::string>(), run == 2 ? "rgb9e5" : "float");
+    bytes[run++] = bytes_in(s);
   }
   EXPECT_LT(bytes[1], bytes[0]) << "zstd-packed float pixels of the Cornell box";
+  EXPECT_LT(bytes[2], bytes[1] / 2) << "zstd-packed rgb9e5 pixels";
 }
 
 TEST(Distributed, WorkerKilledMidFrameLosesNothing) {

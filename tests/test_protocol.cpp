@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "image/frame_buffer.h"
+#include "image/rgb9e5.h"
 #include "protocol/codec.h"
 #include "protocol/pixels.h"
 #include "protocol/socket.h"
@@ -381,6 +382,40 @@ TEST(Protocol, ZstdPixelsDecodeToTheRawBlockAndBadBlocksAreRefused) {
   }
 }
 
+// Shared-exponent pixels (--pixels rgb9e5): 4 bytes a pixel on the wire, each
+// pixel the rounding of image/rgb9e5.h, the same through decode() and the
+// master's view and copy, raw or zstd-packed; nothing to refuse as non-finite.
+TEST(Protocol, Rgb9e5PixelsTravelAsTheirRoundingInFourBytes) {
+  TileResult m = sample_tile_result();
+  m.pixel_format = PixelFormat::Rgb9e5;
+  m.pixels[5] = glm::vec3(-1.0f, 70000.0f, 1e-9f);  // outside the range: 0, the top, 0
+  for (PixelCodec codec : {PixelCodec::Raw, PixelCodec::Zstd}) {
+    m.pixel_codec = codec;
+    const std::vector<uint8_t> bytes = encode(m);
+    if (codec == PixelCodec::Raw) {
+      TileResult as_float = m;
+      as_float.pixel_format = PixelFormat::Float32;
+      EXPECT_EQ(encode(as_float).size() - bytes.size(), 64u * 8u) << "4 bytes a pixel where floats take 12";
+    }
+    const DecodeResult d = decode_copy(bytes);
+    ASSERT_TRUE(d.message) << d.error;
+    const auto& pixels = std::get<TileResult>(*d.message).pixels;
+    std::string error;
+    const std::optional<TileResultView> view = decode_tile_result(bytes, error);
+    ASSERT_TRUE(view) << error;
+    FrameBuffer frame(80, 48, PixelFormat::Rgb9e5);
+    ASSERT_EQ(copy_tile_pixels(*view, frame.pixel(64, 32), frame.row_bytes()), "");
+    const Image image = frame.to_image();
+    for (int i = 0; i < 64; ++i) {
+      const glm::vec3 rounded = from_rgb9e5(to_rgb9e5(m.pixels[size_t(i)]));
+      ASSERT_TRUE(same(pixels[size_t(i)], rounded)) << i;
+      ASSERT_TRUE(same(image.at(64 + i % 8, 32 + i / 8), rounded)) << i;
+    }
+    EXPECT_EQ(pixels[5], glm::vec3(0.0f, kRgb9e5Max, 0.0f));
+    EXPECT_EQ(encode(*d.message), bytes) << "the decoded tile re-encodes to its bytes";
+  }
+}
+
 TEST(Protocol, WorkersSendFinitePixelsInTheFormatsRange) {
   std::vector<glm::vec3> pixels = {{1, 2, 3}, {NAN, 0.5f, 0.5f}, {0, INFINITY, 0}, {1e6f, -1e6f, 7}};
   std::vector<glm::vec3> as_float = pixels;
@@ -563,10 +598,10 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {edited<TileResult>([](TileResult& m) { m.render_seconds = -1; }), "TileResult.render_seconds"},
       {edited<TileResult>([](TileResult& m) { m.render_seconds = NAN; }), "TileResult.render_seconds"},
       {edited<TileResult>([](TileResult& m) { m.nonfinite_pixels = 65; }), "TileResult.nonfinite_pixels: 65, expected [0, 64]"},
-      {edited<TileResult>([](TileResult& m) { m.pixel_format = PixelFormat(2); }), "TileResult.pixel_format: 2"},
+      {edited<TileResult>([](TileResult& m) { m.pixel_format = PixelFormat(3); }), "TileResult.pixel_format: 3"},
       {edited<Welcome>([](Welcome& m) { m.timeout_ms = 49; }), "Welcome.timeout_ms: 49, expected [50, 3600000]"},
       {edited<Welcome>([](Welcome& m) { m.timeout_ms = 3600001; }), "Welcome.timeout_ms"},
-      {edited<Welcome>([](Welcome& m) { m.pixel_format = PixelFormat(7); }), "Welcome.pixel_format: 7, expected [0, 1]"},
+      {edited<Welcome>([](Welcome& m) { m.pixel_format = PixelFormat(7); }), "Welcome.pixel_format: 7, expected [0, 2]"},
       {edited<Welcome>([](Welcome& m) { m.pixel_codec = PixelCodec(2); }), "Welcome.pixel_codec: 2, expected [0, 1]"},
       {edited<Bye>([](Bye& m) { m.kind = ByeKind(3); }), "Bye.kind: 3, expected [0, 2]"},
   };
@@ -636,7 +671,7 @@ TEST(Protocol, HugeLengthsAndBadBytesAreRejectedBeforeUse) {
   size_t nonfinite_at = 8 + 16 + 20 + 4 + 8 + 24, pixels_at = nonfinite_at + 4 + 1 + 1;
   EXPECT_EQ(patched(sample<TileResult>(), nonfinite_at, all_ones),
             "TileResult.nonfinite_pixels: 4294967295, expected [0, 64]");
-  EXPECT_EQ(patched(sample<TileResult>(), nonfinite_at + 4, {2}), "TileResult.pixel_format: 2, expected [0, 1]");
+  EXPECT_EQ(patched(sample<TileResult>(), nonfinite_at + 4, {3}), "TileResult.pixel_format: 3, expected [0, 2]");
   EXPECT_EQ(patched(sample<TileResult>(), nonfinite_at + 5, {2}), "TileResult.pixel_codec: 2, expected [0, 1]");
   EXPECT_EQ(patched(sample<TileResult>(), pixels_at, all_ones),
             "TileResult.pixels: count 4294967295 over the limit of 1048576");

@@ -68,6 +68,13 @@ TileResult zstd_tile_result() {
   return m;
 }
 
+// --pixels rgb9e5: one shared-exponent word a pixel, zstd-packed as on a slow link.
+TileResult rgb9e5_tile_result() {
+  TileResult m = zstd_tile_result();
+  m.pixel_format = PixelFormat::Rgb9e5;
+  return m;
+}
+
 FrameSetupMsg frame_setup() {
   FrameSetupMsg m;
   m.frame.frame_id = 3;
@@ -201,6 +208,7 @@ std::vector<Seed> decode_seeds() {
       {"TileResult-half", half_tile_result()},
       {"TileResult-surfaces", surface_tile_result()},
       {"TileResult-zstd", zstd_tile_result()},
+      {"TileResult-rgb9e5", rgb9e5_tile_result()},
       {"CancelFrame", CancelFrame{3}},
       {"Heartbeat", Heartbeat{}},
       {"Bye", Bye{"shutting down"}},
