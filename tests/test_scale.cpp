@@ -3,10 +3,12 @@
 // frames checked pixel by pixel against the simulated tiles, its statistics read.
 #include <filesystem>
 #include <fstream>
+#include <random>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "image/image.h"
 #include "loadgen_run.h"
 #include "support/image_compare.h"
 #include "support/sanitizers.h"
@@ -120,6 +122,29 @@ TEST(Scale, ATileThatFailsOnEveryWorkerIsRenderedByTheMaster) {
     const size_t at = p.rfind(": ") + 2;
     EXPECT_LE(std::stoi(p.substr(at)), o.tile * o.tile) << p << ": more than the master's one tile";
   }
+}
+
+// Real pixels, packed as on a slow link (--pixels rgb9e5 --pixel-codec zstd):
+// simulated workers answer with a picture's tiles (HDR values from 1e-6 to
+// 5e4, noisy as one pass is), and every frame the master writes is that
+// picture as rgb9e5 rounds it, pixel for pixel.
+TEST(Scale, APicturesPixelsPackedAsRgb9e5ArriveAsTheirRounding) {
+  LoadgenOptions o = options("picture", 3, 6);
+  Image picture(o.width, o.height);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> exponent(-20.0f, 15.5f), share(0.0f, 1.0f);
+  for (glm::vec3& p : picture.pixels) p = std::exp2(exponent(rng)) * glm::vec3(share(rng), share(rng), share(rng));
+  o.picture = (std::filesystem::path(o.dir) / "picture.exr").string();
+  std::filesystem::create_directories(o.dir);
+  write_image(picture, o.picture);
+  o.pixels = "rgb9e5";
+  o.pixel_codec = "zstd";
+  run_exactly(o, paced(o));
+  EXPECT_EQ(stats(o)["pixel_format"].get<std::string>(), "rgb9e5");
+  // The check compares with the rounding, not the picture itself.
+  const TileCache tiles = make_tile_cache(o);
+  EXPECT_NE(tiles.sent_pixel(1, 1, PixelFormat::Rgb9e5), picture.at(1, 1));
+  EXPECT_EQ(tiles.pixel(1, 1), picture.at(1, 1));
 }
 
 TEST(Scale, AWrongFirstHashQuarantinesOnlyTheDivergingWorker) {

@@ -23,7 +23,13 @@ void add_load_options(CLI::App& app, LoadgenOptions& o) {
   app.add_option("--workers", o.workers, "simulated workers [8]")->check(integer(1, kMaxWorkers))->type_name("N");
   cli::add_size_option(app, "--size", o.width, o.height, protocol::kMaxImageSide, "frame size [640x480]");
   app.add_option("--tile", o.tile, "tile side [32]")->check(integer(1, protocol::kMaxTileSide))->type_name("T");
-  app.add_option("--pixels", o.pixels, "half or float [half]")->check(cli::one_of({"half", "float"}));
+  app.add_option("--pixels", o.pixels, "the master's --pixels: half, float or rgb9e5 [half]")
+      ->check(cli::one_of({"half", "float", "rgb9e5"}));
+  app.add_option("--pixel-codec", o.pixel_codec, "the master's --pixel-codec: raw or zstd [raw]")
+      ->check(cli::one_of({"raw", "zstd"}));
+  app.add_option("--picture", o.picture, "the simulated tiles' pixels: this image's (a frame rendered at --size, "
+                 "e.g. by igi-render -o F.exr), not a gradient that flatters any codec")
+      ->check(CLI::ExistingFile)->type_name("FILE");
   app.add_option("--frames", o.frames, "[300]")->check(integer(1, kMaxFrames))->type_name("F");
   app.add_option("--warmup", o.warmup_frames, "[10]")->check(integer(0, kMaxFrames))->type_name("F");
   app.add_option("--fps", o.fps, "pace the workers for F frames a second [30]")
@@ -36,6 +42,13 @@ void add_load_options(CLI::App& app, LoadgenOptions& o) {
       ->check(integer(1, kMaxPools))->type_name("P");
   app.add_option("--io-threads", o.io_threads, "the master's ZeroMQ I/O threads [1]")
       ->check(integer(1, cli::kMaxIoThreads))->type_name("N");
+  app.add_option("--endpoint", o.endpoint, "the master listens here and the workers connect here [loopback, a free "
+                 "port]; off loopback the master needs --master-arg --key and --authorized-keys, the workers --key "
+                 "and --master-key")->type_name("tcp://HOST:PORT");
+  app.add_option("--key", o.worker_key, "CURVE: the simulated workers' secret key (igi-keys new NAME)")
+      ->check(CLI::ExistingFile)->type_name("WORKER.key");
+  app.add_option("--master-key", o.master_public_key, "CURVE: the master's public key")
+      ->check(CLI::ExistingFile)->type_name("MASTER.pub");
   add_liveness_options(app, o.heartbeat_ms, o.timeout_ms);
 }
 
@@ -93,8 +106,11 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   if (c.help) return c;
   check_liveness(c.run.heartbeat_ms, c.run.timeout_ms);
   if (c.check_every > 0 && !c.run.write_frames) throw cli::OptionError("--check-every needs --write-frames");
-  if (c.run.write_frames && c.run.pixels != "float" && c.check_every > 0)
-    throw cli::OptionError("--check-every compares exactly: use --pixels float");
+  if (c.run.worker_key.empty() != c.run.master_public_key.empty())
+    throw cli::OptionError("CURVE needs both --key WORKER.key and --master-key MASTER.pub");
+  if ((c.nan_every > 0) && (c.run.pixels == "rgb9e5" || c.run.pixel_codec != "raw"))
+    throw cli::OptionError("--nan-every writes a NaN into raw half or float pixels: not with --pixels rgb9e5 (no "
+                           "NaN there) or --pixel-codec zstd");
   return c;
 }
 

@@ -93,7 +93,8 @@ std::vector<std::string> master_command(const LoadgenOptions& o, const std::stri
   std::vector<std::string> args{o.master_binary, "--workers", "0", "--listen", endpoint, "--frames",
                                 std::to_string(o.frames), "--size",
                                 std::to_string(o.width) + "x" + std::to_string(o.height), "--tile",
-                                std::to_string(o.tile), "--pixels", o.pixels, "--scene", "cornell", "--method", "igi",
+                                std::to_string(o.tile), "--pixels", o.pixels, "--pixel-codec", o.pixel_codec,
+                                "--scene", "cornell", "--method", "igi",
                                 "--io-threads", std::to_string(o.io_threads), "--heartbeat-ms",
                                 std::to_string(o.heartbeat_ms), "--timeout-ms", std::to_string(o.timeout_ms)};
   if (o.write_frames) args.insert(args.end(), {"-o", (fs::path(o.dir) / "frame.exr").string()});
@@ -163,7 +164,11 @@ LoadgenReport run_loadgen(const LoadgenOptions& o, const std::vector<SimBehaviou
   LoadgenReport report;
   report.tiles_per_frame = tiles_per_frame(o.width, o.height, o.tile);
   report.tile_seconds = paced_tile_seconds(o);
-  const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(free_port());
+  const std::string endpoint = o.endpoint.empty() ? "tcp://127.0.0.1:" + std::to_string(free_port()) : o.endpoint;
+  SimConnection connection{endpoint, std::nullopt};
+  if (!o.worker_key.empty())
+    connection.curve = protocol::CurveClientKeys{protocol::read_public_key_file(o.master_public_key),
+                                                 protocol::read_secret_key_file(o.worker_key)};
   const std::string log = (fs::path(o.dir) / "master.log").string();
   fs::remove(log);
   // A fixed mmap threshold, as in the soak test: glibc's sliding one keeps freed large buffers on the heap.
@@ -172,14 +177,14 @@ LoadgenReport run_loadgen(const LoadgenOptions& o, const std::vector<SimBehaviou
   const std::string main_stat = "/proc/" + std::to_string(master.pid()) + "/task/" + std::to_string(master.pid()) + "/stat";
 
   zmq::context_t context(2);
-  TileCache tiles;
+  TileCache tiles = make_tile_cache(o);
   const Clock::time_point start = Clock::now();
   std::vector<std::unique_ptr<SimPool>> pools;
   const int n_pools = std::max(1, std::min<int>(o.pools, int(behaviours.size())));
   for (int p = 0; p < n_pools; ++p) {
     std::vector<SimBehaviour> mine;
     for (size_t i = size_t(p); i < behaviours.size(); i += size_t(n_pools)) mine.push_back(behaviours[i]);
-    pools.push_back(std::make_unique<SimPool>(context, endpoint, mine, tiles, start));
+    pools.push_back(std::make_unique<SimPool>(context, connection, mine, tiles, start));
   }
   LogFollower follower(log);
   std::vector<Sample> samples;
@@ -227,7 +232,22 @@ LoadgenReport run_loadgen(const LoadgenOptions& o, const std::vector<SimBehaviou
 
 namespace igi::loadgen {
 
+TileCache make_tile_cache(const LoadgenOptions& o) {
+  if (o.picture.empty()) return TileCache();
+  Image picture = read_image(o.picture);
+  if (picture.width < o.width || picture.height < o.height)
+    throw std::runtime_error(o.picture + ": " + std::to_string(picture.width) + "x" + std::to_string(picture.height) +
+                             ", smaller than the frames (" + std::to_string(o.width) + "x" + std::to_string(o.height) + ")");
+  return TileCache(std::move(picture));
+}
+
 std::vector<std::string> check_written_frames(const LoadgenOptions& o, int every) {
+  const TileCache tiles = make_tile_cache(o);
+  const PixelFormat format = o.pixels == "float" ? PixelFormat::Float32
+                             : o.pixels == "rgb9e5" ? PixelFormat::Rgb9e5 : PixelFormat::Float16;
+  Image expected(o.width, o.height);
+  for (int y = 0; y < o.height; ++y)
+    for (int x = 0; x < o.width; ++x) expected.at(x, y) = tiles.sent_pixel(x, y, format);
   std::vector<std::string> problems;
   for (int f = 0; f < o.frames; f += std::max(1, every)) {
     char name[32];
@@ -242,7 +262,7 @@ std::vector<std::string> check_written_frames(const LoadgenOptions& o, int every
     }
     int wrong = 0;
     for (int y = 0; y < image.height; ++y)
-      for (int x = 0; x < image.width; ++x) wrong += image.at(x, y) != expected_pixel(x, y);
+      for (int x = 0; x < image.width; ++x) wrong += image.at(x, y) != expected.at(x, y);
     if (image.width != o.width || image.height != o.height || wrong > 0)
       problems.push_back(path.string() + ": " + std::to_string(wrong) + " pixels differ from the simulated tiles'");
   }

@@ -22,6 +22,13 @@ struct LoadgenOptions {
   int workers = 8;
   int width = 640, height = 480, tile = 32;
   std::string pixels = "half";       // the master's --pixels
+  std::string pixel_codec = "raw";   // the master's --pixel-codec
+  std::string picture;               // the tiles' pixels: this image's (at least the frame's size); else a gradient
+  // Where the master listens and the workers connect (empty: loopback, a free
+  // port); off loopback the master needs CURVE (master_args --key,
+  // --authorized-keys) and the workers these key files.
+  std::string endpoint;
+  std::string worker_key, master_public_key;
   int frames = 300;
   int warmup_frames = 10;
   // Paces the workers: tile time = busy lanes / (fps x tiles per frame), where the busy lanes are
@@ -63,8 +70,12 @@ struct LoadgenReport {
 // One simulated worker per behaviour.
 LoadgenReport run_loadgen(const LoadgenOptions& options, const std::vector<SimBehaviour>& behaviours);
 
+// The simulated tiles' pixels (the picture's, or the gradient).
+TileCache make_tile_cache(const LoadgenOptions& options);
+
 // Checks every `every`-th frame the master wrote (write_frames) pixel by pixel
-// against expected_pixel; returns what is wrong (empty: all exact).
+// against the simulated tiles as the master gets them (sent_pixel); returns
+// what is wrong (empty: all exact).
 std::vector<std::string> check_written_frames(const LoadgenOptions& options, int every);
 
 // Tiles per frame of a size, as the master cuts it.

@@ -5,9 +5,9 @@
 
 namespace igi::loadgen {
 
-SimPool::SimPool(zmq::context_t& context, const std::string& endpoint, const std::vector<SimBehaviour>& behaviours,
+SimPool::SimPool(zmq::context_t& context, const SimConnection& connection, const std::vector<SimBehaviour>& behaviours,
                  TileCache& tiles, Clock::time_point start) {
-  for (const SimBehaviour& b : behaviours) workers_.push_back(std::make_unique<SimWorker>(context, endpoint, b, tiles, start));
+  for (const SimBehaviour& b : behaviours) workers_.push_back(std::make_unique<SimWorker>(context, connection, b, tiles, start));
   thread_ = std::thread([this] { run(); });
 }
 

@@ -14,7 +14,7 @@ namespace igi::loadgen {
 
 class SimPool {
  public:
-  SimPool(zmq::context_t& context, const std::string& endpoint, const std::vector<SimBehaviour>& behaviours,
+  SimPool(zmq::context_t& context, const SimConnection& connection, const std::vector<SimBehaviour>& behaviours,
           TileCache& tiles, Clock::time_point start);
   ~SimPool();  // stops and joins
   void stop();

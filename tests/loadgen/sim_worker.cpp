@@ -22,9 +22,9 @@ bool contains(const TileJob& t, std::pair<int, int> pixel) {
 
 }  // namespace
 
-SimWorker::SimWorker(zmq::context_t& context, std::string endpoint, SimBehaviour behaviour, TileCache& tiles,
+SimWorker::SimWorker(zmq::context_t& context, SimConnection connection, SimBehaviour behaviour, TileCache& tiles,
                      Clock::time_point start)
-    : context_(context), endpoint_(std::move(endpoint)), behaviour_(behaviour), tiles_(tiles), start_(start) {
+    : context_(context), connection_(std::move(connection)), behaviour_(behaviour), tiles_(tiles), start_(start) {
   lanes_.assign(size_t(std::max(1, behaviour_.threads)), start);
 }
 
@@ -44,7 +44,8 @@ zmq::socket_t* SimWorker::socket(Clock::time_point now) {
 void SimWorker::connect(Clock::time_point now) {
   socket_ = std::make_unique<zmq::socket_t>(context_, zmq::socket_type::dealer);
   protocol::configure(*socket_);
-  socket_->connect(endpoint_);
+  if (connection_.curve) protocol::make_curve_client(*socket_, *connection_.curve);
+  socket_->connect(connection_.endpoint);
   welcome_.reset();
   frames_.clear();
   due_.clear();
@@ -107,7 +108,7 @@ void SimWorker::send_answer(const Due& due) {
   auto frame = frames_.find(due.frame_id);
   if (frame == frames_.end() || !welcome_) return;  // a frame we were not told about: a real worker drops it too
   const PixelFormat format = welcome_->pixel_format;
-  const std::vector<uint8_t>& encoded = tiles_.encoded(due.tile, format);
+  const std::vector<uint8_t>& encoded = tiles_.encoded(due.tile, format, welcome_->pixel_codec);
   ++answers_;
   TileJob claimed = due.tile;
   if (behaviour_.wrong_tile_every > 0 && answers_ % uint64_t(behaviour_.wrong_tile_every) == 0)

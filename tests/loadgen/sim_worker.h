@@ -14,6 +14,7 @@
 
 #include <zmq.hpp>
 
+#include "protocol/curve.h"
 #include "protocol/messages.h"
 #include "tile_cache.h"
 
@@ -36,6 +37,12 @@ struct SimBehaviour {
   bool hoard = false;          // takes jobs and heartbeats, never answers
 };
 
+// Where a simulated worker connects, and with which CURVE keys (none: plain).
+struct SimConnection {
+  std::string endpoint;
+  std::optional<protocol::CurveClientKeys> curve;
+};
+
 struct SimOutcome {
   bool welcomed = false;
   bool quarantined = false;    // the master said Bye (Quarantined)
@@ -48,7 +55,7 @@ struct SimOutcome {
 
 class SimWorker {
  public:
-  SimWorker(zmq::context_t& context, std::string endpoint, SimBehaviour behaviour, TileCache& tiles,
+  SimWorker(zmq::context_t& context, SimConnection connection, SimBehaviour behaviour, TileCache& tiles,
             Clock::time_point start);
   // The socket to poll, or null while not connected (not joined yet, dead, stalled or done).
   zmq::socket_t* socket(Clock::time_point now);
@@ -74,7 +81,7 @@ class SimWorker {
   void send(const protocol::Message& m, Clock::time_point now);
 
   zmq::context_t& context_;
-  std::string endpoint_;
+  SimConnection connection_;
   SimBehaviour behaviour_;
   TileCache& tiles_;
   Clock::time_point start_;

@@ -5,6 +5,7 @@
 
 #include "core/method.h"
 #include "protocol/codec.h"
+#include "protocol/pixels.h"
 #include "sampling/content_hash.h"
 #include "scene/load_scene.h"
 
@@ -29,8 +30,31 @@ glm::vec3 expected_pixel(int x, int y) {
   return {float(x % 2048) / 1024.0f, float(y % 2048) / 1024.0f, 0.25f + 0.125f * float((x + y) % 4)};
 }
 
-const std::vector<uint8_t>& TileCache::encoded(const TileJob& t, PixelFormat format) {
-  const Key key{t.x, t.y, t.w, t.h, t.border, int(format)};
+glm::vec3 TileCache::pixel(int x, int y) const {
+  if (!picture_) return expected_pixel(x, y);
+  if (x >= picture_->width || y >= picture_->height)
+    throw std::runtime_error("loadgen: the picture is " + std::to_string(picture_->width) + "x" +
+                             std::to_string(picture_->height) + ", smaller than the frame");
+  return picture_->at(x, y);
+}
+
+glm::vec3 TileCache::sent_pixel(int x, int y, PixelFormat format) const {
+  protocol::TileResult r;
+  r.tile = {0, 0, 1, 1, 0};
+  r.pixel_format = format;
+  r.pixels = {pixel(x, y)};
+  protocol::wire_pixels(r.pixels, format);
+  const protocol::DecodeResult d = protocol::decode(protocol::encode(r));
+  if (!d.message) throw std::runtime_error("loadgen: a pixel of the picture does not travel: " + d.error);
+  return std::get<protocol::TileResult>(*d.message).pixels[0];
+}
+
+bool TileCache::can_poison(PixelFormat format, protocol::PixelCodec codec) {
+  return format != PixelFormat::Rgb9e5 && codec == protocol::PixelCodec::Raw;
+}
+
+const std::vector<uint8_t>& TileCache::encoded(const TileJob& t, PixelFormat format, protocol::PixelCodec codec) {
+  const Key key{t.x, t.y, t.w, t.h, t.border, int(format), int(codec)};
   std::lock_guard lock(mutex_);
   auto it = tiles_.find(key);
   if (it != tiles_.end()) return *it->second;
@@ -39,8 +63,10 @@ const std::vector<uint8_t>& TileCache::encoded(const TileJob& t, PixelFormat for
   r.render_seconds = 0.001f;
   r.rays = {uint64_t(t.w) * t.h, 0, 0};
   r.pixel_format = format;
+  r.pixel_codec = codec;
   for (int y = 0; y < t.h; ++y)
-    for (int x = 0; x < t.w; ++x) r.pixels.push_back(expected_pixel(t.x + x, t.y + y));
+    for (int x = 0; x < t.w; ++x) r.pixels.push_back(pixel(t.x + x, t.y + y));
+  r.nonfinite_pixels = protocol::wire_pixels(r.pixels, format);
   auto bytes = std::make_unique<std::vector<uint8_t>>(protocol::encode(r));
   // The offsets above must still be the codec's: patch a copy and decode it.
   const TileJob moved{t.x + 1, t.y, t.w, t.h, t.border};
@@ -49,10 +75,12 @@ const std::vector<uint8_t>& TileCache::encoded(const TileJob& t, PixelFormat for
   const auto* back = d.message ? std::get_if<protocol::TileResult>(&*d.message) : nullptr;
   if (!back || back->frame_id != 7 || back->job_id != 9 || back->frame_state_hash != 11 || back->tile.x != t.x + 1)
     throw std::logic_error("loadgen: the TileResult layout changed (protocol/codec.cpp): " + d.error);
-  poison(probe, format);
-  d = protocol::decode({probe.data<uint8_t>(), probe.size()});
-  if (d.message || d.error.find("pixel 0 is (nan") == std::string::npos)
-    throw std::logic_error("loadgen: the TileResult's pixels moved (protocol/codec.cpp): " + d.error);
+  if (can_poison(format, codec)) {
+    poison(probe, format);
+    d = protocol::decode({probe.data<uint8_t>(), probe.size()});
+    if (d.message || d.error.find("pixel 0 is (nan") == std::string::npos)
+      throw std::logic_error("loadgen: the TileResult's pixels moved (protocol/codec.cpp): " + d.error);
+  }
   return *tiles_.emplace(key, std::move(bytes)).first->second;
 }
 
@@ -69,6 +97,7 @@ zmq::message_t TileCache::answer(const std::vector<uint8_t>& encoded, uint64_t f
 }
 
 void TileCache::poison(zmq::message_t& answer, PixelFormat format) {
+  if (format == PixelFormat::Rgb9e5) throw std::logic_error("loadgen: a shared-exponent pixel cannot be NaN");
   uint8_t* first = answer.data<uint8_t>() + kPixelsAt;
   if (format == PixelFormat::Float16) {
     const uint16_t nan = 0x7e00;
