@@ -1,6 +1,8 @@
 // Shared-exponent display pixels (image/rgb9e5.h): the layout of GL_RGB9_E5,
 // rounding to nearest, exact decoding, the range's ends, and every canonical
 // word surviving a round trip, so that a tile re-encodes to its own bytes.
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -36,6 +38,27 @@ TEST(Rgb9e5, RoundsToTheNearestStepAndCarriesIntoTheExponent) {
   EXPECT_EQ(to_rgb9e5({1.0f, 0.3f * unit, 0.7f * unit}), word(256, 0, 1, 16));
   // Below the smallest exponent: steps of 2^-24, the brightest needs no 9th bit.
   EXPECT_EQ(to_rgb9e5({std::ldexp(3.0f, -24), 0, 0}), word(3, 0, 0, 0));
+}
+
+// The extension's encoding written out in doubles with libm, as its text reads.
+uint32_t reference_rgb9e5(glm::vec3 c) {
+  double v[3];
+  for (int k = 0; k < 3; ++k) v[k] = c[k] > 0.0f ? std::min(double(c[k]), double(kRgb9e5Max)) : 0.0;
+  const double top = std::max({v[0], v[1], v[2]});
+  int e = std::max(-16, top > 0.0 ? int(std::floor(std::log2(top))) : -16) + 1 + 15;
+  auto m = [](double x, int e) { return uint32_t(std::floor(x / std::exp2(e - 24) + 0.5)); };
+  if (m(top, e) == 512) ++e;
+  return m(v[0], e) | m(v[1], e) << 9 | m(v[2], e) << 18 | uint32_t(e) << 27;
+}
+
+TEST(Rgb9e5, EncodesAsTheExtensionsTextOverEveryFloatExponent) {
+  std::mt19937 rng(17);
+  for (int i = 0; i < 300000; ++i) {
+    glm::vec3 c;
+    for (int k = 0; k < 3; ++k) c[k] = std::bit_cast<float>(uint32_t(rng()) & (i % 2 ? 0xffffffffu : 0x4fffffffu));
+    if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) continue;
+    ASSERT_EQ(to_rgb9e5(c), reference_rgb9e5(c)) << c.x << " " << c.y << " " << c.z;
+  }
 }
 
 TEST(Rgb9e5, EveryCanonicalWordDecodesExactlyAndEncodesBackToItself) {
