@@ -44,13 +44,15 @@ std::vector<uint8_t> zstd_compress(std::vector<uint8_t> raw) {
   return packed;
 }
 
-// Decompresses `frame` into `out`, which must come out exactly `size` bytes;
-// returns "" or what was wrong. Never writes more than `size` bytes.
-std::string zstd_decompress(std::span<const uint8_t> frame, size_t size, std::vector<uint8_t>& out) {
+// Decompresses `frame` into `out`, which must come out exactly `size` bytes
+// (`what`: "pixels" or "surfaces", for the error); returns "" or what was
+// wrong. Never writes more than `size` bytes.
+std::string zstd_decompress(std::span<const uint8_t> frame, size_t size, std::vector<uint8_t>& out, const char* what) {
   out.resize(size);
   const size_t n = ZSTD_decompressDCtx(zstd_contexts().decompress, out.data(), out.size(), frame.data(), frame.size());
-  if (ZSTD_isError(n)) return std::string("not a zstd frame of the tile's pixels: ") + ZSTD_getErrorName(n);
-  if (n != size) return "the zstd frame holds " + std::to_string(n) + " bytes, the tile's pixels are " + std::to_string(size);
+  if (ZSTD_isError(n)) return std::string("not a zstd frame of the tile's ") + what + ": " + ZSTD_getErrorName(n);
+  if (n != size)
+    return "the zstd frame holds " + std::to_string(n) + " bytes, the tile's " + what + " are " + std::to_string(size);
   return "";
 }
 
@@ -407,11 +409,20 @@ void write(Writer& w, const TileResult& m) {
     write_pixels(w);
   }
   w.u32(static_cast<uint32_t>(m.surfaces.size()));
-  w.reserve(m.surfaces.size() * kSurfaceBytes);
-  for (const PixelSurface& s : m.surfaces) {
-    w.f32(s.depth);
-    for (int8_t n : s.normal) w.u8(static_cast<uint8_t>(n));
-    w.u8(s.flags);
+  auto write_surfaces = [&](Writer& to) {
+    to.reserve(m.surfaces.size() * kSurfaceBytes);
+    for (const PixelSurface& s : m.surfaces) {
+      to.f32(s.depth);
+      for (int8_t n : s.normal) to.u8(static_cast<uint8_t>(n));
+      to.u8(s.flags);
+    }
+  };
+  if (m.pixel_codec == PixelCodec::Zstd && !m.surfaces.empty()) {
+    Writer raw;
+    write_surfaces(raw);
+    w.bytes(zstd_compress(raw.take()));
+  } else {
+    write_surfaces(w);
   }
 }
 
@@ -423,14 +434,27 @@ PixelSurface read_surface(Reader& r) {
   return s;
 }
 
-// The surfaces block: none, or one per pixel, each checked. Returns its bytes.
-std::span<const uint8_t> read_surface_block(Reader& r, const TileResult& m) {
-  const uint32_t n = r.count("surfaces", kSurfaceBytes, size_t(kMaxTileSide) * kMaxTileSide);
+// The surfaces block: none, or one per pixel, each checked. Returns its
+// bytes: the message's own, or for zstd the block decompressed into `storage`.
+std::span<const uint8_t> read_surface_block(Reader& r, const TileResult& m, std::vector<uint8_t>& storage) {
+  const bool zstd = m.pixel_codec == PixelCodec::Zstd;
+  const uint32_t n = zstd ? r.u32("surfaces") : r.count("surfaces", kSurfaceBytes, size_t(kMaxTileSide) * kMaxTileSide);
   const size_t expected = size_t(m.tile.w) * size_t(m.tile.h);
   if (r.ok() && n != 0 && n != expected)
     r.fail("surfaces", std::to_string(n) + " surfaces, expected 0 or " + std::to_string(expected));
   if (!r.ok() || n == 0) return {};
-  const std::span<const uint8_t> block = r.span("surfaces", size_t(n) * kSurfaceBytes);
+  std::span<const uint8_t> block;
+  if (zstd) {
+    const std::span<const uint8_t> frame = r.span("surfaces.zstd", r.u32("surfaces.zstd"));
+    if (!r.ok()) return {};
+    if (std::string error = zstd_decompress(frame, size_t(n) * kSurfaceBytes, storage, "surfaces"); !error.empty()) {
+      r.fail("surfaces.zstd", error);
+      return {};
+    }
+    block = storage;
+  } else {
+    block = r.span("surfaces", size_t(n) * kSurfaceBytes);
+  }
   Reader each(block);
   for (uint32_t i = 0; i < n && r.ok(); ++i) {
     const PixelSurface s = read_surface(each);
@@ -479,7 +503,7 @@ std::span<const uint8_t> read_pixel_block(Reader& r, const TileResult& m, std::v
   const uint32_t packed = r.u32("pixels.zstd");
   const std::span<const uint8_t> frame = r.span("pixels.zstd", packed);
   if (!r.ok()) return {};
-  if (std::string error = zstd_decompress(frame, size_t(n) * pixel_bytes, storage); !error.empty()) {
+  if (std::string error = zstd_decompress(frame, size_t(n) * pixel_bytes, storage, "pixels"); !error.empty()) {
     r.fail("pixels.zstd", error);
     return {};
   }
@@ -488,9 +512,9 @@ std::span<const uint8_t> read_pixel_block(Reader& r, const TileResult& m, std::v
 
 void read(Reader& r, TileResult& m) {
   read_fields(r, m);
-  std::vector<uint8_t> storage;
+  std::vector<uint8_t> storage, surface_storage;
   const std::span<const uint8_t> block = read_pixel_block(r, m, storage);
-  const std::span<const uint8_t> surfaces = read_surface_block(r, m);
+  const std::span<const uint8_t> surfaces = read_surface_block(r, m, surface_storage);
   // Trailing bytes before finiteness: the order decode_tile_result + copy_tile_pixels check them in.
   if (r.ok() && r.remaining() != 0)
     r.fail("TileResult: " + std::to_string(r.remaining()) + " trailing bytes after the payload");
@@ -637,7 +661,7 @@ std::optional<TileResultView> decode_tile_result(std::span<const uint8_t> bytes,
     r.begin(message_name(MessageType::TileResult));
     read_fields(r, view.fields);
     view.pixel_bytes = read_pixel_block(r, view.fields, view.storage);
-    view.surface_bytes = read_surface_block(r, view.fields);
+    view.surface_bytes = read_surface_block(r, view.fields, view.surface_storage);
     if (r.ok() && r.remaining() != 0)
       r.fail("TileResult: " + std::to_string(r.remaining()) + " trailing bytes after the payload");
   }

@@ -47,7 +47,7 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // TileResult its pixels' surfaces (the window's reprojection); CancelFrame. 15: Hello
 // carries the runtime libraries. 16: Welcome carries the units the scene's lamps are read in.
 // 17: Welcome and TileResult carry the pixel block's codec (raw or zstd). 18: pixels
-// as rgb9e5 (a shared exponent, 4 bytes).
+// as rgb9e5 (a shared exponent, 4 bytes); the codec packs the surfaces too.
 inline constexpr uint16_t kVersion = 18;
 
 // Size limits, checked before anything is allocated.
@@ -88,8 +88,9 @@ struct Hello {
   std::string libraries;  // scene/libraries.h: "glibc 2.36, Embree 3.13.5"; named when VPL sets differ
 };
 
-// How a TileResult's pixel block travels: as it is, or compressed with zstd
-// at level 1 (lossless: the decoder gets the very bytes back). A rendered
+// How a TileResult's pixel block (and its surfaces, when it has them) travel:
+// as they are, or compressed with zstd at level 1, each block one frame
+// (lossless: the decoder gets the very bytes back). A rendered
 // tile of half floats takes about half the bytes; a worker spends about
 // 60 us a 64-pixel tile on it and the master about 15 us undoing it
 // (tests/bench/RESULTS.md, "Pixels on the wire").
@@ -120,7 +121,7 @@ struct Welcome {
   // How the glTF file's lamps are read (--light-units): the master's choice,
   // so that every copy of the scene is lit alike.
   LightUnits light_units = LightUnits::Photometric;
-  PixelCodec pixel_codec = PixelCodec::Raw;  // how TileResults pack their pixel block
+  PixelCodec pixel_codec = PixelCodec::Raw;  // how TileResults pack their pixel and surface blocks
 };
 
 struct Refuse {
@@ -166,7 +167,7 @@ struct TileResult {
   // None, or tile.w * tile.h as the pixels (when the frame wants them): depth
   // finite and >= 0, flags only PixelSurface::kViewDependent. 8 bytes each.
   std::vector<PixelSurface> surfaces;
-  PixelCodec pixel_codec = PixelCodec::Raw;  // the pixel block on the wire (a master accepts either)
+  PixelCodec pixel_codec = PixelCodec::Raw;  // the pixel and surface blocks on the wire (a master accepts either)
 };
 
 struct Heartbeat {};

@@ -464,27 +464,46 @@ TEST(Protocol, TileResultSurfacesMatchTheTileAndHoldOnlyWhatTheyMayHold) {
        "TileResult.surfaces: surface 6 has depth nan"},
       {[](TileResult& r) { r.surfaces[7].flags = 2; }, "TileResult.surfaces: surface 7 has flags 2, expected 0 or 1"},
   };
-  for (const auto& c : cases) {
+  // Raw, and packed with the pixels' codec (zstd): the same rules, the same words.
+  for (PixelCodec codec : {PixelCodec::Raw, PixelCodec::Zstd})
+    for (const auto& c : cases) {
+      m = sample_tile_result();
+      m.pixel_codec = codec;
+      c.change(m);
+      const std::vector<uint8_t> bytes = encode(m);
+      const DecodeResult d = decode_copy(bytes);
+      EXPECT_FALSE(d.message) << c.error;
+      EXPECT_EQ(d.error.rfind(c.error, 0), 0u) << d.error;
+      std::string error;
+      EXPECT_FALSE(decode_tile_result(bytes, error)) << c.error;
+      EXPECT_EQ(error, d.error) << "the master's in-place path says the same";
+    }
+  for (PixelCodec codec : {PixelCodec::Raw, PixelCodec::Zstd}) {
     m = sample_tile_result();
-    c.change(m);
+    m.pixel_codec = codec;
     const std::vector<uint8_t> bytes = encode(m);
-    const DecodeResult d = decode_copy(bytes);
-    EXPECT_FALSE(d.message) << c.error;
-    EXPECT_EQ(d.error.rfind(c.error, 0), 0u) << d.error;
     std::string error;
-    EXPECT_FALSE(decode_tile_result(bytes, error)) << c.error;
-    EXPECT_EQ(error, d.error) << "the master's in-place path says the same";
+    const std::optional<TileResultView> view = decode_tile_result(bytes, error);
+    ASSERT_TRUE(view) << error;
+    std::vector<PixelSurface> frame(16 * 10);  // the tile's 8 x 8 at (2, 1) of a 16-wide frame
+    copy_tile_surfaces(*view, &frame[1 * 16 + 2], 16);
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) ASSERT_EQ(frame[size_t(y + 1) * 16 + size_t(x + 2)], m.surfaces[size_t(y) * 8 + x]);
+    EXPECT_EQ(frame[0], PixelSurface{}) << "nothing outside the tile";
+    EXPECT_EQ(std::get<TileResult>(*decode_copy(bytes).message).surfaces, m.surfaces);
   }
+  // A packed surface block that is not the tile's surfaces is refused, by both paths alike.
   m = sample_tile_result();
-  const std::vector<uint8_t> bytes = encode(m);
+  m.pixel_codec = PixelCodec::Zstd;
+  std::vector<uint8_t> bad = encode(m);
+  m.surfaces.clear();
+  const size_t surfaces_at = encode(m).size() - 4;  // the same message without surfaces ends with their count, 0
+  bad[surfaces_at + 8] ^= 0xFF;                       // after the count and the frame's length: its magic number
+  const std::string refused = decode_copy(bad).error;
+  EXPECT_EQ(refused.rfind("TileResult.surfaces.zstd: not a zstd frame of the tile's surfaces", 0), 0u) << refused;
   std::string error;
-  const std::optional<TileResultView> view = decode_tile_result(bytes, error);
-  ASSERT_TRUE(view) << error;
-  std::vector<PixelSurface> frame(16 * 10);  // the tile's 8 x 8 at (2, 1) of a 16-wide frame
-  copy_tile_surfaces(*view, &frame[1 * 16 + 2], 16);
-  for (int y = 0; y < 8; ++y)
-    for (int x = 0; x < 8; ++x) ASSERT_EQ(frame[size_t(y + 1) * 16 + size_t(x + 2)], m.surfaces[size_t(y) * 8 + x]);
-  EXPECT_EQ(frame[0], PixelSurface{}) << "nothing outside the tile";
+  EXPECT_FALSE(decode_tile_result(bad, error));
+  EXPECT_EQ(error, refused);
   // FrameSetup's want_surfaces is a boolean: header 8, id 8, camera 40, size 8, seed and samples 12, jitter 8,
   // time 8, light offset 12 bytes before it.
   std::vector<uint8_t> setup = encode(sample<FrameSetupMsg>());

@@ -75,6 +75,14 @@ TileResult rgb9e5_tile_result() {
   return m;
 }
 
+// The window's frames over a slow link: pixels and surfaces, each block packed.
+TileResult packed_surface_tile_result() {
+  TileResult m = surface_tile_result();
+  m.pixel_format = PixelFormat::Rgb9e5;
+  m.pixel_codec = PixelCodec::Zstd;
+  return m;
+}
+
 FrameSetupMsg frame_setup() {
   FrameSetupMsg m;
   m.frame.frame_id = 3;
@@ -209,6 +217,7 @@ std::vector<Seed> decode_seeds() {
       {"TileResult-surfaces", surface_tile_result()},
       {"TileResult-zstd", zstd_tile_result()},
       {"TileResult-rgb9e5", rgb9e5_tile_result()},
+      {"TileResult-surfaces-zstd", packed_surface_tile_result()},
       {"CancelFrame", CancelFrame{3}},
       {"Heartbeat", Heartbeat{}},
       {"Bye", Bye{"shutting down"}},
