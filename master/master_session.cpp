@@ -114,7 +114,7 @@ MasterSession::MasterSession(const MasterOptions& options, SceneSource scene, zm
   protocol::bind(router_, options.listen);
   endpoint_ = router_.get(zmq::sockopt::last_endpoint);
   scheduler_.force_duplicates(options.force_duplicates);
-  next_sweep_ = Clock::now();
+  next_sweep_ = last_sweep_ = Clock::now();
 }
 
 void MasterSession::log(const std::string& text) const {
@@ -365,7 +365,7 @@ void MasterSession::on_zap_decision(const protocol::ZapDecision& d) {
 
 void MasterSession::handle(const std::string& identity, const protocol::Message& message) {
   auto peer = peers_.find(identity);
-  if (peer != peers_.end()) peer->second.last_heard = Clock::now();
+  if (peer != peers_.end()) heard(peer->second, Clock::now());
   if (auto* hello = std::get_if<protocol::Hello>(&message)) return on_hello(identity, *hello);
   if (peer == peers_.end()) return on_bad_message(identity, "message from a peer that never said hello");
   if (auto* request = std::get_if<protocol::SceneRequest>(&message)) {
@@ -413,6 +413,7 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
   peer.round_trip_ms = 0.0;
   peer.name = "worker-" + std::to_string(next_peer_++);
   peer.last_heard = peer.last_sent = Clock::now();
+  peer.gap_count = 0;
   peer.frames_sent.clear();
   peer.failed_results = 0;
   peer.libraries = hello.libraries;
@@ -455,7 +456,7 @@ protocol::Welcome MasterSession::welcome(uint32_t credits) const {
 void MasterSession::on_result(const std::string& identity, std::span<const uint8_t> bytes) {
   auto peer = peers_.find(identity);
   if (peer == peers_.end()) return on_bad_message(identity, "message from a peer that never said hello");
-  peer->second.last_heard = Clock::now();
+  heard(peer->second, Clock::now());
   scheduler_.heard_result(identity);  // a benched worker works again
   std::string error;
   std::optional<protocol::TileResultView> view = protocol::decode_tile_result(bytes, error);
@@ -726,21 +727,52 @@ void MasterSession::on_dispute(const HashDispute& d) {
   scheduler_.follow_workers();
 }
 
+void MasterSession::heard(Peer& peer, Clock::time_point now) {
+  peer.gaps[peer.gap_count++ % peer.gaps.size()] = std::chrono::duration<float>(now - peer.last_heard).count();
+  peer.last_heard = now;
+}
+
+// How long a peer may be silent before it is declared dead: --timeout-ms, or
+// four times the longest of its last 16 silences, at most four timeouts. A
+// worker on a loaded machine whose messages come ever later gets longer; one
+// that answers steadily, none (its silences stay near a heartbeat).
+MasterSession::Clock::duration MasterSession::patience(const Peer& peer) const {
+  const auto timeout = std::chrono::milliseconds(options_.timeout_ms);
+  const size_t n = std::min<size_t>(peer.gap_count, peer.gaps.size());
+  const float longest = n ? *std::max_element(peer.gaps.begin(), peer.gaps.begin() + long(n)) : 0.0f;
+  const auto learned = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<float>(4.0f * longest));
+  return std::clamp<Clock::duration>(learned, timeout, 4 * timeout);
+}
+
 // Liveness and heartbeats, a few times per heartbeat interval: O(peers), not per message.
 void MasterSession::sweep(Clock::time_point now) {
-  const auto timeout = std::chrono::milliseconds(options_.timeout_ms);
   const auto heartbeat = std::chrono::milliseconds(options_.heartbeat_ms);
-  std::vector<std::string> dead;
+  const auto interval = std::clamp(heartbeat / 4, std::chrono::milliseconds(5), std::chrono::milliseconds(100));
+  // A master that was not listening (its process stopped, or descheduled on
+  // a loaded machine, or a caller that did not pump) has its peers' messages
+  // still queued: that time is not their silence.
+  if (const auto away = now - last_sweep_; away > 2 * interval + heartbeat) {
+    const auto stall = away - interval;
+    for (auto& [identity, peer] : peers_) peer.last_heard += stall;
+    unheard_seconds_ += std::chrono::duration<double>(stall).count();
+  }
+  last_sweep_ = now;
+  std::vector<std::pair<std::string, Clock::duration>> dead;
   for (auto& [identity, peer] : peers_) {
-    if (now - peer.last_heard > timeout) dead.push_back(identity);
+    if (const auto wait = patience(peer); now - peer.last_heard > wait) dead.emplace_back(identity, wait);
     else if (now - peer.last_sent > heartbeat) send(identity, protocol::Heartbeat{});
   }
   declared_dead_ += dead.size();
-  for (const std::string& identity : dead)
-    drop_peer(identity, "silent for " + std::to_string(options_.timeout_ms) +
-                            " ms: declared dead, its jobs go to others (a worker on a loaded machine can be this slow "
+  for (const auto& [identity, wait] : dead) {
+    const long ms = long(std::chrono::duration_cast<std::chrono::milliseconds>(wait).count());
+    drop_peer(identity, "silent for " + std::to_string(ms) + " ms" +
+                            (ms > options_.timeout_ms ? " (four times its longest recent silence; --timeout-ms " +
+                                                            std::to_string(options_.timeout_ms) + ")"
+                                                      : "") +
+                            ": declared dead, its jobs go to others (a worker on a loaded machine can be this slow "
                             "to answer: --timeout-ms gives it longer)");
-  next_sweep_ = now + std::clamp(heartbeat / 4, std::chrono::milliseconds(5), std::chrono::milliseconds(100));
+  }
+  next_sweep_ = now + interval;
 }
 
 void MasterSession::dispatch(const std::vector<JobAssignment>& jobs) {

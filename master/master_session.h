@@ -24,6 +24,7 @@
 // With CURVE keys the ROUTER is a CURVE server and the session answers
 // libzmq's ZAP requests itself (in pump(), no thread): only authorised worker
 // keys complete a handshake; others are logged and counted.
+#include <array>
 #include <chrono>
 #include <functional>
 #include <deque>
@@ -191,6 +192,9 @@ class MasterSession {
   struct Peer {
     std::string name;
     Clock::time_point last_heard, last_sent;
+    // Its last few silences between messages (seconds), for its patience().
+    std::array<float, 16> gaps{};
+    uint32_t gap_count = 0;
     std::set<uint64_t> frames_sent;  // open frames whose setup it has
     int failed_results = 0;
     uint32_t number = 0, threads = 0, credits = 0;
@@ -209,6 +213,8 @@ class MasterSession {
   };
 
   void add_frame(const FrameSetup& frame, const RenderSettings& settings, bool request_hash);
+  static void heard(Peer& peer, Clock::time_point now);
+  Clock::duration patience(const Peer& peer) const;
   void step(Clock::time_point now, std::vector<CompletedFrame>& done);
   void wait_for_traffic(Clock::time_point until);
   void serve_security();
@@ -293,7 +299,8 @@ class MasterSession {
   std::tuple<int, int, int> tiles_cut_{0, 0, 0};  // width, height, border of tiles_
   std::vector<std::string> congested_;           // peers whose send queue was full: dropped after the batch
   std::vector<std::string> vanished_;            // peers whose connection had closed when sent to: dropped after the batch
-  Clock::time_point next_sweep_;
+  Clock::time_point next_sweep_, last_sweep_;
+  double unheard_seconds_ = 0.0;  // time the session was not listening (a stalled master), not counted as silence
   const Clock::time_point began_ = Clock::now();
   uint64_t accepted_ = 0;
   uint64_t bad_messages_ = 0;

@@ -272,6 +272,71 @@ TEST(ClusterFaults, AResumedWorkersBacklogIsStaleNotBad) {
   EXPECT_EQ(session.bad_messages(), 0u);
 }
 
+// A master that stops listening (its process stopped, descheduled on a loaded
+// machine, a caller that did not pump) finds its peers' heartbeats queued when
+// it comes back: that time is not their silence, and no one is declared dead.
+TEST(ClusterFaults, AMasterThatWasNotListeningDeclaresNoOneDead) {
+  zmq::context_t context;
+  const MasterOptions o = parse_master_options({"--workers", "0", "--listen", "inproc://igi-stalled-master", "--frames", "1",
+                                                "--heartbeat-ms", "20", "--timeout-ms", "100", "--no-write",
+                                                "--size", "64x48"});
+  MasterSession session(o, make_scene_source("cornell"), context);
+  zmq::socket_t peer(context, zmq::socket_type::dealer);
+  peer.set(zmq::sockopt::linger, 0);
+  peer.connect("inproc://igi-stalled-master");
+  protocol::send(peer, protocol::Hello{igi::build_id(), "patient", 1});
+  session.pump(20);
+  ASSERT_EQ(session.worker_count(), 1u);
+  testing::internal::CaptureStderr();
+  for (int i = 0; i < 25; ++i) {  // 500 ms, five timeouts, of heartbeats the master does not read
+    protocol::send(peer, protocol::Heartbeat{});
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  for (int i = 0; i < 5; ++i) {
+    protocol::send(peer, protocol::Heartbeat{});
+    session.pump(20);
+  }
+  const std::string log = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(session.worker_count(), 1u) << log;
+  EXPECT_EQ(session.declared_dead(), 0u);
+  EXPECT_EQ(log.find("declared dead"), std::string::npos) << log;
+}
+
+// A worker whose messages come ever later (a loaded machine) gets patience
+// that follows its measured silences: four times the longest recent one, at
+// most four timeouts; silent past that, it is declared dead, and the log says
+// why it waited longer than --timeout-ms.
+TEST(ClusterFaults, AWorkerWhoseMessagesComeLateGetsPatienceThatFollowsThem) {
+  zmq::context_t context;
+  const MasterOptions o = parse_master_options({"--workers", "0", "--listen", "inproc://igi-slow-peer", "--frames", "1",
+                                                "--heartbeat-ms", "20", "--timeout-ms", "200", "--no-write",
+                                                "--size", "64x48"});
+  MasterSession session(o, make_scene_source("cornell"), context);
+  zmq::socket_t peer(context, zmq::socket_type::dealer);
+  peer.set(zmq::sockopt::linger, 0);
+  peer.connect("inproc://igi-slow-peer");
+  protocol::send(peer, protocol::Hello{igi::build_id(), "slow", 1});
+  auto pump_for = [&](int ms) {
+    const auto end = Clock::now() + std::chrono::milliseconds(ms);
+    while (Clock::now() < end) session.pump(5);
+  };
+  testing::internal::CaptureStderr();
+  for (int i = 0; i < 8; ++i) {  // a message every 150 ms: patience 600 ms
+    protocol::send(peer, protocol::Heartbeat{});
+    pump_for(150);
+  }
+  pump_for(400);  // twice --timeout-ms of silence
+  const bool alive = session.worker_count() == 1;
+  const auto end = Clock::now() + std::chrono::seconds(int(5 * test::kSlowdown));
+  while (session.worker_count() == 1 && Clock::now() < end) session.pump(5);  // silent for good
+  const std::string log = testing::internal::GetCapturedStderr();
+  EXPECT_TRUE(alive) << "400 ms of silence from a worker that answers every 150 ms: " << log;
+  EXPECT_EQ(session.worker_count(), 0u);
+  EXPECT_EQ(session.declared_dead(), 1u);
+  EXPECT_NE(log.find("(four times its longest recent silence; --timeout-ms 200): declared dead"), std::string::npos)
+      << log;
+}
+
 // Every message waiting for the peer, without waiting.
 std::vector<protocol::Message> drain(zmq::socket_t& peer) {
   std::vector<protocol::Message> got;
