@@ -272,19 +272,30 @@ TEST(ClusterFaults, AResumedWorkersBacklogIsStaleNotBad) {
   EXPECT_EQ(session.bad_messages(), 0u);
 }
 
+// An in-process master on `endpoint` (inproc) with these liveness options, and
+// a peer connected to it that has said hello.
+struct LivenessRig {
+  LivenessRig(const std::string& endpoint, int heartbeat_ms, int timeout_ms)
+      : session(parse_master_options({"--workers", "0", "--listen", endpoint, "--frames", "1", "--heartbeat-ms",
+                                      std::to_string(heartbeat_ms), "--timeout-ms", std::to_string(timeout_ms),
+                                      "--no-write", "--size", "64x48"}),
+                make_scene_source("cornell"), context) {
+    peer.set(zmq::sockopt::linger, 0);
+    peer.connect(endpoint);
+    protocol::send(peer, protocol::Hello{igi::build_id(), "peer", 1});
+  }
+  zmq::context_t context;
+  MasterSession session;
+  zmq::socket_t peer{context, zmq::socket_type::dealer};
+};
+
 // A master that stops listening (its process stopped, descheduled on a loaded
 // machine, a caller that did not pump) finds its peers' heartbeats queued when
 // it comes back: that time is not their silence, and no one is declared dead.
 TEST(ClusterFaults, AMasterThatWasNotListeningDeclaresNoOneDead) {
-  zmq::context_t context;
-  const MasterOptions o = parse_master_options({"--workers", "0", "--listen", "inproc://igi-stalled-master", "--frames", "1",
-                                                "--heartbeat-ms", "20", "--timeout-ms", "100", "--no-write",
-                                                "--size", "64x48"});
-  MasterSession session(o, make_scene_source("cornell"), context);
-  zmq::socket_t peer(context, zmq::socket_type::dealer);
-  peer.set(zmq::sockopt::linger, 0);
-  peer.connect("inproc://igi-stalled-master");
-  protocol::send(peer, protocol::Hello{igi::build_id(), "patient", 1});
+  LivenessRig rig("inproc://igi-stalled-master", 20, 100);
+  MasterSession& session = rig.session;
+  zmq::socket_t& peer = rig.peer;
   session.pump(20);
   ASSERT_EQ(session.worker_count(), 1u);
   testing::internal::CaptureStderr();
@@ -307,15 +318,9 @@ TEST(ClusterFaults, AMasterThatWasNotListeningDeclaresNoOneDead) {
 // most four timeouts; silent past that, it is declared dead, and the log says
 // why it waited longer than --timeout-ms.
 TEST(ClusterFaults, AWorkerWhoseMessagesComeLateGetsPatienceThatFollowsThem) {
-  zmq::context_t context;
-  const MasterOptions o = parse_master_options({"--workers", "0", "--listen", "inproc://igi-slow-peer", "--frames", "1",
-                                                "--heartbeat-ms", "20", "--timeout-ms", "200", "--no-write",
-                                                "--size", "64x48"});
-  MasterSession session(o, make_scene_source("cornell"), context);
-  zmq::socket_t peer(context, zmq::socket_type::dealer);
-  peer.set(zmq::sockopt::linger, 0);
-  peer.connect("inproc://igi-slow-peer");
-  protocol::send(peer, protocol::Hello{igi::build_id(), "slow", 1});
+  LivenessRig rig("inproc://igi-slow-peer", 20, 200);
+  MasterSession& session = rig.session;
+  zmq::socket_t& peer = rig.peer;
   auto pump_for = [&](int ms) {
     const auto end = Clock::now() + std::chrono::milliseconds(ms);
     while (Clock::now() < end) session.pump(5);
