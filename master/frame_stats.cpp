@@ -23,7 +23,7 @@ nlohmann::ordered_json totals_json(const RunTotals& t, uint64_t tiles) {
   return {{"complete", t.complete}, {"outcome", t.outcome}, {"bad_messages", t.bad_messages},
           {"refused_keys", t.refused_keys},
           {"failed_handshakes", t.failed_handshakes}, {"nonfinite_pixels", t.nonfinite_pixels},
-          {"declared_dead", t.declared_dead},
+          {"declared_dead", t.declared_dead}, {"master_unlistened_seconds", t.unlistened_seconds},
           {"quarantined", t.quarantined}, {"own_tiles", t.own_tiles}, {"benched", t.benched},
           {"master_follows_workers", t.follows_workers}, {"pixel_format", t.pixel_format},
           {"pixel_codec", t.pixel_codec},
@@ -47,6 +47,7 @@ RunTotals run_totals(const MasterSession& session, int io_threads, double cpu_st
   t.refused_keys = session.refused_keys();
   t.failed_handshakes = session.failed_handshakes();
   t.declared_dead = session.declared_dead();
+  t.unlistened_seconds = session.unlistened_seconds();
   t.nonfinite_pixels = session.nonfinite_pixels();
   t.quarantined = session.quarantined();
   t.own_tiles = session.own_tiles();

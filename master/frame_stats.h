@@ -24,6 +24,7 @@ struct RunTotals {
   uint64_t failed_handshakes = 0;  // CURVE: peers without CURVE or the right master key
   uint64_t nonfinite_pixels = 0;   // pixels workers rendered NaN or infinite and sent as black
   uint64_t declared_dead = 0;      // workers silent past --timeout-ms (or not reading), their jobs given to others
+  double unlistened_seconds = 0.0; // time the session was not listening (stalled), not counted as workers' silence
   std::vector<std::string> quarantined;  // "worker-N: why"
   uint64_t own_tiles = 0;          // jobs no worker's result passed for, rendered by the master
   uint64_t benched = 0;            // hoarders given no more jobs until they answered
@@ -34,7 +35,7 @@ struct RunTotals {
   double hash_seconds = 0.0;         // its thread's time on them (off the session thread; ahead of headless frames)
   double peak_rss_mib = 0.0;         // the master's peak memory (its own copy of the scene and BVH included)
   double wall_seconds = 0.0;
-  std::string pixel_format;        // on the wire: float or half
+  std::string pixel_format;        // on the wire: float, half or rgb9e5
   std::string pixel_codec;         // and packed: raw or zstd
   int io_threads = 0;
   bool complete = false;           // false while the run goes on

@@ -754,7 +754,7 @@ void MasterSession::sweep(Clock::time_point now) {
   if (const auto away = now - last_sweep_; away > 2 * interval + heartbeat) {
     const auto stall = away - interval;
     for (auto& [identity, peer] : peers_) peer.last_heard += stall;
-    unheard_seconds_ += std::chrono::duration<double>(stall).count();
+    unlistened_seconds_ += std::chrono::duration<double>(stall).count();
   }
   last_sweep_ = now;
   std::vector<std::pair<std::string, Clock::duration>> dead;

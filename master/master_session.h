@@ -169,6 +169,7 @@ class MasterSession {
   uint64_t refused_keys() const { return refused_keys_; }              // CURVE keys the ZAP handler refused
   uint64_t failed_handshakes() const { return failed_handshakes_; }    // peers without CURVE or the right master key
   uint64_t declared_dead() const { return declared_dead_; }            // workers silent past the timeout, or not reading
+  double unlistened_seconds() const { return unlistened_seconds_; }   // stalls: not counted as workers' silence
   uint64_t nonfinite_pixels() const { return nonfinite_pixels_; }
   uint64_t own_tiles() const { return own_tiles_; }  // jobs the master rendered itself (no worker's result passed)
   uint64_t benched() const { return scheduler_.stats().benched; }  // hoarders given no jobs until they answer
@@ -300,7 +301,7 @@ class MasterSession {
   std::vector<std::string> congested_;           // peers whose send queue was full: dropped after the batch
   std::vector<std::string> vanished_;            // peers whose connection had closed when sent to: dropped after the batch
   Clock::time_point next_sweep_, last_sweep_;
-  double unheard_seconds_ = 0.0;  // time the session was not listening (a stalled master), not counted as silence
+  double unlistened_seconds_ = 0.0;  // time the session was not listening (a stalled master), not counted as silence
   const Clock::time_point began_ = Clock::now();
   uint64_t accepted_ = 0;
   uint64_t bad_messages_ = 0;
