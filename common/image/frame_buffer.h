@@ -1,8 +1,8 @@
 #pragma once
 // One frame's pixels in the format they travel in: three floats, three
-// halves or one shared-exponent word per pixel, row-major, row 0 at the top. The master assembles tiles
-// straight into it (no conversion on its session thread); whoever shows or
-// writes the frame converts it with to_image().
+// halves or one shared-exponent word per pixel, row-major, row 0 at the top.
+// The master assembles tiles straight into it (no conversion on its session
+// thread); whoever shows or writes the frame converts it with to_image().
 #include <cstddef>
 #include <cstdint>
 #include <vector>
