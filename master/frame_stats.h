@@ -36,7 +36,7 @@ struct RunTotals {
   double peak_rss_mib = 0.0;         // the master's peak memory (its own copy of the scene and BVH included)
   double wall_seconds = 0.0;
   std::string pixel_format;        // on the wire: float, half or rgb9e5
-  std::string pixel_codec;         // and packed: raw or zstd
+  std::string pixel_codec;         // and packed: raw, zstd or lz4
   int io_threads = 0;
   bool complete = false;           // false while the run goes on
   std::string outcome = "running"; // then: done, interrupted or failed

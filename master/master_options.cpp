@@ -50,12 +50,12 @@ void add_network_options(CLI::App& app, MasterOptions& o) {
   add_liveness_options(app, o.heartbeat_ms, o.timeout_ms, group);
   app.add_option("--pixels", o.pixels, "pixels on the wire: float, half (6 bytes a pixel, display frames), rgb9e5 "
                  "(4 bytes: 9 bits a channel under a shared exponent, HDR; display frames over slow links, with "
-                 "--pixel-codec zstd) or auto: float when -o is a float file (.exr, .hdr, .pfm, .tif), else half [auto]")
+                 "--pixel-codec zstd or lz4) or auto: float when -o is a float file (.exr, .hdr, .pfm, .tif), else half [auto]")
       ->check(cli::one_of({"auto", "float", "half", "rgb9e5"}))->group(group)->type_name("auto|float|half|rgb9e5");
-  app.add_option("--pixel-codec", o.pixel_codec, "workers pack their tiles' pixels: raw, or zstd (lossless; about half "
-                 "the bytes of rendered half floats, for a few per cent of the master's and workers' CPU): for links "
-                 "slower than the pixels [raw]")
-      ->check(cli::one_of({"raw", "zstd"}))->group(group)->type_name("raw|zstd");
+  app.add_option("--pixel-codec", o.pixel_codec, "workers pack their tiles' pixels (and surfaces): raw, zstd or lz4 "
+                 "(lossless; rendered rgb9e5 display frames take about 1 byte a pixel with zstd, 1.7 with lz4, which "
+                 "the master unpacks in a third of zstd's time): for links slower than the pixels [raw]")
+      ->check(cli::one_of({"raw", "zstd", "lz4"}))->group(group)->type_name("raw|zstd|lz4");
   app.add_option("--io-threads", o.io_threads, "ZeroMQ I/O threads [1]: more pay only past ~100,000 tiles a second")
       ->check(integer(1, cli::kMaxIoThreads))->group(group)->type_name("N");
 }

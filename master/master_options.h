@@ -32,7 +32,7 @@ struct MasterOptions {
   int heartbeat_ms = 250;
   int timeout_ms = 1500;          // a silent worker is dead after this
   std::string pixels = "auto";    // pixel format on the wire: auto (float for float files, else half), float, half
-  std::string pixel_codec = "raw";  // the pixel block on the wire: raw, or zstd (lossless, about half the bytes)
+  std::string pixel_codec = "raw";  // the pixel and surface blocks on the wire: raw, zstd or lz4 (lossless)
   int io_threads = 1;             // ZeroMQ I/O threads (receive and send off the session thread)
   int screenshot_after = 4;       // window: save --screenshot after this many accumulated frames
   bool panel = true;              // window: the panel and the frame rate shown at start (Tab toggles)

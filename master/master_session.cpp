@@ -444,7 +444,9 @@ protocol::Welcome MasterSession::welcome(uint32_t credits) const {
   w.heartbeat_ms = uint32_t(options_.heartbeat_ms);
   w.timeout_ms = uint32_t(options_.timeout_ms);
   w.pixel_format = pixel_format_;
-  w.pixel_codec = options_.pixel_codec == "zstd" ? protocol::PixelCodec::Zstd : protocol::PixelCodec::Raw;
+  w.pixel_codec = options_.pixel_codec == "zstd"  ? protocol::PixelCodec::Zstd
+                  : options_.pixel_codec == "lz4" ? protocol::PixelCodec::Lz4
+                                                  : protocol::PixelCodec::Raw;
   w.environment_map = scene_.map_name;
   w.environment_map_hash = scene_.map_hash;
   w.environment_map_size = scene_.map_size;

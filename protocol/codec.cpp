@@ -9,6 +9,7 @@
 #include <numbers>
 #include <type_traits>
 
+#include <lz4.h>
 #include <zstd.h>
 
 #include "protocol/wire.h"
@@ -44,12 +45,40 @@ std::vector<uint8_t> zstd_compress(std::vector<uint8_t> raw) {
   return packed;
 }
 
-// Decompresses `frame` into `out`, which must come out exactly `size` bytes
-// (`what`: "pixels" or "surfaces", for the error); returns "" or what was
-// wrong. Never writes more than `size` bytes.
-std::string zstd_decompress(std::span<const uint8_t> frame, size_t size, std::vector<uint8_t>& out, const char* what) {
+std::vector<uint8_t> lz4_compress(std::vector<uint8_t> raw) {
+  std::vector<uint8_t> packed(size_t(LZ4_compressBound(int(raw.size()))));
+  const int n = LZ4_compress_default(reinterpret_cast<const char*>(raw.data()), reinterpret_cast<char*>(packed.data()),
+                                     int(raw.size()), int(packed.size()));
+  if (n <= 0) return raw;  // cannot happen with a bound-sized buffer; the decoder would then refuse
+  packed.resize(size_t(n));
+  return packed;
+}
+
+// A block's bytes packed by `codec` (not Raw).
+std::vector<uint8_t> pack(PixelCodec codec, std::vector<uint8_t> raw) {
+  return codec == PixelCodec::Lz4 ? lz4_compress(std::move(raw)) : zstd_compress(std::move(raw));
+}
+
+// The field a packed block is read as: "pixels.zstd", "surfaces.lz4", ...
+std::string packed_field(const char* block, PixelCodec codec) {
+  return std::string(block) + "." + pixel_codec_name(codec);
+}
+
+// Unpacks `packed` (by `codec`, not Raw) into `out`, which must come out
+// exactly `size` bytes (`what`: "pixels" or "surfaces", for the error);
+// returns "" or what was wrong. Never writes more than `size` bytes.
+std::string unpack(PixelCodec codec, std::span<const uint8_t> packed, size_t size, std::vector<uint8_t>& out,
+                   const char* what) {
   out.resize(size);
-  const size_t n = ZSTD_decompressDCtx(zstd_contexts().decompress, out.data(), out.size(), frame.data(), frame.size());
+  if (codec == PixelCodec::Lz4) {
+    const int n = LZ4_decompress_safe(reinterpret_cast<const char*>(packed.data()), reinterpret_cast<char*>(out.data()),
+                                      int(packed.size()), int(out.size()));
+    if (n < 0) return std::string("not an lz4 block of the tile's ") + what;
+    if (size_t(n) != size)
+      return "the lz4 block holds " + std::to_string(n) + " bytes, the tile's " + what + " are " + std::to_string(size);
+    return "";
+  }
+  const size_t n = ZSTD_decompressDCtx(zstd_contexts().decompress, out.data(), out.size(), packed.data(), packed.size());
   if (ZSTD_isError(n)) return std::string("not a zstd frame of the tile's ") + what + ": " + ZSTD_getErrorName(n);
   if (n != size)
     return "the zstd frame holds " + std::to_string(n) + " bytes, the tile's " + what + " are " + std::to_string(size);
@@ -247,7 +276,7 @@ void write(Writer& w, const Welcome& m) {
 
 PixelCodec read_pixel_codec(Reader& r, const char* field) {
   const uint8_t codec = r.u8(field);
-  check_range(r, field, codec, 0, static_cast<uint8_t>(PixelCodec::Zstd));
+  check_range(r, field, codec, 0, static_cast<uint8_t>(PixelCodec::Lz4));
   return r.ok() ? PixelCodec(codec) : PixelCodec::Raw;
 }
 
@@ -399,11 +428,11 @@ void write(Writer& w, const TileResult& m) {
       case PixelFormat::Rgb9e5: to.rgb9e5s(values, m.pixels.size()); break;
     }
   };
-  if (m.pixel_codec == PixelCodec::Zstd) {
+  if (m.pixel_codec != PixelCodec::Raw) {
     Writer raw;
     raw.reserve(m.pixels.size() * bytes_per_pixel(m.pixel_format));
     write_pixels(raw);
-    w.bytes(zstd_compress(raw.take()));  // u32 length + the zstd frame
+    w.bytes(pack(m.pixel_codec, raw.take()));  // u32 length + the zstd frame or lz4 block
   } else {
     w.reserve(m.pixels.size() * bytes_per_pixel(m.pixel_format));
     write_pixels(w);
@@ -417,10 +446,10 @@ void write(Writer& w, const TileResult& m) {
       to.u8(s.flags);
     }
   };
-  if (m.pixel_codec == PixelCodec::Zstd && !m.surfaces.empty()) {
+  if (m.pixel_codec != PixelCodec::Raw && !m.surfaces.empty()) {
     Writer raw;
     write_surfaces(raw);
-    w.bytes(zstd_compress(raw.take()));
+    w.bytes(pack(m.pixel_codec, raw.take()));
   } else {
     write_surfaces(w);
   }
@@ -435,20 +464,21 @@ PixelSurface read_surface(Reader& r) {
 }
 
 // The surfaces block: none, or one per pixel, each checked. Returns its
-// bytes: the message's own, or for zstd the block decompressed into `storage`.
+// bytes: the message's own, or when packed the block unpacked into `storage`.
 std::span<const uint8_t> read_surface_block(Reader& r, const TileResult& m, std::vector<uint8_t>& storage) {
-  const bool zstd = m.pixel_codec == PixelCodec::Zstd;
-  const uint32_t n = zstd ? r.u32("surfaces") : r.count("surfaces", kSurfaceBytes, size_t(kMaxTileSide) * kMaxTileSide);
+  const bool packed = m.pixel_codec != PixelCodec::Raw;
+  const uint32_t n = packed ? r.u32("surfaces") : r.count("surfaces", kSurfaceBytes, size_t(kMaxTileSide) * kMaxTileSide);
   const size_t expected = size_t(m.tile.w) * size_t(m.tile.h);
   if (r.ok() && n != 0 && n != expected)
     r.fail("surfaces", std::to_string(n) + " surfaces, expected 0 or " + std::to_string(expected));
   if (!r.ok() || n == 0) return {};
   std::span<const uint8_t> block;
-  if (zstd) {
-    const std::span<const uint8_t> frame = r.span("surfaces.zstd", r.u32("surfaces.zstd"));
+  if (packed) {
+    const std::string field = packed_field("surfaces", m.pixel_codec);
+    const std::span<const uint8_t> frame = r.span(field.c_str(), r.u32(field.c_str()));
     if (!r.ok()) return {};
-    if (std::string error = zstd_decompress(frame, size_t(n) * kSurfaceBytes, storage, "surfaces"); !error.empty()) {
-      r.fail("surfaces.zstd", error);
+    if (std::string error = unpack(m.pixel_codec, frame, size_t(n) * kSurfaceBytes, storage, "surfaces"); !error.empty()) {
+      r.fail(field.c_str(), error);
       return {};
     }
     block = storage;
@@ -487,24 +517,24 @@ void read_fields(Reader& r, TileResult& m) {
 
 // The pixel block: its count must match the tile before anything is allocated
 // or read for it. Returns its bytes, unchecked for finiteness: the message's
-// own, or for zstd the block decompressed into `storage` (exactly the tile's
+// own, or when packed the block unpacked into `storage` (exactly the tile's
 // pixels, or an error: never more bytes than the tile holds).
 std::span<const uint8_t> read_pixel_block(Reader& r, const TileResult& m, std::vector<uint8_t>& storage) {
   const size_t pixel_bytes = bytes_per_pixel(m.pixel_format);
-  const bool zstd = m.pixel_codec == PixelCodec::Zstd;
-  // Raw: the count must fit in what is left; zstd: the block is checked below.
-  const uint32_t n = zstd ? r.u32("pixels") : r.count("pixels", pixel_bytes, size_t(kMaxTileSide) * kMaxTileSide);
+  const bool packed = m.pixel_codec != PixelCodec::Raw;
+  // Raw: the count must fit in what is left; packed: the block is checked below.
+  const uint32_t n = packed ? r.u32("pixels") : r.count("pixels", pixel_bytes, size_t(kMaxTileSide) * kMaxTileSide);
   const size_t expected = size_t(m.tile.w) * size_t(m.tile.h);
   if (r.ok() && n != expected)
     r.fail("pixels", std::to_string(n) + " pixels, expected " + std::to_string(m.tile.w) + " x " +
                          std::to_string(m.tile.h) + " = " + std::to_string(expected));
   if (!r.ok()) return {};
-  if (!zstd) return r.span("pixels", size_t(n) * pixel_bytes);
-  const uint32_t packed = r.u32("pixels.zstd");
-  const std::span<const uint8_t> frame = r.span("pixels.zstd", packed);
+  if (!packed) return r.span("pixels", size_t(n) * pixel_bytes);
+  const std::string field = packed_field("pixels", m.pixel_codec);
+  const std::span<const uint8_t> block = r.span(field.c_str(), r.u32(field.c_str()));
   if (!r.ok()) return {};
-  if (std::string error = zstd_decompress(frame, size_t(n) * pixel_bytes, storage, "pixels"); !error.empty()) {
-    r.fail("pixels.zstd", error);
+  if (std::string error = unpack(m.pixel_codec, block, size_t(n) * pixel_bytes, storage, "pixels"); !error.empty()) {
+    r.fail(field.c_str(), error);
     return {};
   }
   return storage;

@@ -19,7 +19,14 @@ const char* message_name(MessageType type) {
   return "Unknown";
 }
 
-const char* pixel_codec_name(PixelCodec codec) { return codec == PixelCodec::Zstd ? "zstd" : "raw"; }
+const char* pixel_codec_name(PixelCodec codec) {
+  switch (codec) {
+    case PixelCodec::Raw: return "raw";
+    case PixelCodec::Zstd: return "zstd";
+    case PixelCodec::Lz4: return "lz4";
+  }
+  return "unknown";
+}
 
 namespace {
 struct TypeOf {

@@ -47,7 +47,7 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // TileResult its pixels' surfaces (the window's reprojection); CancelFrame. 15: Hello
 // carries the runtime libraries. 16: Welcome carries the units the scene's lamps are read in.
 // 17: Welcome and TileResult carry the pixel block's codec (raw or zstd). 18: pixels
-// as rgb9e5 (a shared exponent, 4 bytes); the codec packs the surfaces too.
+// as rgb9e5 (a shared exponent, 4 bytes); the codec packs the surfaces too; lz4.
 inline constexpr uint16_t kVersion = 18;
 
 // Size limits, checked before anything is allocated.
@@ -89,12 +89,12 @@ struct Hello {
 };
 
 // How a TileResult's pixel block (and its surfaces, when it has them) travel:
-// as they are, or compressed with zstd at level 1, each block one frame
-// (lossless: the decoder gets the very bytes back). A rendered
-// tile of half floats takes about half the bytes; a worker spends about
-// 60 us a 64-pixel tile on it and the master about 15 us undoing it
-// (tests/bench/RESULTS.md, "Pixels on the wire").
-enum class PixelCodec : uint8_t { Raw = 0, Zstd = 1 };
+// as they are, or packed losslessly (the decoder gets the very bytes back),
+// each block one zstd frame (level 1) or one lz4 block. Rendered display
+// frames: zstd takes the fewest bytes, lz4 about 1.6 times as many and the
+// master a third of zstd's time to unpack them (tests/bench/RESULTS.md,
+// "Pixels on the wire").
+enum class PixelCodec : uint8_t { Raw = 0, Zstd = 1, Lz4 = 2 };
 const char* pixel_codec_name(PixelCodec codec);
 
 struct Welcome {

@@ -11,7 +11,7 @@ packages=(
   libglfw3-dev libgl-dev libglm-dev libimgui-dev   # libimgui-dev: the window's panels (its GLFW and OpenGL 2 backends are in libimgui.a)
   libzmq3-dev cppzmq-dev
   libxxhash-dev                        # XXH3 content hashes (scenes, VPL sets)
-  libzstd-dev                          # tile pixels compressed on the wire (--pixel-codec zstd)
+  libzstd-dev liblz4-dev               # tile pixels compressed on the wire (--pixel-codec zstd, lz4)
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libtinyobjloader-dev                 # OBJ scenes (common/scene/obj_loader.cpp: the header alone)
   libcli11-dev                         # command-line options of every program

@@ -333,53 +333,62 @@ TEST(Protocol, TileResultViewAgreesWithDecodeAndCopiesIntoAFrame) {
   EXPECT_EQ(error, "Heartbeat where a TileResult was expected");
 }
 
-// zstd-packed pixels (--pixel-codec zstd): the same pixels as the raw block,
-// fewer bytes for a rendered-looking tile, and a block that is not the tile's
-// pixels refused with a clear error, never more than the tile allocated.
-TEST(Protocol, ZstdPixelsDecodeToTheRawBlockAndBadBlocksAreRefused) {
-  for (PixelFormat format : {PixelFormat::Float32, PixelFormat::Float16}) {
-    TileResult raw = sample_tile_result();
-    raw.pixel_format = format;
-    raw.tile.w = raw.tile.h = 32;
-    raw.pixels.clear();
-    raw.surfaces.clear();
-    for (int y = 0; y < 32; ++y)  // a smooth wall (rendered tiles' ratios: tests/bench/RESULTS.md)
-      for (int x = 0; x < 32; ++x) raw.pixels.push_back(glm::vec3(0.4f + 0.01f * float(x % 8), 0.3f, 0.2f + 0.005f * float(y % 4)));
-    TileResult zstd = raw;
-    zstd.pixel_codec = PixelCodec::Zstd;
-    const std::vector<uint8_t> raw_bytes = encode(raw), zstd_bytes = encode(zstd);
-    EXPECT_LT(zstd_bytes.size(), raw_bytes.size() * 3 / 4) << pixel_format_name(format);
-    const DecodeResult a = decode_copy(raw_bytes), b = decode_copy(zstd_bytes);
-    ASSERT_TRUE(a.message && b.message) << a.error << b.error;
-    const auto& pa = std::get<TileResult>(*a.message).pixels;
-    const auto& pb = std::get<TileResult>(*b.message).pixels;
-    ASSERT_EQ(pa.size(), pb.size());
-    for (size_t i = 0; i < pa.size(); ++i) ASSERT_TRUE(same(pa[i], pb[i])) << i;
-    std::string error;
-    const std::optional<TileResultView> va = decode_tile_result(raw_bytes, error), vb = decode_tile_result(zstd_bytes, error);
-    ASSERT_TRUE(va && vb) << error;
-    ASSERT_TRUE(std::equal(va->pixel_bytes.begin(), va->pixel_bytes.end(), vb->pixel_bytes.begin(), vb->pixel_bytes.end()));
-    // The zstd block sits after the count: u32 length, then the frame.
-    const size_t block_at = 8 + 16 + 20 + 4 + 8 + 24 + 4 + 1 + 1 + 4;
-    std::vector<uint8_t> bad = zstd_bytes;
-    bad[block_at + 4] ^= 0xFF;  // the frame's magic number
-    EXPECT_EQ(decode_copy(bad).error.rfind("TileResult.pixels.zstd: not a zstd frame of the tile's pixels", 0), 0u)
-        << decode_copy(bad).error;
-    EXPECT_FALSE(decode_tile_result(bad, error));
-    EXPECT_EQ(error, decode_copy(bad).error);
-    bad = zstd_bytes;
-    bad[block_at + 3] = 0x7F;  // a length past the message
-    EXPECT_EQ(decode_copy(bad).error.rfind("TileResult.pixels.zstd: truncated", 0), 0u) << decode_copy(bad).error;
-    // A well-formed frame of the wrong size: a tile that claims 16 x 32 pixels.
-    bad = zstd_bytes;
-    TileResult half_tile = zstd;
-    half_tile.tile.h = 16;
-    half_tile.pixels.resize(16 * 32);
-    const std::vector<uint8_t> small = encode(half_tile);
-    std::copy_n(small.begin() + 24, 20, bad.begin() + 24);      // the tile's rectangle
-    std::copy_n(small.begin() + 86, 4, bad.begin() + 86);       // the pixel count
-    EXPECT_NE(decode_copy(bad).error.find("TileResult.pixels.zstd"), std::string::npos) << decode_copy(bad).error;
-  }
+// Packed pixels (--pixel-codec zstd or lz4): the same pixels as the raw
+// block, fewer bytes for a rendered-looking tile, and a block that is not the
+// tile's pixels refused with a clear error, never more than the tile allocated.
+TEST(Protocol, PackedPixelsDecodeToTheRawBlockAndBadBlocksAreRefused) {
+  for (PixelCodec codec : {PixelCodec::Zstd, PixelCodec::Lz4})
+    for (PixelFormat format : {PixelFormat::Float32, PixelFormat::Float16, PixelFormat::Rgb9e5}) {
+      const std::string name = std::string(pixel_codec_name(codec)) + " " + pixel_format_name(format);
+      const std::string field = std::string("TileResult.pixels.") + pixel_codec_name(codec);
+      TileResult raw = sample_tile_result();
+      raw.pixel_format = format;
+      raw.tile.w = raw.tile.h = 32;
+      raw.pixels.clear();
+      raw.surfaces.clear();
+      for (int y = 0; y < 32; ++y)  // a smooth wall (rendered tiles' ratios: tests/bench/RESULTS.md)
+        for (int x = 0; x < 32; ++x)
+          raw.pixels.push_back(glm::vec3(0.4f + 0.01f * float(x % 8), 0.3f, 0.2f + 0.005f * float(y % 4)));
+      TileResult packed = raw;
+      packed.pixel_codec = codec;
+      const std::vector<uint8_t> raw_bytes = encode(raw), packed_bytes = encode(packed);
+      EXPECT_LT(packed_bytes.size(), raw_bytes.size() * 3 / 4) << name;
+      const DecodeResult a = decode_copy(raw_bytes), b = decode_copy(packed_bytes);
+      ASSERT_TRUE(a.message && b.message) << a.error << b.error;
+      const auto& pa = std::get<TileResult>(*a.message).pixels;
+      const auto& pb = std::get<TileResult>(*b.message).pixels;
+      ASSERT_EQ(pa.size(), pb.size());
+      for (size_t i = 0; i < pa.size(); ++i) ASSERT_TRUE(same(pa[i], pb[i])) << i;
+      std::string error;
+      const std::optional<TileResultView> va = decode_tile_result(raw_bytes, error),
+                                          vb = decode_tile_result(packed_bytes, error);
+      ASSERT_TRUE(va && vb) << error;
+      ASSERT_TRUE(std::equal(va->pixel_bytes.begin(), va->pixel_bytes.end(), vb->pixel_bytes.begin(), vb->pixel_bytes.end()));
+      // The packed block sits after the count: u32 length, then the block.
+      const size_t block_at = 8 + 16 + 20 + 4 + 8 + 24 + 4 + 1 + 1 + 4;
+      uint32_t length;
+      std::memcpy(&length, packed_bytes.data() + block_at, 4);
+      std::vector<uint8_t> bad = packed_bytes;
+      if (codec == PixelCodec::Zstd) bad[block_at + 4] ^= 0xFF;  // the frame's magic number
+      else std::fill_n(bad.begin() + long(block_at) + 4, length, uint8_t(0xFF));  // literals past the block's end
+      const std::string not_it = codec == PixelCodec::Zstd ? ": not a zstd frame of the tile's pixels"
+                                                           : ": not an lz4 block of the tile's pixels";
+      EXPECT_EQ(decode_copy(bad).error.rfind(field + not_it, 0), 0u) << decode_copy(bad).error;
+      EXPECT_FALSE(decode_tile_result(bad, error));
+      EXPECT_EQ(error, decode_copy(bad).error);
+      bad = packed_bytes;
+      bad[block_at + 3] = 0x7F;  // a length past the message
+      EXPECT_EQ(decode_copy(bad).error.rfind(field + ": truncated", 0), 0u) << decode_copy(bad).error;
+      // A well-formed block of the wrong size: a tile that claims 16 x 32 pixels.
+      bad = packed_bytes;
+      TileResult half_tile = packed;
+      half_tile.tile.h = 16;
+      half_tile.pixels.resize(16 * 32);
+      const std::vector<uint8_t> small = encode(half_tile);
+      std::copy_n(small.begin() + 24, 20, bad.begin() + 24);      // the tile's rectangle
+      std::copy_n(small.begin() + 86, 4, bad.begin() + 86);       // the pixel count
+      EXPECT_NE(decode_copy(bad).error.find(field), std::string::npos) << decode_copy(bad).error;
+    }
 }
 
 // Shared-exponent pixels (--pixels rgb9e5): 4 bytes a pixel on the wire, each
@@ -389,7 +398,7 @@ TEST(Protocol, Rgb9e5PixelsTravelAsTheirRoundingInFourBytes) {
   TileResult m = sample_tile_result();
   m.pixel_format = PixelFormat::Rgb9e5;
   m.pixels[5] = glm::vec3(-1.0f, 70000.0f, 1e-9f);  // outside the range: 0, the top, 0
-  for (PixelCodec codec : {PixelCodec::Raw, PixelCodec::Zstd}) {
+  for (PixelCodec codec : {PixelCodec::Raw, PixelCodec::Zstd, PixelCodec::Lz4}) {
     m.pixel_codec = codec;
     const std::vector<uint8_t> bytes = encode(m);
     if (codec == PixelCodec::Raw) {
@@ -464,8 +473,8 @@ TEST(Protocol, TileResultSurfacesMatchTheTileAndHoldOnlyWhatTheyMayHold) {
        "TileResult.surfaces: surface 6 has depth nan"},
       {[](TileResult& r) { r.surfaces[7].flags = 2; }, "TileResult.surfaces: surface 7 has flags 2, expected 0 or 1"},
   };
-  // Raw, and packed with the pixels' codec (zstd): the same rules, the same words.
-  for (PixelCodec codec : {PixelCodec::Raw, PixelCodec::Zstd})
+  // Raw, and packed with the pixels' codec: the same rules, the same words.
+  for (PixelCodec codec : {PixelCodec::Raw, PixelCodec::Zstd, PixelCodec::Lz4})
     for (const auto& c : cases) {
       m = sample_tile_result();
       m.pixel_codec = codec;
@@ -478,7 +487,7 @@ TEST(Protocol, TileResultSurfacesMatchTheTileAndHoldOnlyWhatTheyMayHold) {
       EXPECT_FALSE(decode_tile_result(bytes, error)) << c.error;
       EXPECT_EQ(error, d.error) << "the master's in-place path says the same";
     }
-  for (PixelCodec codec : {PixelCodec::Raw, PixelCodec::Zstd}) {
+  for (PixelCodec codec : {PixelCodec::Raw, PixelCodec::Zstd, PixelCodec::Lz4}) {
     m = sample_tile_result();
     m.pixel_codec = codec;
     const std::vector<uint8_t> bytes = encode(m);
@@ -621,7 +630,7 @@ TEST(Protocol, EveryFieldRuleIsEnforced) {
       {edited<Welcome>([](Welcome& m) { m.timeout_ms = 49; }), "Welcome.timeout_ms: 49, expected [50, 3600000]"},
       {edited<Welcome>([](Welcome& m) { m.timeout_ms = 3600001; }), "Welcome.timeout_ms"},
       {edited<Welcome>([](Welcome& m) { m.pixel_format = PixelFormat(7); }), "Welcome.pixel_format: 7, expected [0, 2]"},
-      {edited<Welcome>([](Welcome& m) { m.pixel_codec = PixelCodec(2); }), "Welcome.pixel_codec: 2, expected [0, 1]"},
+      {edited<Welcome>([](Welcome& m) { m.pixel_codec = PixelCodec(3); }), "Welcome.pixel_codec: 3, expected [0, 2]"},
       {edited<Bye>([](Bye& m) { m.kind = ByeKind(3); }), "Bye.kind: 3, expected [0, 2]"},
   };
   for (const Case& c : cases) {
@@ -691,7 +700,7 @@ TEST(Protocol, HugeLengthsAndBadBytesAreRejectedBeforeUse) {
   EXPECT_EQ(patched(sample<TileResult>(), nonfinite_at, all_ones),
             "TileResult.nonfinite_pixels: 4294967295, expected [0, 64]");
   EXPECT_EQ(patched(sample<TileResult>(), nonfinite_at + 4, {3}), "TileResult.pixel_format: 3, expected [0, 2]");
-  EXPECT_EQ(patched(sample<TileResult>(), nonfinite_at + 5, {2}), "TileResult.pixel_codec: 2, expected [0, 1]");
+  EXPECT_EQ(patched(sample<TileResult>(), nonfinite_at + 5, {3}), "TileResult.pixel_codec: 3, expected [0, 2]");
   EXPECT_EQ(patched(sample<TileResult>(), pixels_at, all_ones),
             "TileResult.pixels: count 4294967295 over the limit of 1048576");
   EXPECT_EQ(patched(sample_half_tile_result(), pixels_at, {0, 1, 0, 0}),

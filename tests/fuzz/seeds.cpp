@@ -75,6 +75,13 @@ TileResult rgb9e5_tile_result() {
   return m;
 }
 
+// --pixel-codec lz4: the float tile's pixel block as one lz4 block.
+TileResult lz4_tile_result() {
+  TileResult m = tile_result();
+  m.pixel_codec = PixelCodec::Lz4;
+  return m;
+}
+
 // The window's frames over a slow link: pixels and surfaces, each block packed.
 TileResult packed_surface_tile_result() {
   TileResult m = surface_tile_result();
@@ -218,6 +225,7 @@ std::vector<Seed> decode_seeds() {
       {"TileResult-zstd", zstd_tile_result()},
       {"TileResult-rgb9e5", rgb9e5_tile_result()},
       {"TileResult-surfaces-zstd", packed_surface_tile_result()},
+      {"TileResult-lz4", lz4_tile_result()},
       {"CancelFrame", CancelFrame{3}},
       {"Heartbeat", Heartbeat{}},
       {"Bye", Bye{"shutting down"}},

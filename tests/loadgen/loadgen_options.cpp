@@ -25,8 +25,8 @@ void add_load_options(CLI::App& app, LoadgenOptions& o) {
   app.add_option("--tile", o.tile, "tile side [32]")->check(integer(1, protocol::kMaxTileSide))->type_name("T");
   app.add_option("--pixels", o.pixels, "the master's --pixels: half, float or rgb9e5 [half]")
       ->check(cli::one_of({"half", "float", "rgb9e5"}));
-  app.add_option("--pixel-codec", o.pixel_codec, "the master's --pixel-codec: raw or zstd [raw]")
-      ->check(cli::one_of({"raw", "zstd"}));
+  app.add_option("--pixel-codec", o.pixel_codec, "the master's --pixel-codec: raw, zstd or lz4 [raw]")
+      ->check(cli::one_of({"raw", "zstd", "lz4"}));
   app.add_option("--picture", o.picture, "the simulated tiles' pixels: this image's (a frame rendered at --size, "
                  "e.g. by igi-render -o F.exr), not a gradient that flatters any codec")
       ->check(CLI::ExistingFile)->type_name("FILE");
@@ -110,7 +110,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     throw cli::OptionError("CURVE needs both --key WORKER.key and --master-key MASTER.pub");
   if ((c.nan_every > 0) && (c.run.pixels == "rgb9e5" || c.run.pixel_codec != "raw"))
     throw cli::OptionError("--nan-every writes a NaN into raw half or float pixels: not with --pixels rgb9e5 (no "
-                           "NaN there) or --pixel-codec zstd");
+                           "NaN there) or a packing --pixel-codec");
   return c;
 }
 
