@@ -30,7 +30,7 @@ struct DecodeResult {
 };
 
 // Never throws on bad bytes, never reads out of bounds, never allocates more
-// than the bytes could justify, but for zstd blocks: one unpacks to at most its
+// than the bytes could justify, but for packed blocks: one unpacks to at most its
 // tile's pixels (at most a 1024 x 1024 float tile, 12.6 MB, the largest raw
 // result a peer may send) or surfaces (8.4 MB), or is refused. A peer speaking another
 // protocol version gets "protocol version N, this build speaks M".
@@ -41,9 +41,9 @@ DecodeResult decode(std::span<const uint8_t> bytes);
 struct TileResultView {
   TileResult fields;                      // every field but `pixels`, which stays empty
   std::span<const uint8_t> pixel_bytes;   // tile.w * tile.h pixels in fields.pixel_format
-  std::vector<uint8_t> storage;           // zstd: pixel_bytes decompressed (the view owns them)
+  std::vector<uint8_t> storage;           // packed: pixel_bytes unpacked (the view owns them)
   std::span<const uint8_t> surface_bytes; // none, or tile.w * tile.h surfaces (8 bytes each, checked)
-  std::vector<uint8_t> surface_storage;   // zstd: surface_bytes decompressed
+  std::vector<uint8_t> surface_storage;   // packed: surface_bytes unpacked
 
   // Moves keep pixel_bytes and surface_bytes pointing into their storage (a vector's move keeps its
   // buffer); a copy would point into the original's, so there is none.
