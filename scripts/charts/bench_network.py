@@ -9,8 +9,9 @@ on the link's address, so CURVE is on (the master refuses a network endpoint
 without it); simulated workers (igi-loadgen, answering with the tiles of a
 frame igi-render rendered: real pixels) and real igi-worker processes run in
 the other. For each frame size and pixel format and codec: frames a second
-(the workers paced for --fps, 40: more than the 30 asked of the master), bytes a pixel into the master, the master's CPU a tile and
-a frame. A loopback pair with and without CURVE gives CURVE's own cost.
+(the workers paced for --fps, 40: more than the 30 asked of the master), bytes
+a pixel into the master, the master's CPU a tile and a frame. A loopback pair
+with and without CURVE gives CURVE's own cost.
 
 Needs root (ip netns, tc). Results in results/network/: network.csv, summary.md.
 """
