@@ -50,9 +50,13 @@ FrameSetup MotionPlanner::next(const MovingView& view, RenderSettings& settings,
   if (!view.follow_camera) f.camera = view.camera;  // else where the animation puts it at the frame's time
   f.width /= preview.divisor;
   f.height /= preview.divisor;
-  f.want_surfaces = options_.reproject && !animated;
+  // Surfaces for every moving frame and preview; at a still view, until a
+  // full-size frame with them has come (its pixels' surfaces do not change
+  // from pass to pass: a pixel's centre ray, the same camera).
+  const std::pair<uint64_t, uint64_t> here{view.camera_generation, view.settings_generation};
+  f.want_surfaces = options_.reproject && !animated && surfaces_for_ != here;
   settings = preview_settings(view.settings, preview);
-  planned_[f.frame_id] = {view.camera_generation, view.settings_generation, level, moving};
+  planned_[f.frame_id] = {view.camera_generation, view.settings_generation, level, moving, f.want_surfaces};
   return f;
 }
 
@@ -64,6 +68,8 @@ PlannedFrame MotionPlanner::completed(uint64_t frame_id, double seconds) {
   // Cancelled frames never come: forget those planned before this one.
   planned_.erase(planned_.begin(), planned_.lower_bound(frame_id));
   budget_.measured(p.level, seconds);
+  if (p.surfaces && budget_.levels()[size_t(p.level)].divisor == 1)
+    surfaces_for_ = {p.camera_generation, p.settings_generation};
   return p;
 }
 

@@ -45,6 +45,7 @@ struct PlannedFrame {
   uint64_t camera_generation = 0, settings_generation = 0;
   int level = 0;        // index into FrameBudget::levels()
   bool moving = false;
+  bool surfaces = false;  // it asked for its pixels' surfaces
 };
 
 // A completed frame as the view's history takes it.
@@ -84,6 +85,10 @@ class MotionPlanner {
   uint64_t settings_generation_ = ~uint64_t(0), camera_generation_ = ~uint64_t(0);
   uint64_t seen_settings_ = ~uint64_t(0), seen_camera_ = ~uint64_t(0);  // the view turn() last cancelled for
   Clock::time_point camera_moved_{};  // when next() last saw a new camera
+  // The view (camera, settings generation) a full-size frame with surfaces
+  // has completed for: the window's history keeps only that one's while the
+  // camera stands still (view_history.h), so later passes ask for none.
+  std::pair<uint64_t, uint64_t> surfaces_for_{~uint64_t(0), ~uint64_t(0)};
   int pass_ = 0, still_passes_ = 0, animation_frame_ = 0;
 };
 

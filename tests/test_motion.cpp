@@ -255,6 +255,35 @@ TEST_F(MotionPlannerTest, PassesCountOnThroughMovesAndStartOverWithNewSettings) 
   EXPECT_EQ(d.seed, a.seed) << "new settings: passes start over";
 }
 
+// The window's history keeps one full-size frame's surfaces while the camera
+// stands still (view_history.h): a still view asks for them until such a
+// frame has come, a preview's do not count, and a move or new settings ask again.
+TEST_F(MotionPlannerTest, AStillViewAsksForSurfacesUntilAFullFrameBringsThem) {
+  MotionPlanner planner(options, scene, 40.0);
+  RenderSettings s;
+  const auto t0 = MotionPlanner::Clock::now();
+  const FrameSetup a = planner.next(view(0), s, t0);
+  const FrameSetup a2 = planner.next(view(0), s, t0);
+  EXPECT_TRUE(a.want_surfaces);
+  EXPECT_TRUE(a2.want_surfaces) << "none has come yet";
+  planner.completed(a.frame_id, 0.1);
+  EXPECT_FALSE(planner.next(view(0), s, t0).want_surfaces) << "a full frame of this view brought them";
+  const FrameSetup moved = planner.next(view(1), s, t0 + std::chrono::milliseconds(10));
+  ASSERT_LT(moved.width, 640) << "a moving frame is a preview";
+  EXPECT_TRUE(moved.want_surfaces);
+  planner.completed(moved.frame_id, 0.01);
+  const FrameSetup still = planner.next(view(1), s, t0 + std::chrono::milliseconds(400));
+  ASSERT_EQ(still.width, 640);
+  EXPECT_TRUE(still.want_surfaces) << "a preview's surfaces are coarser than the history keeps";
+  planner.completed(still.frame_id, 0.1);
+  EXPECT_FALSE(planner.next(view(1), s, t0 + std::chrono::milliseconds(500)).want_surfaces);
+  EXPECT_TRUE(planner.next(view(1, 1), s, t0 + std::chrono::milliseconds(600)).want_surfaces)
+      << "new settings start the history over";
+  options.reproject = false;
+  MotionPlanner off(options, scene, 40.0);
+  EXPECT_FALSE(off.next(view(0), s, t0).want_surfaces) << "no reprojection, no surfaces";
+}
+
 TEST_F(MotionPlannerTest, AMoveCancelsTheFramesItLeftBehindButTheOldestPreview) {
   MotionPlanner planner(options, scene, 40.0);
   RenderSettings s;
