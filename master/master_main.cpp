@@ -79,7 +79,7 @@ int run(igi::MasterOptions o) {
   igi::Scene as_workers_load_it = scene;                 // the master's own VPL sets judge each worker's
   if (!o.render.camera_file.empty()) igi::place_camera(scene, igi::read_camera_file(o.render.camera_file));  // before anything starts
   zmq::context_t context(o.io_threads);
-  igi::SceneSource source = igi::make_scene_source(o.render.scene);
+  igi::SceneSource source = igi::make_scene_source(o.render.scene, o.render.ignored_extensions);
   source.environment = scene.environment;
   source.light_units = o.render.light_units;
   if (scene.environment_map)  // --environment FILE's, or the glTF scene's extras'

@@ -59,13 +59,14 @@ SchedulerConfig session_scheduler_config(const MasterOptions& options) {
 
 }  // namespace
 
-SceneSource make_scene_source(const std::string& scene) {
+SceneSource make_scene_source(const std::string& scene, const std::vector<std::string>& ignored_extensions) {
   if (is_builtin_scene(scene)) {
     SceneSource builtin;
     builtin.name = scene;
     return builtin;
   }
-  SceneFile file = scene_file_for_workers(scene);  // a .gltf with files beside it: packed into one .glb
+  // A .gltf with files beside it: packed into one .glb.
+  SceneFile file = scene_file_for_workers(scene, ignored_extensions);
   if (file.packed)
     std::fprintf(stderr, "igi-master: %s goes to workers as %s, its buffers and images packed in\n", scene.c_str(),
                  file.name.c_str());

@@ -67,7 +67,8 @@ struct SceneSource {
   LightUnits light_units = LightUnits::Photometric;  // how the file's lamps are read (Welcome carries it)
 };
 // Reads a scene file (or names a built-in scene) and encodes what workers may ask for.
-SceneSource make_scene_source(const std::string& scene);
+// `ignored_extensions` (--ignore-extension) are left out of the file sent (scene/gltf_pack.h).
+SceneSource make_scene_source(const std::string& scene, const std::vector<std::string>& ignored_extensions = {});
 // Reads the environment map `path` into `source`, for workers to ask for.
 void add_environment_map(SceneSource& source, const std::string& path, float rotation);
 

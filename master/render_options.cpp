@@ -95,6 +95,10 @@ void add_image_options(CLI::App& app, RenderOptions& o) {
          "a glTF file's lamps: photometric as glTF and Blender write them (point and spot in candela, sun in lux, "
          "at 683 lm/W), or radiometric (W/sr, W/m^2) [photometric]")
       ->check(cli::one_of({"photometric", "radiometric"}))->type_name("photometric|radiometric");
+  app.add_option("--ignore-extension", o.ignored_extensions,
+                 "load a glTF file that requires an extension igi does not read, as if the file did not use it "
+                 "(the error that names it says what is lost); repeat for more")
+      ->type_name("NAME");
 }
 
 void add_vpl_options(CLI::App& app, RenderSettings& s) {
@@ -216,6 +220,7 @@ SceneOptions scene_options(const RenderOptions& o) {
   SceneOptions options;
   options.light_units = o.light_units;
   options.camera_given = !o.camera_file.empty();
+  options.ignored_extensions = o.ignored_extensions;
   if (!o.environment) return options;
   options.sky = *o.environment;
   options.sky->radiance *= o.environment_scale;

@@ -46,6 +46,7 @@ struct RenderOptions {
   bool caustics_given = false;
   float environment_scale = 1.0f, environment_rotation = 0.0f;
   LightUnits light_units = LightUnits::Photometric;  // --light-units: how a glTF file's lamps are read
+  std::vector<std::string> ignored_extensions;       // --ignore-extension: glTF extensions read as absent
 };
 
 // Declares the render options on `app`, writing into `options` (which must

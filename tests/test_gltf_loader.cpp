@@ -184,7 +184,8 @@ TEST(GltfLoader, MinimalEmissiveQuad) {
   EXPECT_EQ(scene.triangles[1], glm::uvec3(0, 2, 3));
   EXPECT_EQ(scene.triangle_material, std::vector<uint32_t>({0, 0}));
   const Material& m = scene.materials[0];
-  EXPECT_EQ(m.type, MaterialType::Diffuse);
+  EXPECT_EQ(m.type, MaterialType::MetallicRoughness);
+  EXPECT_EQ(m.metallic, 0.0f);
   expect_near(m.base_color, {0.5f, 0.6f, 0.7f});
   expect_near(m.emission, {4.0f, 2.0f, 1.0f});
   EXPECT_FALSE(m.double_sided);
@@ -360,7 +361,7 @@ TEST(GltfLoader, OrthographicCameraIsIgnoredWithAWarning) {
   EXPECT_EQ(warnings_with(loaded, "orthographic camera"), 1u);
 }
 
-TEST(GltfLoader, MaterialsMapOntoTheFourModels) {
+TEST(GltfLoader, MaterialsMapOntoTheModels) {
   GltfBuilder b = lit_quad();
   auto quad_with = [&b](json material) {
     b.add_root({{"mesh", b.add_quad_mesh(b.add("materials", material))}});
@@ -374,31 +375,49 @@ TEST(GltfLoader, MaterialsMapOntoTheFourModels) {
   quad_with({{"pbrMetallicRoughness", {{"metallicFactor", 0.3}}}});
   quad_with({{"alphaMode", "BLEND"}});
   quad_with({{"alphaMode", "MASK"}, {"alphaCutoff", 0.3}, {"doubleSided", true}});
+  quad_with({{"pbrMetallicRoughness", {{"metallicFactor", 0.0}}},
+             {"extensions", {{"KHR_materials_specular", {{"specularFactor", 0.0}}}}}});
+  quad_with({{"pbrMetallicRoughness", {{"roughnessFactor", 0.2}}}, {"extras", {{"igi_fresnel", "constant"}}}});
+  quad_with({{"pbrMetallicRoughness", {{"metallicFactor", 0.0}}},
+             {"extensions", {{"KHR_materials_specular", {{"specularFactor", 0.5}, {"specularColorFactor", {1.0, 0.5, 2.0}}}},
+                             {"KHR_materials_ior", {{"ior", 2.0}}}}}});
   b.add_root({{"mesh", b.add_quad_mesh()}});  // no material
   const LoadedScene loaded = load_gltf(b.write_gltf(test_dir(), "materials").string());
   const std::vector<Material>& m = loaded.scene.materials;
-  ASSERT_EQ(m.size(), 10u);  // nine from the file, then the default
-  EXPECT_EQ(m[1].type, MaterialType::Conductor);
+  ASSERT_EQ(m.size(), 13u);  // twelve from the file, then the default
+  EXPECT_EQ(m[1].type, MaterialType::MetallicRoughness);
+  EXPECT_EQ(m[1].metallic, 1.0f);
   EXPECT_FLOAT_EQ(m[1].alpha, 0.25f);
   expect_near(m[1].base_color, {0.9f, 0.8f, 0.7f});
   EXPECT_EQ(m[2].type, MaterialType::Mirror);
+  EXPECT_TRUE(m[2].schlick_fresnel);
   EXPECT_EQ(m[3].type, MaterialType::Glass);
   EXPECT_FLOAT_EQ(m[3].ior, 1.33f);
-  EXPECT_EQ(m[4].type, MaterialType::Conductor);
+  EXPECT_EQ(m[4].type, MaterialType::MetallicRoughness);
   EXPECT_FLOAT_EQ(m[4].alpha, 1.0f);
   expect_near(m[4].base_color, {1, 1, 1});
-  EXPECT_EQ(m[5].type, MaterialType::Conductor);
-  EXPECT_EQ(m[6].type, MaterialType::Diffuse);
-  EXPECT_EQ(warnings_with(loaded, "metallicFactor between 0 and 1"), 1u);
+  EXPECT_EQ(m[5].type, MaterialType::MetallicRoughness);
+  EXPECT_FLOAT_EQ(m[5].metallic, 0.7f);
+  EXPECT_EQ(m[6].type, MaterialType::MetallicRoughness) << "a metallic of 0.3 is the model's, not Lambert's";
+  EXPECT_FLOAT_EQ(m[6].metallic, 0.3f);
+  EXPECT_EQ(warnings_with(loaded, "metallicFactor"), 0u) << "nothing rounded";
   EXPECT_TRUE(m[7].alpha_mask);
   EXPECT_FLOAT_EQ(m[7].alpha_cutoff, 0.5f);
   EXPECT_EQ(warnings_with(loaded, "BLEND"), 1u);
   EXPECT_TRUE(m[8].alpha_mask);
   EXPECT_FLOAT_EQ(m[8].alpha_cutoff, 0.3f);
   EXPECT_TRUE(m[8].double_sided);
-  EXPECT_EQ(m[9].type, MaterialType::Conductor);
-  EXPECT_FALSE(m[9].double_sided);
-  EXPECT_EQ(loaded.scene.triangle_material.back(), 9u);
+  EXPECT_EQ(m[9].type, MaterialType::Diffuse) << "no specular reflection: Lambert exactly";
+  EXPECT_EQ(m[10].type, MaterialType::Conductor) << "--export-gltf's constant-Fresnel metal";
+  EXPECT_FLOAT_EQ(m[10].alpha, 0.04f);
+  EXPECT_EQ(m[11].type, MaterialType::MetallicRoughness);
+  EXPECT_FLOAT_EQ(m[11].specular_weight, 0.5f);
+  expect_near(m[11].specular_f0, glm::vec3(1.0f / 9.0f) * glm::vec3(1.0f, 0.5f, 2.0f));  // ((2 - 1) / (2 + 1))^2 x colour
+  EXPECT_EQ(m[12].type, MaterialType::MetallicRoughness);
+  EXPECT_EQ(m[12].metallic, 1.0f);
+  EXPECT_FALSE(m[12].double_sided);
+  EXPECT_EQ(loaded.scene.triangle_material.back(), 12u);
+  EXPECT_TRUE(loaded.warnings.size() == 1u) << "only BLEND: " << loaded.warnings.back();
 }
 
 // 2x1 RGBA PNG: (128, 0, 255, 255) then (0, 64, 0, 128).
@@ -420,15 +439,15 @@ void expect_decoded_png(const LoadedScene& loaded) {
   const Texture& t = loaded.scene.textures[0];
   ASSERT_EQ(t.width, 2);
   ASSERT_EQ(t.height, 1);
-  EXPECT_NEAR(t.texels[0].r, srgb(128.0f / 255.0f), 1e-4f);  // sRGB decoded
-  EXPECT_NEAR(t.texels[0].b, 1.0f, 1e-6f);
-  EXPECT_NEAR(t.texels[1].a, 128.0f / 255.0f, 1e-6f);  // alpha stays linear
-  EXPECT_EQ(loaded.scene.materials[1].base_color_texture, 0);
+  EXPECT_NEAR(t.texel(0, 0).r, srgb(128.0f / 255.0f), 1e-4f);  // sRGB decoded
+  EXPECT_NEAR(t.texel(0, 0).b, 1.0f, 1e-6f);
+  EXPECT_NEAR(t.texel(1, 0).a, 128.0f / 255.0f, 1e-6f);  // alpha stays linear
+  EXPECT_EQ(loaded.scene.materials[1].base_color_texture.index, 0);
 }
 
 json textured_material() {
   return {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0}}},
-          {"normalTexture", {{"index", 0}}}};
+          {"occlusionTexture", {{"index", 0}}}};
 }
 
 // The lit quad with a textured material whose image is `uri`.
@@ -450,7 +469,7 @@ TEST(GltfLoader, BaseColorTextureFromFileIsLinear) {
   const LoadedScene loaded = load_gltf(b.write_gltf(dir, "textured").string());
   expect_decoded_png(loaded);
   EXPECT_EQ(warnings_with(loaded, "filter"), 1u);
-  EXPECT_EQ(warnings_with(loaded, "normalTexture ignored"), 1u);
+  EXPECT_EQ(warnings_with(loaded, "occlusionTexture ignored"), 1u);
 }
 
 TEST(GltfLoader, BaseColorTextureInGlbBufferView) {
@@ -482,7 +501,7 @@ TEST(GltfLoader, AGltfWithExternalBufferAndImagePacksIntoOneGlbThatLoadsTheSame)
   ASSERT_EQ(packed.scene.triangles.size(), original.scene.triangles.size());
   EXPECT_EQ(std::memcmp(packed.scene.triangles.data(), original.scene.triangles.data(),
                         original.scene.triangles.size() * sizeof(original.scene.triangles[0])), 0);
-  EXPECT_EQ(packed.scene.textures[0].texels.size(), original.scene.textures[0].texels.size());
+  EXPECT_EQ(packed.scene.textures[0].bytes, original.scene.textures[0].bytes);
   EXPECT_FALSE(scene_file_for_workers(glb.string()).packed) << "a .glb goes as it is";
   fs::remove(dir / "texture.png");
   try {

@@ -127,7 +127,17 @@ void expect_same_materials(const Scene& a, const Scene& b) {
     EXPECT_FLOAT_EQ(m.alpha_cutoff, n.alpha_cutoff);
     EXPECT_FLOAT_EQ(m.base_alpha, n.base_alpha);
     EXPECT_EQ(m.double_sided, n.double_sided);
-    EXPECT_EQ(m.base_color_texture, n.base_color_texture);
+    EXPECT_EQ(m.base_color_texture.index, n.base_color_texture.index);
+    EXPECT_EQ(m.schlick_fresnel, n.schlick_fresnel);
+    if (m.type == MaterialType::MetallicRoughness) {
+      EXPECT_FLOAT_EQ(m.metallic, n.metallic);
+      EXPECT_FLOAT_EQ(m.roughness, n.roughness);
+      expect_near(m.specular_f0, n.specular_f0, 1e-6f, "specular_f0");
+      EXPECT_FLOAT_EQ(m.specular_weight, n.specular_weight);
+      EXPECT_EQ(m.metallic_roughness_texture.index, n.metallic_roughness_texture.index);
+      EXPECT_EQ(m.normal_texture.index, n.normal_texture.index);
+      EXPECT_FLOAT_EQ(m.normal_scale, n.normal_scale);
+    }
   }
 }
 
@@ -233,7 +243,7 @@ TEST(GltfWriter, TextureRoundTripsThroughPng) {
   texture.texels = {{0.0f, 0.2f, 1.0f, 1.0f}, {0.5f, 0.5f, 0.5f, 0.5f},  //
                     {1.0f, 0.0f, 0.0f, 0.0f}, {0.05f, 0.8f, 0.3f, 1.0f}};
   scene.textures.push_back(texture);
-  scene.materials[4].base_color_texture = 0;
+  scene.materials[4].base_color_texture.index = 0;
   const fs::path dir = test_dir();
   const LoadedScene loaded = round_trip(scene, dir, "textured");
   EXPECT_TRUE(fs::exists(dir / "textured_texture0.png"));
@@ -242,7 +252,7 @@ TEST(GltfWriter, TextureRoundTripsThroughPng) {
   ASSERT_EQ(back.width, 2);
   ASSERT_EQ(back.height, 2);
   for (size_t i = 0; i < 4; ++i)
-    expect_near(back.texels[i], texture.texels[i], 0.01f, "texel " + std::to_string(i));
+    expect_near(back.texel(int(i % 2), int(i / 2)), texture.texels[i], 0.01f, "texel " + std::to_string(i));
   expect_same_materials(scene, loaded.scene);
 }
 

@@ -103,11 +103,11 @@ TEST(ObjLoader, MaterialsMapOntoTheFourModelsAsTheReadmeSays) {
   EXPECT_FLOAT_EQ(glass.ior, 1.33f);
   EXPECT_EQ(glass.base_color, glm::vec3(0.9f, 1.0f, 0.95f));
   const Material& textured = scene.materials[scene.triangle_material[10]];
-  ASSERT_GE(textured.base_color_texture, 0);
-  const Texture& texture = scene.textures[size_t(textured.base_color_texture)];
+  ASSERT_GE(textured.base_color_texture.index, 0);
+  const Texture& texture = scene.textures[size_t(textured.base_color_texture.index)];
   ASSERT_EQ(texture.width, 2);
-  EXPECT_EQ(texture.texels[0], glm::vec4(1, 1, 1, 1));
-  EXPECT_EQ(texture.texels[1], glm::vec4(0, 0, 0, 1));
+  EXPECT_EQ(texture.texel(0, 0), glm::vec4(1, 1, 1, 1));
+  EXPECT_EQ(texture.texel(1, 0), glm::vec4(0, 0, 0, 1));
   // OBJ's v grows up, glTF's down: the corner at vt (0, 0) is uv (0, 1).
   EXPECT_EQ(scene.uvs[scene.triangles[10][0]], glm::vec2(0.0f, 1.0f));
   EXPECT_EQ(scene.normals[scene.triangles[10][0]], glm::vec3(0, 0, 1));

@@ -36,7 +36,13 @@ struct Vpl {
   glm::vec3 albedo{0.0f};    // Surface: base colour at the hit
   uint32_t material = 0;     // Surface: Scene::materials index
   uint32_t light = 0;        // Spot: Scene::lights index (cone shape)
+  // Surface, metallic-roughness: the model's metallic and alpha at the hit
+  // (textured), and whether only its diffuse base radiates (with caustics,
+  // photons carry what a GGX lobe sharper than the glossy threshold reflects).
+  float metallic = 0.0f;
+  float alpha = 1.0f;
   VplKind kind = VplKind::Surface;
+  bool diffuse_only = false;
 };
 
 // S = N x N sets; set k holds the VPLs of light paths [k M, (k+1) M). Each

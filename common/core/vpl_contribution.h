@@ -1,8 +1,9 @@
 #pragma once
 // The one VPL shading rule: unoccluded light from one VPL (or one exact
 // light, as a Vpl of its kind: core/direct_lights.h) to one shading point,
-// demodulated (the BSDF at the shading point is evaluated with albedo 1; ir
-// and igi multiply the filtered result by the albedo once, lightcuts each
+// demodulated (the BSDF at the shading point divided by material/bsdf.h's
+// modulation, the albedo for all but the metallic-roughness model; ir and
+// igi multiply the filtered result by the modulation once, lightcuts each
 // term). Every VPL method shades through it: ir and igi (the general lanes;
 // the vectorised diffuse lanes of methods/shadow_batch.cpp equal it bit for
 // bit), lightcuts (lightcuts/light_contribution.h), bidirectional IR, bias
@@ -41,14 +42,18 @@ struct VplShading {
   // GGX VPLs radiate through a lobe at least this rough (the glossy
   // threshold, methods/glossy_gather.h): see vpl_bsdf().
   float min_emitter_alpha = 0.0f;
+  // Receivers whose GGX lobe is sharper than this gather that lobe with rays
+  // (ir, igi: the glossy threshold), so VPLs light only the rest of them
+  // (material/bsdf.h: vpl_lobes); 0: VPLs light every lobe (lightcuts, and
+  // the exact lights, whose light no gather ray can find).
+  float gathered_below = 0.0f;
 
-  // BSDF at the shading point with albedo 1: bsdf_eval's rule, the path
+  // The receiver's BSDF divided by modulation(): bsdf_eval's rule, the path
   // tracer's, for every material (light and viewer on the geometric side and
-  // above the shading normal; shadow_batch's fast lanes test the same).
-  static glm::vec3 demodulated_bsdf(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi) {
-    SurfacePoint white = sp;
-    white.albedo = glm::vec3(1.0f);
-    return bsdf_eval(white, wo, wi);
+  // above the shading normal; shadow_batch's fast lanes test the same), over
+  // the lobes VPL light reaches.
+  glm::vec3 receiver_bsdf(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi) const {
+    return demodulated_bsdf(sp, wo, wi, vpl_lobes(sp, gathered_below));
   }
 
   // BSDF at a surface VPL, light arriving from v.incident and leaving along
@@ -63,7 +68,18 @@ struct VplShading {
   glm::vec3 vpl_bsdf(const Vpl& v, glm::vec3 out, glm::vec3 albedo) const {
     const Material& m = scene.materials[v.material];
     if (m.type == MaterialType::Diffuse) return albedo * kInvPi;
+    if (m.type == MaterialType::MetallicRoughness) {
+      const MetallicRoughnessPoint p{albedo, v.metallic, std::max(v.alpha, min_emitter_alpha), m.specular_f0,
+                                     m.specular_weight};
+      const Onb frame(v.normal);
+      return metallic_roughness_eval(p, frame.to_local(v.incident), frame.to_local(out),
+                                     v.diffuse_only ? Lobes::Diffuse : Lobes::All);
+    }
     return ggx_reflection(v.normal, v.incident, out, albedo, std::max(m.alpha, min_emitter_alpha));
+  }
+  // Whether a lobe at either end is clamped as glossy (core/clamp.h).
+  static bool glossy(const Material& m) {
+    return m.type == MaterialType::Conductor || m.type == MaterialType::MetallicRoughness;
   }
 
   // Returns the contribution at `sp`, seen from `wo` (zero when none), and fills the shadow ray.
@@ -94,16 +110,16 @@ struct VplShading {
         // gives at most. On `glossy` the floor's VPLs lit the walls' feet
         // with spots at their lobes' peaks; on `courtyard`, the metal ball's
         // lit the ground (tests/bench/history/RESULTS-to-2026-12-05.md, "Glossy VPLs clamped").
-        if (v.kind == VplKind::Surface && scene.materials[v.material].type == MaterialType::Conductor)
+        if (v.kind == VplKind::Surface && glossy(scene.materials[v.material]))
           emitted *= glossy_lobe_clamp(max_component(vpl_bsdf(v, -wi, glm::vec3(1.0f))), g_term, clamp_bound);
       } else {
         g_term = cos_x / dist2;  // exact point and spot lights: never clamped
         emitted = v.kind == VplKind::Spot ? v.flux * spot_attenuation(scene.lights[v.light], -wi) : v.flux;
       }
     }
-    glm::vec3 f = demodulated_bsdf(sp, wo, wi);
+    glm::vec3 f = receiver_bsdf(sp, wo, wi);
     const bool clamped = v.kind == VplKind::Surface || v.kind == VplKind::Area;
-    if (clamped && sp.material->type == MaterialType::Conductor)
+    if (clamped && glossy(*sp.material))
       f *= glossy_lobe_clamp(max_component(f), g_term, clamp_bound);
     glm::vec3 c = f * emitted * g_term;
     // Nothing, or a VPL on the point itself (unclamped: infinite or NaN).

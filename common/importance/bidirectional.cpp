@@ -32,6 +32,8 @@ float continuation_density(const Scene& scene, const Vpl& z, const LightVertex& 
   sp.geometric_normal = sp.shading_normal = z.normal;
   sp.material = &scene.materials[z.material];
   sp.albedo = z.albedo;
+  sp.metallic = z.metallic;
+  sp.alpha = z.alpha;
   const float pdf = bsdf_pdf(sp, z.incident, w);
   if (!(pdf > 0.0f)) return 0.0f;
   // The light path's Russian roulette keeps it with q = min(1, max f cos / pdf).
@@ -82,7 +84,7 @@ class Builder {
           const LightPathOptions& light_paths, RayCounts& rays)
       : context_(context), settings_(settings), frame_(frame), selection_(light_paths.selection), rays_(rays),
         shading_{context.scene, clamp_bound(settings.clamp, context.accel.mean_chord(), frame.sample_begin),
-                 settings.glossy_threshold},
+                 settings.glossy_threshold, settings.glossy_threshold},
         gathering_{context.scene, INFINITY, settings.glossy_threshold},
         exact_(exact_lights(context.scene)), camera_(frame),
         camera_seed_(hash(frame.seed, kCameraTag)),
@@ -169,7 +171,7 @@ class Builder {
       if (!p.x.valid()) continue;
       const SurfacePoint& s = p.x.surface;
       p.facing = glm::dot(p.x.wo, s.geometric_normal) >= 0.0f ? s.shading_normal : -s.shading_normal;
-      p.receives = receives_vpls(*s.material, settings_.glossy_threshold);
+      p.receives = receives_vpls(s, settings_.glossy_threshold);
     }
     return points;
   }
@@ -246,7 +248,7 @@ class Builder {
       // The camera path that found the VPL saw it: no ray needed (nor a miss by rounding).
       if (i != c.own && occluded(q, rays)) continue;
       c.density += density;
-      c.response += p.x.throughput * p.x.surface.albedo * light;
+      c.response += p.x.throughput * modulation(p.x.surface, p.x.wo) * light;
     }
   }
 

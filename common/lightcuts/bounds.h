@@ -86,6 +86,10 @@ inline bool within_reach(const BoundFrame& axis, float cos_reach, const Box& b) 
   return cos_reach <= -1.0f || max_cos(axis, b) >= cos_reach;
 }
 
+// The largest Fresnel factor of a metallic-roughness GGX lobe (material/metallic_roughness.h):
+// (1 - metallic) w + metallic, w the coat's weight (specularFactor).
+inline float specular_bound(float weight, float metallic) { return (1.0f - metallic) * weight + metallic; }
+
 // GGX normal distribution at cos(h, n) = c, alpha the roughness.
 inline float ggx_distribution(float c, float alpha) {
   const float a2 = alpha * alpha;

@@ -12,11 +12,15 @@
 //           cone of normals and -B; Glossy VPLs and Punctual lights 1 if -B
 //           meets the reach of their emission, else 0; Directional 1
 //   b       the clamp on G, for Cosine lights only (it bounds G, not f_y G)
-//   diffuse albedo / pi of Lambertian receivers
+//   diffuse albedo / pi of Lambertian receivers, (1 - metallic) base / pi of
+//           metallic-roughness ones (their diffuse lobe; its Fresnel factor <= 1)
 //   glossy  a bound on f cos_x of GGX receivers: f cos_x = F D G2 / (4 cos_o)
 //           with G2 <= 1 and D growing with cos(h, n). For one point,
 //           cos(h, n) = (cos_o + cos_i) / |wo + wi| <= (cos_o + max cos_i) /
 //           sqrt(2 + 2 min(wo . wi)) over B; for a cluster D <= D(h = n).
+//           For the metallic-roughness model F <= (1 - metallic) w + metallic
+//           (material/metallic_roughness.h). Its lobe clamp (core/clamp.h)
+//           only lowers what these bound.
 // Errors are compared in luminance.
 #include <algorithm>
 #include <cmath>
@@ -55,18 +59,20 @@ inline ReceiverTerms receiver_terms(const GatherPoint& g, const Box& directions)
   const bool tilted = g.tilt_sin > 0.0f;
   const float cos_above = tilted ? std::max(0.0f, max_cos(g.shading_frame, directions)) : cos_geometric;
   const Material& m = *g.surface.material;
-  if (m.type == MaterialType::Diffuse) {
-    t.diffuse = g.surface.albedo * kInvPi;
+  const bool layered = m.type == MaterialType::MetallicRoughness;
+  if (m.type == MaterialType::Diffuse || layered) {
+    t.diffuse = (layered ? 1.0f - g.surface.metallic : 1.0f) * g.surface.albedo * kInvPi;
     // |cos_x| uses the shading normal n_s, tilted by d from the geometric n_g:
     // above the geometric plane, cos(w, n_s) >= -sin d.
     t.cos_x = std::max(cos_above, g.tilt_sin);
-    return t;
+    if (!layered) return t;
   }
   if (cos_above <= 0.0f || g.cos_o <= 0.0f) return t;  // GGX reflects only above its shading normal
   const float min_wo_wi = -max_cos(g.back_frame, directions);
   const float denominator = std::sqrt(std::max(0.0f, 2.0f + 2.0f * min_wo_wi));
   const float cos_h = denominator > 0.0f ? std::min(1.0f, (g.cos_o + cos_above) / denominator) : 1.0f;
-  t.glossy = g.surface.albedo * (ggx_distribution(cos_h, m.alpha) / (4.0f * g.cos_o));
+  const float lobe = ggx_distribution(cos_h, layered ? g.surface.alpha : m.alpha) / (4.0f * g.cos_o);
+  t.glossy = layered ? glm::vec3(specular_bound(m.specular_weight, g.surface.metallic) * lobe) : g.surface.albedo * lobe;
   return t;
 }
 

@@ -9,11 +9,17 @@
 namespace igi::lightcuts {
 namespace {
 
-// Material bounds of one point: Lambertian albedo / pi, or GGX F D_max / (4 cos_o).
+// Material bounds of one point: Lambertian albedo / pi, or GGX F D_max / (4
+// cos_o), or both for the metallic-roughness model (cluster_bound.h).
 void material_bounds(const GatherPoint& g, glm::vec3& diffuse, glm::vec3& glossy) {
   const Material& m = *g.surface.material;
   if (m.type == MaterialType::Diffuse) {
     diffuse = glm::max(diffuse, g.surface.albedo * kInvPi);
+  } else if (m.type == MaterialType::MetallicRoughness) {
+    diffuse = glm::max(diffuse, (1.0f - g.surface.metallic) * g.surface.albedo * kInvPi);
+    if (g.cos_o > 0.0f)
+      glossy = glm::max(glossy, glm::vec3(specular_bound(m.specular_weight, g.surface.metallic) *
+                                          (ggx_distribution(1.0f, g.surface.alpha) / (4.0f * g.cos_o))));
   } else if (g.cos_o > 0.0f) {
     glossy = glm::max(glossy, g.surface.albedo * (ggx_distribution(1.0f, m.alpha) / (4.0f * g.cos_o)));
   }

@@ -15,7 +15,7 @@ glm::vec3 light_contribution(const LightingContext& context, const GatherPoint& 
   if (light_in == glm::vec3(0.0f)) return glm::vec3(0.0f);
   shadow = Ray{q.origin, q.direction, 0.0f, q.tfar};
   const float share = leaf.scene_light ? 1.0f : 1.0f / float(std::max(1, context.vpls.set_count()));
-  return g.surface.albedo * light_in * share;
+  return modulation(g.surface, g.wo) * light_in * share;
 }
 
 }  // namespace igi::lightcuts

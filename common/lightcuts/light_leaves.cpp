@@ -20,6 +20,18 @@ bool vpl_leaf(const Scene& scene, const Vpl& v, uint32_t index, float inv_sets, 
   } else if (scene.materials[v.material].type == MaterialType::Diffuse) {
     leaf.light_class = LightClass::Cosine;
     leaf.intensity = v.albedo * kInvPi * flux;
+  } else if (scene.materials[v.material].type == MaterialType::MetallicRoughness) {
+    // Both lobes: f_y cos_y <= (1 - metallic) base / pi + F D_max / (4 cos_incident), F <= specular_bound.
+    const float cos_incident = glm::dot(v.incident, v.normal);
+    if (!(cos_incident > 0.0f)) return false;
+    const Material& m = scene.materials[v.material];
+    leaf.light_class = LightClass::Glossy;
+    leaf.intensity = flux;
+    leaf.spread = 0.5f * kPi;
+    const float lobe = v.diffuse_only ? 0.0f : specular_bound(m.specular_weight, v.metallic) * ggx_distribution(1.0f, v.alpha) /
+                                                   (4.0f * cos_incident);
+    leaf.weight = max_component(flux * ((1.0f - v.metallic) * kInvPi * v.albedo + glm::vec3(lobe)));
+    return leaf.weight > 0.0f && std::isfinite(leaf.weight);
   } else {
     // GGX conductor: f_y cos_y = F D G2 / (4 cos_incident) <= F D_max / (4 cos_incident).
     const float cos_incident = glm::dot(v.incident, v.normal);

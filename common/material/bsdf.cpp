@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "material/ggx.h"
 #include "sampling/warp.h"
 
 namespace igi {
@@ -12,59 +13,28 @@ bool same_hemisphere(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi) {
   return glm::dot(wo, sp.geometric_normal) * glm::dot(wi, sp.geometric_normal) > 0.0f;
 }
 
-// --- GGX (Trowbridge-Reitz) in the local frame, z = normal ---
-float ggx_d(glm::vec3 h, float alpha) {
-  float a2 = alpha * alpha;
-  float c2 = h.z * h.z;
-  float denom = c2 * (a2 - 1.0f) + 1.0f;
-  return a2 / (kPi * denom * denom);
-}
-
-float ggx_lambda(glm::vec3 w, float alpha) {
-  float c2 = w.z * w.z;
-  if (c2 <= 0.0f) return 0.0f;
-  float tan2 = std::max(0.0f, 1.0f - c2) / c2;
-  return 0.5f * (std::sqrt(1.0f + alpha * alpha * tan2) - 1.0f);
-}
-
-float ggx_g1(glm::vec3 w, float alpha) { return 1.0f / (1.0f + ggx_lambda(w, alpha)); }
-float ggx_g2(glm::vec3 wo, glm::vec3 wi, float alpha) {
-  return 1.0f / (1.0f + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha));
-}
-
-// Visible-normal sampling (Heitz 2018), wo in the upper hemisphere.
-glm::vec3 ggx_sample_visible_normal(glm::vec3 wo, float alpha, glm::vec2 u) {
-  glm::vec3 vh = glm::normalize(glm::vec3(alpha * wo.x, alpha * wo.y, wo.z));
-  float len2 = vh.x * vh.x + vh.y * vh.y;
-  glm::vec3 t1 = len2 > 0.0f ? glm::vec3(-vh.y, vh.x, 0.0f) / std::sqrt(len2) : glm::vec3(1, 0, 0);
-  glm::vec3 t2 = glm::cross(vh, t1);
-  float r = std::sqrt(u.x), phi = 2.0f * kPi * u.y;
-  float p1 = r * std::cos(phi), p2 = r * std::sin(phi);
-  float s = 0.5f * (1.0f + vh.z);
-  p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * p2;
-  glm::vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
-  return glm::normalize(glm::vec3(alpha * nh.x, alpha * nh.y, std::max(1e-6f, nh.z)));
-}
-
-float conductor_pdf_local(glm::vec3 wo, glm::vec3 wi, float alpha) {
-  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-  glm::vec3 h = glm::normalize(wo + wi);
-  return ggx_g1(wo, alpha) * ggx_d(h, alpha) / (4.0f * wo.z);
-}
-
 glm::vec3 conductor_eval_local(glm::vec3 wo, glm::vec3 wi, glm::vec3 f0, float alpha) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return glm::vec3(0.0f);
   glm::vec3 h = glm::normalize(wo + wi);
-  return f0 * (ggx_d(h, alpha) * ggx_g2(wo, wi, alpha) / (4.0f * wo.z * wi.z));
+  return f0 * ggx_lobe(wo, wi, h, alpha);
 }
-
-glm::vec3 reflect(glm::vec3 wo, glm::vec3 n) { return 2.0f * glm::dot(wo, n) * n - wo; }
 
 std::optional<BsdfSample> sample_glass(const SurfacePoint& sp, glm::vec3 wo, float u_lobe) {
   const DielectricBranches b = dielectric_branches(sp, wo);
-  if (u_lobe < b.reflectance) return BsdfSample{b.reflected, glm::vec3(1.0f), 1.0f, true};
-  return BsdfSample{b.refracted, sp.albedo, 1.0f, true};
+  if (u_lobe < b.reflectance) return BsdfSample{b.reflected, glm::vec3(1.0f), 1.0f, true, 0.0f};
+  return BsdfSample{b.refracted, sp.albedo, 1.0f, true, 0.0f};
 }
+
+// A mirror tinted by its base colour, or by glTF's metal Fresnel: Schlick
+// from F0 = base colour at normal incidence to 1 at grazing.
+std::optional<BsdfSample> sample_mirror(const SurfacePoint& sp, glm::vec3 n, glm::vec3 wo) {
+  glm::vec3 tint = sp.albedo;
+  if (sp.material->schlick_fresnel) tint += (glm::vec3(1.0f) - tint) * schlick_weight(std::abs(glm::dot(wo, n)));
+  return BsdfSample{reflect(wo, n), tint, 1.0f, true, 0.0f};
+}
+
+// The lobe a one-lobe model has.
+Lobes only_lobe(MaterialType type) { return type == MaterialType::Diffuse ? Lobes::Diffuse : Lobes::Specular; }
 
 }  // namespace
 
@@ -100,33 +70,46 @@ glm::vec3 ggx_reflection(glm::vec3 n, glm::vec3 wo, glm::vec3 wi, glm::vec3 f0, 
   return conductor_eval_local(frame.to_local(wo), frame.to_local(wi), f0, alpha);
 }
 
-glm::vec3 bsdf_eval(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi) {
+MetallicRoughnessPoint metallic_roughness_point(const SurfacePoint& sp) {
+  return {sp.albedo, sp.metallic, sp.alpha, sp.material->specular_f0, sp.material->specular_weight};
+}
+
+glm::vec3 bsdf_eval(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi, Lobes lobes) {
   if (sp.material->is_specular() || !same_hemisphere(sp, wo, wi)) return glm::vec3(0.0f);
   Onb frame(sp.shading_normal_facing(wo));
   glm::vec3 lo = frame.to_local(wo), li = frame.to_local(wi);
-  if (sp.material->type == MaterialType::Diffuse)
+  const MaterialType type = sp.material->type;
+  if (type == MaterialType::MetallicRoughness) return metallic_roughness_eval(metallic_roughness_point(sp), lo, li, lobes);
+  if (!has_lobe(lobes, only_lobe(type))) return glm::vec3(0.0f);
+  if (type == MaterialType::Diffuse)
     return li.z > 0.0f && lo.z > 0.0f ? sp.albedo * kInvPi : glm::vec3(0.0f);
   return conductor_eval_local(lo, li, sp.albedo, sp.material->alpha);
 }
 
-float bsdf_pdf(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi) {
+float bsdf_pdf(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi, Lobes lobes) {
   if (sp.material->is_specular() || !same_hemisphere(sp, wo, wi)) return 0.0f;
   Onb frame(sp.shading_normal_facing(wo));
   glm::vec3 lo = frame.to_local(wo), li = frame.to_local(wi);
-  if (sp.material->type == MaterialType::Diffuse) return li.z > 0.0f ? li.z * kInvPi : 0.0f;
-  return conductor_pdf_local(lo, li, sp.material->alpha);
+  const MaterialType type = sp.material->type;
+  if (type == MaterialType::MetallicRoughness) return metallic_roughness_pdf(metallic_roughness_point(sp), lo, li, lobes);
+  if (!has_lobe(lobes, only_lobe(type))) return 0.0f;
+  if (type == MaterialType::Diffuse) return li.z > 0.0f ? li.z * kInvPi : 0.0f;
+  return ggx_reflection_pdf(lo, li, sp.material->alpha);
 }
 
-std::optional<BsdfSample> bsdf_sample(const SurfacePoint& sp, glm::vec3 wo, glm::vec2 u, float u_lobe) {
+std::optional<BsdfSample> bsdf_sample(const SurfacePoint& sp, glm::vec3 wo, glm::vec2 u, float u_lobe, Lobes lobes) {
   const Material& m = *sp.material;
+  if (m.type != MaterialType::MetallicRoughness && !has_lobe(lobes, only_lobe(m.type))) return std::nullopt;
   if (m.type == MaterialType::Glass) return sample_glass(sp, wo, u_lobe);
   Onb frame(sp.shading_normal_facing(wo));
-  if (m.type == MaterialType::Mirror)
-    return BsdfSample{reflect(wo, frame.n), sp.albedo, 1.0f, true};
+  if (m.type == MaterialType::Mirror) return sample_mirror(sp, frame.n, wo);
   glm::vec3 lo = frame.to_local(wo);
   if (lo.z <= 0.0f) return std::nullopt;
   glm::vec3 li;
-  if (m.type == MaterialType::Diffuse) {
+  bool glossy = m.type == MaterialType::Conductor;
+  if (m.type == MaterialType::MetallicRoughness) {
+    li = metallic_roughness_sample(metallic_roughness_point(sp), lo, u, u_lobe, lobes, glossy);
+  } else if (m.type == MaterialType::Diffuse) {
     li = cosine_hemisphere(u);
   } else {
     glm::vec3 h = ggx_sample_visible_normal(lo, m.alpha, u);
@@ -134,9 +117,34 @@ std::optional<BsdfSample> bsdf_sample(const SurfacePoint& sp, glm::vec3 wo, glm:
   }
   glm::vec3 wi = frame.to_world(li);
   if (li.z <= 0.0f || !same_hemisphere(sp, wo, wi)) return std::nullopt;
-  float pdf = bsdf_pdf(sp, wo, wi);
+  float pdf = bsdf_pdf(sp, wo, wi, lobes);
   if (!(pdf > 0.0f)) return std::nullopt;
-  return BsdfSample{wi, bsdf_eval(sp, wo, wi) * li.z / pdf, pdf, false};
+  const float lobe_alpha = m.type == MaterialType::MetallicRoughness ? sp.alpha : m.alpha;
+  return BsdfSample{wi, bsdf_eval(sp, wo, wi, lobes) * li.z / pdf, pdf, false, glossy ? lobe_alpha : INFINITY};
+}
+
+glm::vec3 modulation(const SurfacePoint& sp, glm::vec3 wo) {
+  if (sp.material->type != MaterialType::MetallicRoughness) return sp.albedo;
+  return metallic_roughness_albedo(metallic_roughness_point(sp), std::max(0.0f, glm::dot(wo, sp.shading_normal_facing(wo))));
+}
+
+glm::vec3 demodulated_bsdf(const SurfacePoint& sp, glm::vec3 wo, glm::vec3 wi, Lobes lobes) {
+  if (sp.material->type == MaterialType::MetallicRoughness) return bsdf_eval(sp, wo, wi, lobes) / modulation(sp, wo);
+  SurfacePoint white = sp;
+  white.albedo = glm::vec3(1.0f);
+  return bsdf_eval(white, wo, wi, lobes);
+}
+
+std::optional<BsdfSample> demodulated_sample(const SurfacePoint& sp, glm::vec3 wo, glm::vec2 u, float u_lobe,
+                                             Lobes lobes) {
+  if (sp.material->type == MaterialType::MetallicRoughness) {
+    std::optional<BsdfSample> s = bsdf_sample(sp, wo, u, u_lobe, lobes);
+    if (s) s->weight /= modulation(sp, wo);
+    return s;
+  }
+  SurfacePoint white = sp;
+  white.albedo = glm::vec3(1.0f);
+  return bsdf_sample(white, wo, u, u_lobe, lobes);
 }
 
 }  // namespace igi

@@ -86,7 +86,8 @@ void BiasCompensation::add(const GBuffer& gbuffer, uint32_t frame_seed, std::vec
   for (size_t h = 0; h < second.size(); ++h) {
     const Hop& s = second[h];
     const glm::vec3 light = s.y.surface.emitted() + radiance_all[first.size() + h];
-    radiance_first[s.owner] += first[s.owner].y.surface.albedo * (s.weight * light * s.cut);
+    const GSample& y = first[s.owner].y;
+    radiance_first[s.owner] += modulation(y.surface, y.wo) * (s.weight * light * s.cut);
   }
   // Each sample's hops are consecutive, in index order.
   for (size_t h = 0; h < first.size();) {
@@ -103,26 +104,24 @@ bool BiasCompensation::hop(const SurfacePoint& sp, glm::vec3 wo, uint32_t index,
                            RayCounts& rays) const {
   // Only what VPLs shade was clamped: not mirrors, glass or the sharp GGX lobes that gather theirs.
   const bool lambert = sp.material->type == MaterialType::Diffuse;
-  if (!lambert && (sp.material->type != MaterialType::Conductor ||
-                   !receives_vpls(*sp.material, shading_.min_emitter_alpha)))
-    return false;
+  if (!lambert && (!VplShading::glossy(*sp.material) || !receives_vpls(sp, shading_.gathered_below))) return false;
   // The hemisphere on the viewer's side, as VPL shading uses it.
   const glm::vec3 n = sp.shading_normal_facing(wo), ng = sp.geometric_normal_facing(wo);
   const glm::vec2 u = sample_2d(index, uint32_t(level - 1), seed);
   // Lambert: wi with density cos_x / pi, so f cos / pdf = 1 and the lobe
-  // value f = 1 / pi. GGX: wi drawn from the lobe, weight f cos / pdf.
+  // value f = 1 / pi. GGX and metallic-roughness: wi drawn from the lobes
+  // VPLs light, weight f cos / pdf, demodulated (material/bsdf.h).
   glm::vec3 wi, weight(1.0f);
   float f_white = kInvPi;
   if (lambert) {
     wi = Onb(n).to_world(cosine_hemisphere(u));
   } else {
-    SurfacePoint white = sp;  // demodulated: the lobe with albedo 1
-    white.albedo = glm::vec3(1.0f);
-    const auto bs = bsdf_sample(white, wo, u, 0.0f);
+    const Lobes lobes = vpl_lobes(sp, shading_.gathered_below);
+    const auto bs = demodulated_sample(sp, wo, u, sample_1d(index, uint32_t(2 + 2 * level), seed), lobes);
     if (!bs) return false;
     wi = bs->wi;
     weight = bs->weight;
-    f_white = max_component(VplShading::demodulated_bsdf(sp, wo, wi));
+    f_white = max_component(shading_.receiver_bsdf(sp, wo, wi));
   }
   const float cos_x = glm::dot(wi, n);
   if (cos_x <= 0.0f || glm::dot(wi, ng) <= 0.0f || !(f_white > 0.0f)) return false;  // no light from below
@@ -141,7 +140,7 @@ bool BiasCompensation::hop(const SurfacePoint& sp, glm::vec3 wo, uint32_t index,
   // lobe: methods/glossy_gather.h) holds no VPL the clamp cut. Shading one
   // here with VPLs would put them in its sharp lobe: on `glossy` that drew
   // a row of specks along every crease between a wall and the floor.
-  if (!receives_vpls(*y.surface.material, shading_.min_emitter_alpha)) return false;
+  if (!receives_vpls(y.surface, shading_.gathered_below)) return false;
   y.wo = -wi;
   y.has_surface = true;  // no camera path leads here: depth stays unset
   const float d2 = glm::dot(y.surface.position - sp.position, y.surface.position - sp.position);
@@ -189,16 +188,18 @@ void BiasCompensation::radiance_towards(std::span<const Hop* const> hops, std::v
       for (size_t i = 0; i < batch.count; ++i)
         radiance[batch.index[i]] = glm::vec3(batch.sum_r[i], batch.sum_g[i], batch.sum_b[i]) * scale;
     }
+  VplShading exact_shading = shading_;  // exact lights reach every lobe (no gather ray finds them)
+  exact_shading.gathered_below = 0.0f;
   for (size_t h = 0; h < hops.size(); ++h) {
     glm::vec3& sum = radiance[h];
     for (const Vpl& v : exact_) {
       ShadowQuery q;
-      const glm::vec3 c = shading_.contribution(hops[h]->y, v, q);
+      const glm::vec3 c = exact_shading.contribution(hops[h]->y, v, q);
       if (c == glm::vec3(0.0f)) continue;
       ++rays.shadow;
       if (!accel_.occluded(Ray{q.origin, q.direction, 0.0f, q.tfar})) sum += c;
     }
-    sum = hops[h]->y.surface.albedo * sum;
+    sum = modulation(hops[h]->y.surface, hops[h]->y.wo) * sum;
   }
 }
 

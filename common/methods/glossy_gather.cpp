@@ -11,34 +11,37 @@
 namespace igi {
 namespace {
 
+// The gathered lobe: a conductor's only one, a metallic-roughness surface's GGX lobe.
+constexpr Lobes kGathered = Lobes::Specular;
+
 // One light sample of the area lights and the sky at g, weighted against the
 // BSDF's samples; nothing for punctual lights (exact already).
-glm::vec3 light_sample(const Accel& accel, const LightSet& lights, const GSample& g, const SurfacePoint& white,
-                       float u_select, glm::vec2 u, RayCounts& rays) {
-  const LightSample ls = lights.sample(white.position, u_select, u);
+glm::vec3 light_sample(const Accel& accel, const LightSet& lights, const GSample& g, float u_select, glm::vec2 u,
+                       RayCounts& rays) {
+  const SurfacePoint& sp = g.surface;
+  const LightSample ls = lights.sample(sp.position, u_select, u);
   if (ls.delta || !(ls.pdf > 0.0f)) return glm::vec3(0.0f);
-  const glm::vec3 f = bsdf_eval(white, g.wo, ls.direction);
+  const glm::vec3 f = demodulated_bsdf(sp, g.wo, ls.direction, kGathered);
   if (f == glm::vec3(0.0f)) return glm::vec3(0.0f);
   ++rays.shadow;
-  if (accel.occluded(shadow_ray(white, ls.direction, ls.position, ls.distance))) return glm::vec3(0.0f);
-  const float cos_i = std::abs(glm::dot(ls.direction, white.shading_normal));
-  const float w = power_heuristic(ls.pdf, bsdf_pdf(white, g.wo, ls.direction));
+  if (accel.occluded(shadow_ray(sp, ls.direction, ls.position, ls.distance))) return glm::vec3(0.0f);
+  const float cos_i = std::abs(glm::dot(ls.direction, sp.shading_normal));
+  const float w = power_heuristic(ls.pdf, bsdf_pdf(sp, g.wo, ls.direction, kGathered));
   return f * ls.radiance * (cos_i * w / ls.pdf);
 }
 
 void gather_at(const Accel& accel, const LightSet& lights, const GSample& g, uint32_t owner, uint32_t seed,
                const RenderSettings& settings, GlossyHits& out, RayCounts& rays) {
-  SurfacePoint white = g.surface;
-  white.albedo = glm::vec3(1.0f);
+  const SurfacePoint& sp = g.surface;
   const float inv_rays = 1.0f / float(settings.glossy_rays);
   glm::vec3 sampled(0.0f);
   for (int j = 0; j < settings.glossy_rays; ++j) {
     if (!lights.empty()) {
       const glm::vec2 u_light = sample_2d(uint32_t(j), 2, seed);
-      sampled += light_sample(accel, lights, g, white, sample_1d(uint32_t(j), 4, seed), u_light, rays);
+      sampled += light_sample(accel, lights, g, sample_1d(uint32_t(j), 4, seed), u_light, rays);
     }
     const glm::vec2 u = sample_2d(uint32_t(j), 0, seed);
-    auto bs = bsdf_sample(white, g.wo, u, 0.0f);
+    auto bs = demodulated_sample(sp, g.wo, u, 0.0f, kGathered);
     if (!bs || bs->weight == glm::vec3(0.0f)) continue;
     const Ray ray{offset_origin(g.surface, bs->wi), bs->wi};
     ++rays.secondary;
@@ -49,7 +52,7 @@ void gather_at(const Accel& accel, const LightSet& lights, const GSample& g, uin
       follow_specular_chain(accel, ray, hit, hash(seed, uint32_t(j)), depth_limit(settings.specular_depth), y, rays);
       // An emitter found directly: the light samples could have found it too.
       if (!first.material->is_specular() && first.emitted() != glm::vec3(0.0f))
-        y.emitted *= power_heuristic(bs->pdf, lights.pdf_area(hit.triangle, white.position, first.position));
+        y.emitted *= power_heuristic(bs->pdf, lights.pdf_area(hit.triangle, sp.position, first.position));
     } else {
       // The sky in the lobe (none: nothing is kept).
       y.emitted = accel.scene().sky(ray.direction) *
@@ -78,7 +81,7 @@ void trace_glossy_gather(const Accel& accel, const LightSet& lights, const GBuff
       for (int i = 0; i < r.width; ++i) {
         const size_t pixel = size_t(j) * r.width + i;
         const GSample& g = gbuffer.at(l, pixel);
-        if (!g.valid() || !is_gathered_glossy(*g.surface.material, settings.glossy_threshold)) continue;
+        if (!g.valid() || !is_gathered_glossy(g.surface, settings.glossy_threshold)) continue;
         const uint32_t seed = hash(hash(uint32_t(r.x0 + i), uint32_t(r.y0 + j), frame_seed), uint32_t(l), 0x676c6f73u);
         gather_at(accel, lights, g, uint32_t(size_t(l) * r.pixels() + pixel), seed, settings, out, rays);
       }

@@ -116,6 +116,11 @@ void VplMethod::begin_frame(const FrameSetup& frame) {
   spike_level_ = filter_spike_level(float(typical), frame.sample_begin);
 }
 
+// VPL light on receivers: their sharp GGX lobes are gathered instead (methods/glossy_gather.h).
+VplShading VplMethod::vpl_shading() const {
+  return VplShading{context_.scene, clamp_bound_, settings_.glossy_threshold, settings_.glossy_threshold};
+}
+
 uint64_t VplMethod::frame_state_hash() const {
   uint64_t h = vpls_.hash;
   if (draws_) h = combine_content_hashes(h, draws_->hash());
@@ -161,7 +166,7 @@ void VplMethod::collect_set_samples(const GBuffer& gbuffer, std::span<const uint
       __builtin_prefetch(ahead + sizeof(GSample) - 1);
     }
     const GSample& g = gbuffer.layers[ids[i]];
-    if (g.valid() && receives_vpls(*g.surface.material, settings_.glossy_threshold)) batch.add(ids[i], g);
+    if (g.valid() && receives_vpls(g.surface, settings_.glossy_threshold)) batch.add(ids[i], g);
   }
 }
 
@@ -184,7 +189,7 @@ void VplMethod::shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scrat
   for (auto& list : scratch.hits_by_group) list.clear();
   for (uint32_t h = 0; h < hits.points.size(); ++h) {
     const GSample& y = hits.points[h];
-    if (!y.valid() || !receives_vpls(*y.surface.material, settings_.glossy_threshold)) continue;
+    if (!y.valid() || !receives_vpls(y.surface, settings_.glossy_threshold)) continue;
     const size_t pixel = hits.owner[h] % region.pixels();
     const int x = region.x0 + int(pixel % region.width), yy = region.y0 + int(pixel / region.width);
     const int set = interleaved() ? vpls_.set_of_pixel(x, yy) : 0;
@@ -197,7 +202,7 @@ void VplMethod::shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scrat
     for (int y = region.y0; y < region.y0 + region.height; ++y)
       for (int x = region.x0; x < region.x0 + region.width; ++x)
         scratch.rotation.push_back(uint8_t(subpixel_rotation(x, y, gbuffer.samples)));
-  const VplShading shading{context_.scene, clamp_bound_, settings_.glossy_threshold};
+  const VplShading shading = vpl_shading();
   PixelBatch& batch = scratch.batch;
   for (int s = 0; s < sets; ++s)
     for (int g = 0; g < groups; ++g) {
@@ -224,7 +229,7 @@ void VplMethod::shade_drawn(const GBuffer& gbuffer, const GlossyHits& hits, Scra
   const Region& region = gbuffer.region;
   const size_t camera_points = gbuffer.points();
   scratch.sums.assign(camera_points + hits.points.size(), glm::vec3(0.0f));
-  const VplShading shading{context_.scene, clamp_bound_, settings_.glossy_threshold};
+  const VplShading shading = vpl_shading();
   const uint32_t frame_seed = hash(frame_.seed, 0x76647277u /* "vdrw" */);
   // Shading point `id` = l P + p of the region, or rank r + 1 of its gather hits.
   auto stream = [&](size_t id, uint32_t rank) {
@@ -235,14 +240,14 @@ void VplMethod::shade_drawn(const GBuffer& gbuffer, const GlossyHits& hits, Scra
   const int k = settings_.vpl_draws;
   for (size_t id = 0; id < camera_points; ++id) {
     const GSample& g = gbuffer.layers[id];
-    if (g.valid() && receives_vpls(*g.surface.material, settings_.glossy_threshold))
+    if (g.valid() && receives_vpls(g.surface, settings_.glossy_threshold))
       scratch.sums[id] = draws_->shade(g, k, stream(id, 0), vpls_.vpls, shading, context_.accel, rays);
   }
   uint32_t rank = 0;
   for (size_t h = 0; h < hits.points.size(); ++h) {
     rank = h > 0 && hits.owner[h] == hits.owner[h - 1] ? rank + 1 : 0;  // an owner's hits are consecutive
     const GSample& y = hits.points[h];
-    if (y.valid() && receives_vpls(*y.surface.material, settings_.glossy_threshold))
+    if (y.valid() && receives_vpls(y.surface, settings_.glossy_threshold))
       scratch.sums[camera_points + h] =
           draws_->shade(y, k, stream(hits.owner[h], rank + 1), vpls_.vpls, shading, context_.accel, rays);
   }
@@ -270,7 +275,9 @@ void VplMethod::shade_exact(const GBuffer& gbuffer, const TileJob& job, const Gl
     if (hits.points[h].valid()) batch.add(uint32_t(camera_points + h), hits.points[h]);
   if (batch.count == 0) return;
   batch.pad();
-  shade_batch(batch, exact_, VplShading{context_.scene, clamp_bound_, settings_.glossy_threshold}, context_.accel, rays, log_);
+  // Exact lights reach every lobe: no gather ray can find a point light.
+  const VplShading shading{context_.scene, clamp_bound_, settings_.glossy_threshold, 0.0f};
+  shade_batch(batch, exact_, shading, context_.accel, rays, log_);
   for (size_t i = 0; i < batch.count; ++i)
     scratch.direct[batch.index[i]] = glm::vec3(batch.sum_r[i], batch.sum_g[i], batch.sum_b[i]);
 }
@@ -291,7 +298,7 @@ void VplMethod::combine(const GBuffer& gbuffer, const GlossyHits& hits, Scratch&
     const GSample& y = hits.points[h];
     glm::vec3 radiance = y.emitted;
     if (y.valid())
-      radiance += y.throughput * y.surface.albedo *
+      radiance += y.throughput * modulation(y.surface, y.wo) *
                   (set_scale * scratch.sums[camera_points + h] + scratch.direct[camera_points + h] + caustic(y));
     scratch.value[hits.owner[h]] += hits.weight[h] * radiance;
   }
@@ -414,7 +421,7 @@ void VplMethod::resolve(const GBuffer& gbuffer, const Rect& core, const TileJob&
         if (!g.valid()) continue;
         glm::vec3 filtered = scratch.filtered[size_t(l) * core_pixels + c_index];
         if (l < gbuffer.samples) filtered *= ratio;
-        c += g.throughput * g.surface.albedo *
+        c += g.throughput * modulation(g.surface, g.wo) *
              (filtered + scratch.direct[size_t(l) * gbuffer.region.pixels() + pixel] + caustic(g));
       }
       out[size_t(y) * job.w + x] = c * inv_samples;
@@ -452,7 +459,7 @@ void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCou
   // 0.0094, M=64 0.0065 / 0.0068.
   {
     PartTimer timer(parts_, FramePart::Compensation, rays);
-    const VplShading shading{context_.scene, clamp_bound_, settings_.glossy_threshold};
+    const VplShading shading = vpl_shading();
     const BiasCompensation compensation(context_.accel, shading, vpls_, exact_, interleaved(),
                                         settings_.compensation_samples, log_);
     compensation.add(gbuffer, frame_.seed, scratch.value, rays);

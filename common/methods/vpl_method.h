@@ -7,8 +7,9 @@
 // Around that core, per tile:
 //  - anti-aliasing by VPL groups: S sub-samples per pixel, each shaded by its
 //    own group of the pixel's light paths (core/subpixel.h);
-//  - GGX surfaces sharper than the glossy threshold gather their lobe with
-//    rays instead of taking VPL light (methods/glossy_gather.h);
+//  - GGX lobes sharper than the glossy threshold gather their light with
+//    rays instead of taking VPL light (methods/glossy_gather.h); VPLs light
+//    the rest of such a surface (a metallic-roughness surface's diffuse base);
 //  - exact point, spot and directional lights, once per sub-sample, added
 //    after the filter (core/direct_lights.h);
 //  - with a clamp, optional bias compensation (methods/bias_compensation.h)
@@ -80,6 +81,7 @@ class VplMethod final : public Method {
  private:
   struct Scratch;
   bool interleaved() const { return settings_.method == MethodKind::Igi; }
+  VplShading vpl_shading() const;
   void collect_set_samples(const GBuffer& gbuffer, std::span<const uint8_t> rotation, int set, int group,
                            PixelBatch& batch) const;
   void shade_vpls(const GBuffer& gbuffer, const GlossyHits& hits, Scratch& scratch, RayCounts& rays) const;

@@ -71,13 +71,15 @@ glm::vec3 CausticMap::radiance(const GSample& g) const {
   // A Lambertian receiver's demodulated BSDF is 1 / pi for every photon that
   // passes the normal test (it arrived on the viewer's side): summed once.
   const bool lambert = sp.material->type == MaterialType::Diffuse;
+  // The lobes VPL light reaches: a sharp GGX lobe gathers its own (with caustics where its rays land).
+  const Lobes lobes = vpl_lobes(sp, settings_.glossy_threshold);
   auto estimate = [&](const PhotonGrid& grid) {
     const float inv_r2 = 1.0f / (grid.radius() * grid.radius());
     glm::vec3 sum(0.0f);
     grid.for_each_within(sp.position, [&](const Photon& p, float d2) {
       if (glm::dot(p.normal, n) < kNormalCos) return;
       const float t = 1.0f - d2 * inv_r2;
-      sum += (lambert ? p.flux : VplShading::demodulated_bsdf(sp, g.wo, p.incident) * p.flux) * (t * t);
+      sum += (lambert ? p.flux : demodulated_bsdf(sp, g.wo, p.incident, lobes) * p.flux) * (t * t);
     });
     return sum * (3.0f * kInvPi * inv_r2);
   };

@@ -20,7 +20,7 @@ std::string memory_error(const RenderSettings& s, uint64_t memory_bytes) {
 
 bool has_specular_surfaces(const Scene& scene, float glossy_threshold) {
   for (uint32_t m : scene.triangle_material)
-    if (focuses_light(scene.materials[m], glossy_threshold)) return true;
+    if (may_focus_light(scene.materials[m], glossy_threshold)) return true;
   return false;
 }
 

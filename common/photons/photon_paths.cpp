@@ -19,21 +19,19 @@ void trace_path(const SceneContext& ctx, const RenderSettings& settings, uint32_
                 float inv_paths, std::vector<Photon>& out, RayCounts& rays) {
   SampleStream start_stream(path, seed, 0);
   const LightPathStart start = start_light_path(ctx.lights, ctx.scene, start_stream);
-  bool after_specular = false, bounced = false;
+  bool bounced = false;
   int stored = 0;
   rays.secondary += uint64_t(walk_light_path(
       ctx.accel, ctx.scene, start, settings.light_depth, path, seed, BounceDraws::OnePair,
       [&](const LightPathVertex& v) {
-        const bool specular = focuses_light(*v.sp.material, settings.glossy_threshold);
-        if (!specular) {
-          if (after_specular && receives_vpls(*v.sp.material, settings.glossy_threshold)) {
-            out.push_back(Photon{v.sp.position, v.wo, v.sp.geometric_normal_facing(v.wo), v.flux * inv_paths,
-                                 bounced ? 1u : 0u});
-            if (++stored == photons::kMaxPhotonsPerPath) return false;
-          }
-          bounced = true;
+        // Light focused on its way here: through a mirror, glass or a GGX lobe sharper than the threshold.
+        const bool focused_here = v.depth > 0 && focused(v.arrived_by, settings.glossy_threshold);
+        if (focused_here && receives_vpls(v.sp, settings.glossy_threshold)) {
+          out.push_back(Photon{v.sp.position, v.wo, v.sp.geometric_normal_facing(v.wo), v.flux * inv_paths,
+                               bounced ? 1u : 0u});
+          if (++stored == photons::kMaxPhotonsPerPath) return false;
         }
-        after_specular = specular;
+        if (v.depth > 0 && !focused_here) bounced = true;  // a diffuse or rough bounce before this one
         return true;
       }));
 }

@@ -334,9 +334,9 @@ bool Accel::rejects(uint32_t triangle, glm::vec2 b, glm::vec3 direction, bool ca
   }
   if (m.alpha_mask) {
     float alpha = m.base_alpha;
-    if (m.base_color_texture >= 0 && !scene_.uvs.empty()) {
+    if (m.base_color_texture.used() && !scene_.uvs.empty()) {
       glm::vec2 uv = (1.0f - b.x - b.y) * scene_.uvs[t[0]] + b.x * scene_.uvs[t[1]] + b.y * scene_.uvs[t[2]];
-      alpha *= scene_.textures[m.base_color_texture].sample(uv).a;
+      alpha *= scene_.textures[size_t(m.base_color_texture.index)].sample(m.base_color_texture.uv(uv)).a;
     }
     if (alpha < m.alpha_cutoff) return true;
   }

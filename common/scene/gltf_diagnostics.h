@@ -15,11 +15,15 @@ namespace igi {
 struct GltfDiagnostics {
   std::string file;                   // the path as the caller gave it
   std::vector<std::string> warnings;  // "file: message", in the order met
-  std::set<std::string> reported;     // feature keys already warned about
+  std::vector<std::string> notices;   // what was read as the file allows, nothing lost: "file: message"
+  std::set<std::string> reported;     // feature keys already warned about or noted
 
   // Warns about `feature` unless it has been warned about before.
   void warn_once(const std::string& feature, const std::string& message) {
     if (reported.insert(feature).second) warnings.push_back(file + ": " + message);
+  }
+  void notice_once(const std::string& feature, const std::string& message) {
+    if (reported.insert(feature).second) notices.push_back(file + ": " + message);
   }
 
   // Throws SceneError "file: element: what".

@@ -9,8 +9,12 @@
 namespace igi {
 namespace {
 
+// MSFT_texture_dds: a texture reads its core PNG or JPEG source, its DDS
+// image only where it has none (BC4, the single-channel maps
+// AMD_split_roughnessMetallic points at; scene/gltf_textures.h).
 constexpr const char* kSupported[] = {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
-                                      "KHR_materials_emissive_strength"};
+                                      "KHR_materials_emissive_strength", "KHR_materials_specular",
+                                      "KHR_texture_transform", "MSFT_texture_dds", "AMD_split_roughnessMetallic"};
 
 bool supported(const std::string& extension) {
   return std::find(std::begin(kSupported), std::end(kSupported), extension) != std::end(kSupported);
@@ -18,9 +22,13 @@ bool supported(const std::string& extension) {
 
 bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 
+}  // namespace
+
 // What the renderer does instead of the extension, for the warning.
-std::string consequence(const std::string& extension) {
+std::string extension_loss(const std::string& extension) {
   if (extension == "KHR_texture_transform") return "texture coordinates are used untransformed";
+  if (extension == "MSFT_texture_dds") return "textures read only their core PNG or JPEG images";
+  if (extension == "AMD_split_roughnessMetallic") return "roughness and metallic are the materials' factors, untextured";
   if (starts_with(extension, "KHR_materials_") || starts_with(extension, "EXT_materials_"))
     return "materials are read from their core metallic-roughness parameters";
   if (extension == "KHR_draco_mesh_compression" || extension == "EXT_meshopt_compression")
@@ -31,6 +39,8 @@ std::string consequence(const std::string& extension) {
   if (extension == "EXT_mesh_gpu_instancing") return "each node is placed once, without its instances";
   return "the file is read as if the extension were absent";
 }
+
+namespace {
 
 using Names = std::set<std::string>;
 
@@ -93,7 +103,7 @@ bool has_morph_targets(const tinygltf::Model& model) {
 void warn_extensions(const tinygltf::Model& model, GltfDiagnostics& diag) {
   for (const std::string& extension : extensions_in(model))
     if (!supported(extension))
-      diag.warn_once("extension " + extension, "extension " + extension + " ignored: " + consequence(extension));
+      diag.warn_once("extension " + extension, "extension " + extension + " ignored: " + extension_loss(extension));
 }
 
 }  // namespace
@@ -102,11 +112,9 @@ void check_required_extensions(const tinygltf::Model& model, const GltfDiagnosti
   for (size_t i = 0; i < model.extensionsRequired.size(); ++i) {
     const std::string& extension = model.extensionsRequired[i];
     if (supported(extension)) continue;
-    std::string known;
-    for (const char* name : kSupported) known += std::string(known.empty() ? "" : ", ") + name;
     diag.fail(gltf_element("extensionsRequired", i),
-              extension + " is required but not supported, so the file cannot be read as meant (supported: " +
-                  known + ")");
+              extension + " is required but not supported, so the file cannot be read as meant; "
+                          "--ignore-extension " + extension + " loads it anyway (" + extension_loss(extension) + ")");
   }
 }
 
@@ -121,6 +129,9 @@ void warn_unsupported_features(const tinygltf::Model& model, GltfDiagnostics& di
     diag.warn_once("scenes", std::to_string(model.scenes.size()) +
                                  " scenes in the file: only the default scene is loaded");
   warn_extensions(model, diag);
+  if (extensions_in(model).count("MSFT_texture_dds"))
+    diag.notice_once("MSFT_texture_dds", "MSFT_texture_dds: textures read their core PNG or JPEG images, and a "
+                                         "DDS only where a texture has none (BC4 single-channel maps)");
 }
 
 }  // namespace igi

@@ -178,7 +178,7 @@ std::optional<PrimitiveGeometry> GeometryBuilder::read_primitive(const tinygltf:
     diag_.fail(name, "TEXCOORD_0 has " + std::to_string(geometry.uvs.size()) + expected);
   geometry.triangles = read_triangles(primitive, name, count);
   geometry.material = material_index(primitive.material, name);
-  if (geometry.uvs.empty() && scene_.materials[geometry.material].base_color_texture >= 0)
+  if (geometry.uvs.empty() && scene_.materials[geometry.material].base_color_texture.used())
     diag_.warn_once("texture without uvs", "primitives with a baseColorTexture but no TEXCOORD_0 (first: " +
                                                name + ") sample the texture at (0, 0)");
   return geometry;

@@ -166,7 +166,7 @@ std::span<const uint8_t> json_text(std::span<const uint8_t> bytes, bool binary) 
 
 // tinygltf would decode images while parsing, before anything has checked
 // bufferViews against their buffers. Keep the encoded bytes of external and
-// data-URI images instead; gltf_materials.cpp decodes the ones in use.
+// data-URI images instead; gltf_textures.cpp decodes the ones in use.
 bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
                         const unsigned char* bytes, int size, void*) {
   if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
@@ -174,10 +174,20 @@ bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::st
   return true;
 }
 
-void add_parser_warnings(const std::string& text, GltfDiagnostics& diag) {
+// tinygltf reads every image the file names, used or not, and says so of
+// each missing one (twice). Only the images materials use are decoded, and a
+// missing one of those is an error of its own (gltf_textures.h): the others
+// are counted into one notice (Sponza names DDS copies of all its textures).
+void add_parser_warnings(const std::string& text, GltfDiagnostics& diag, size_t& missing_images) {
   std::istringstream lines(text);
-  for (std::string line; std::getline(lines, line);)
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("File not found", 0) == 0) continue;
+    if (line.rfind("Failed to load external 'uri' for image", 0) == 0) {
+      ++missing_images;
+      continue;
+    }
     if (!line.empty()) diag.warnings.push_back(diag.file + ": " + line);
+  }
 }
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -188,12 +198,17 @@ std::string trimmed(std::string text) {
 }
 
 tinygltf::Model parse_model(std::span<const uint8_t> bytes, const std::string& resource_dir,
-                            GltfDiagnostics& diag) {
+                            const std::vector<std::string>& ignored, GltfDiagnostics& diag, size_t& missing_images) {
   // tinygltf takes 32-bit lengths; glTF caps .glb files at 4 GiB as well.
   if (bytes.size() > UINT32_MAX) throw SceneError(diag.file + ": exceeds 4 GiB");
   const bool binary = is_glb(diag.file, bytes);
   if (binary) check_glb(bytes, diag);
   check_json_depth(json_text(bytes, binary), diag);  // before any parser recurses into it
+  std::vector<std::string> removed;
+  const std::optional<std::vector<uint8_t>> stripped = without_extensions(bytes, binary, ignored, &removed);
+  if (stripped) bytes = *stripped;
+  for (const std::string& name : removed)
+    diag.warn_once("ignored " + name, name + " left out (--ignore-extension): " + extension_loss(name));
   check_unsigned_fields(json_text(bytes, binary), diag);
   ResourceFolder folder = resource_folder(resource_dir);
   tinygltf::TinyGLTF parser;
@@ -215,7 +230,7 @@ tinygltf::Model parse_model(std::span<const uint8_t> bytes, const std::string& r
   for (const std::string& path : folder.refused)
     error += (error.empty() ? "" : "; ") + path + " refused: outside the scene's folder";
   if (!ok) throw SceneError(diag.file + ": " + (error.empty() ? "not a valid glTF file" : error));
-  add_parser_warnings(warning, diag);
+  add_parser_warnings(warning, diag, missing_images);
   for (const std::string& path : folder.refused)
     diag.warnings.push_back(diag.file + ": " + path + " refused: outside the scene's folder");
   return model;
@@ -370,7 +385,8 @@ LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& 
                              const std::string& resource_dir, const GltfOptions& options) {
   GltfDiagnostics diag;
   diag.file = name;
-  const tinygltf::Model model = parse_model(bytes, resource_dir, diag);
+  size_t missing_images = 0;
+  const tinygltf::Model model = parse_model(bytes, resource_dir, options.ignored_extensions, diag, missing_images);
   check_required_extensions(model, diag);
   check_buffer_views(model, diag);
   warn_unsupported_features(model, diag);
@@ -378,6 +394,10 @@ LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& 
   LoadedScene loaded;
   Scene& scene = loaded.scene;
   convert_materials(model, diag, scene);
+  if (missing_images > 0)
+    diag.notice_once("missing images", std::to_string(missing_images) + " of the file's " +
+                                           std::to_string(model.images.size()) +
+                                           " images are not there; no material reads them");
   std::vector<AnimationChannel> channels = read_gltf_animations(model, diag);
   std::vector<bool> animated(model.nodes.size(), false);
   for (const AnimationChannel& channel : channels) animated[channel.node] = true;
@@ -396,6 +416,7 @@ LoadedScene load_gltf_memory(std::span<const uint8_t> bytes, const std::string& 
   if (!scene.triangles.empty()) supply_light_and_camera(diag, options.camera_given, scene, loaded.notices);
   validate_scene(scene, diag);
   loaded.warnings = std::move(diag.warnings);
+  loaded.notices.insert(loaded.notices.end(), diag.notices.begin(), diag.notices.end());
   return loaded;
 }
 

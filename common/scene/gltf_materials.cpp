@@ -1,17 +1,11 @@
 #include "scene/gltf_materials.h"
 
 #include <algorithm>
-#include <climits>
-#include <cstring>
 #include <cmath>
-#include <map>
-#include <optional>
-#include <tuple>
 
 #include <tiny_gltf.h>
 
-#include "image/image.h"
-#include "scene/gltf_accessors.h"
+#include "scene/gltf_textures.h"
 
 namespace igi {
 namespace {
@@ -32,110 +26,55 @@ glm::vec3 rgb_or(const std::vector<double>& values, glm::vec3 fallback) {
   return glm::vec3(float(values[0]), float(values[1]), float(values[2]));
 }
 
-// stb decodes to 4 channels of 8 or 16 bits, row 0 at the top (as Texture).
-std::string trimmed(std::string text) {
-  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-  return text;
-}
-
-Texture to_linear_texture(const tinygltf::Image& image) {
-  Texture texture;
-  texture.width = image.width;
-  texture.height = image.height;
-  const size_t count = size_t(image.width) * size_t(image.height);
-  texture.texels.resize(count);
-  const bool wide = image.bits == 16;
-  const float scale = wide ? 1.0f / 65535.0f : 1.0f / 255.0f;
-  for (size_t i = 0; i < count; ++i) {
-    glm::vec4 encoded;
-    for (int c = 0; c < 4; ++c) {
-      const size_t at = i * 4 + size_t(c);
-      encoded[c] = wide ? float(image.image[2 * at] | (image.image[2 * at + 1] << 8)) * scale
-                        : float(image.image[at]) * scale;
-    }
-    texture.texels[i] = glm::vec4(srgb_to_linear(encoded.r), srgb_to_linear(encoded.g),
-                                  srgb_to_linear(encoded.b), encoded.a);
+glm::vec3 rgb_or(const tinygltf::Value* object, const char* key, glm::vec3 fallback) {
+  if (!object || !object->IsObject() || !object->Has(key)) return fallback;
+  const tinygltf::Value& v = object->Get(key);
+  if (!v.IsArray() || v.ArrayLen() != 3) return fallback;
+  glm::vec3 out;
+  for (int i = 0; i < 3; ++i) {
+    if (!v.Get(i).IsNumber()) return fallback;
+    out[i] = float(v.Get(i).GetNumberAsDouble());
   }
-  return texture;
+  return out;
 }
 
-uint32_t big_endian(const unsigned char* at, int bytes) {
-  uint32_t value = 0;
-  for (int i = 0; i < bytes; ++i) value = value << 8 | at[i];
-  return value;
+template <typename Info>
+GltfTextureInfo info_of(const Info& info) {
+  return {info.index, info.texCoord, find_extension(info.extensions, "KHR_texture_transform")};
 }
 
-// Width and height from a PNG or JPEG header, read before decoding so that a
-// small file cannot make the decoder allocate gigabytes. nullopt: neither
-// format (glTF allows only these two), or a header cut short.
-std::optional<glm::ivec2> encoded_image_size(const unsigned char* bytes, size_t size) {
-  static const unsigned char png[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (size >= 24 && std::equal(png, png + 8, bytes) && std::memcmp(bytes + 12, "IHDR", 4) == 0)
-    return glm::ivec2(int(std::min(big_endian(bytes + 16, 4), uint32_t(INT_MAX))),
-                      int(std::min(big_endian(bytes + 20, 4), uint32_t(INT_MAX))));
-  if (size < 4 || bytes[0] != 0xFF || bytes[1] != 0xD8) return std::nullopt;
-  // JPEG: segments FF <marker> <u16 length> ... up to a start-of-frame.
-  for (size_t at = 2; at + 4 <= size;) {
-    if (bytes[at] != 0xFF) return std::nullopt;
-    const unsigned char marker = bytes[at + 1];
-    if (marker == 0xFF) { ++at; continue; }  // fill byte
-    const bool start_of_frame =
-        marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
-    if (start_of_frame) {  // FF Cn, length, precision, height, width
-      if (at + 9 > size) return std::nullopt;
-      return glm::ivec2(big_endian(bytes + at + 7, 2), big_endian(bytes + at + 5, 2));
-    }
-    at += 2 + big_endian(bytes + at + 2, 2);
-  }
-  return std::nullopt;
+// A textureInfo that only an extension's JSON holds (AMD_split_roughnessMetallic's).
+GltfTextureInfo info_of(const tinygltf::Value* object) {
+  GltfTextureInfo info;
+  if (!object || !object->IsObject() || !object->Has("index") || !object->Get("index").IsInt()) return info;
+  info.index = object->Get("index").GetNumberAsInt();
+  if (object->Has("texCoord") && object->Get("texCoord").IsInt()) info.tex_coord = object->Get("texCoord").GetNumberAsInt();
+  if (object->Has("extensions") && object->Get("extensions").Has("KHR_texture_transform"))
+    info.transform = &object->Get("extensions").Get("KHR_texture_transform");
+  return info;
 }
 
-// Texels are stored as float4: 2^26 of them are 1 GiB. A header may also
-// claim more pixels than its file can hold: stb decodes a JPEG whose scans
-// are cut short or missing as if the rest were there, so a 600-byte file
-// that says 8000 x 8000 took 12 s and 1.4 GB before this check. The most
-// pixels a byte can hold:
-// - PNG: 8 (1-bit pixels) times deflate's largest ratio, 1032:1.
-// - JPEG: a scan spends at least one bit on each 8 x 8 block (a 1-bit DC
-//   code, progressive); 1024 is twice that, for slack. Real files stay far
-//   below: a flat 4:2:0 JPEG with the standard tables holds about 64.
-void check_image_size(const unsigned char* bytes, size_t size, const std::string& name, const GltfDiagnostics& diag) {
-  constexpr int64_t kMaxTexels = int64_t(1) << 26;
-  const std::optional<glm::ivec2> extent = encoded_image_size(bytes, size);
-  if (!extent) diag.fail(name, "neither a PNG nor a JPEG image (or its header is cut short)");
-  const int64_t texels = int64_t(extent->x) * extent->y;
-  if (extent->x <= 0 || extent->y <= 0 || texels > kMaxTexels)
-    diag.fail(name, std::to_string(extent->x) + " x " + std::to_string(extent->y) +
-                         " pixels, expected at least 1 x 1 and at most 2^26 pixels");
-  const bool png = bytes[0] == 0x89;
-  const int64_t per_byte = png ? 8 * 1032 : 1024;
-  if (texels > per_byte * int64_t(size))
-    diag.fail(name, std::to_string(extent->x) + " x " + std::to_string(extent->y) + " pixels in " +
-                         std::to_string(size) + " bytes: more than a " + (png ? "PNG" : "JPEG") +
-                         " file of that size can hold (" + std::to_string(per_byte) +
-                         " pixels a byte); the file is cut short or broken");
-}
-
-// Converts materials in glTF order; decodes each used image once.
+// Converts materials in glTF order.
 class MaterialConverter {
  public:
   MaterialConverter(const tinygltf::Model& model, GltfDiagnostics& diag, Scene& scene)
-      : model_(model), diag_(diag), scene_(scene) {}
+      : diag_(diag), scene_(scene), textures_(model, diag, scene) {}
 
   Material convert(const tinygltf::Material& source, size_t index);
 
  private:
-  void choose_model(const tinygltf::Material& source, const std::string& name, Material& out);
+  void read_glass(const tinygltf::Material& source, const std::string& name, Material& out);
+  void read_metallic_roughness(const tinygltf::Material& source, const std::string& name, Material& out);
+  void read_metal_maps(const tinygltf::Material& source, const std::string& name, Material& out);
+  void read_specular(const tinygltf::Material& source, const std::string& name, Material& out);
+  void choose_model(const tinygltf::Material& source, Material& out);
   void read_alpha_mode(const tinygltf::Material& source, Material& out);
-  void warn_ignored_textures(const tinygltf::Material& source);
-  int base_color_texture(const tinygltf::TextureInfo& info, const std::string& name);
-  void warn_sampler(int sampler);
-  Texture decode_image(int image);
+  void read_emission(const tinygltf::Material& source, const std::string& name, Material& out);
+  float least_alpha(const Material& m) const;
 
-  const tinygltf::Model& model_;
   GltfDiagnostics& diag_;
   Scene& scene_;
-  std::map<int, int> texture_of_image_;  // glTF image -> index in scene_.textures, or -1
+  GltfTextures textures_;
 };
 
 Material MaterialConverter::convert(const tinygltf::Material& source, size_t index) {
@@ -146,46 +85,110 @@ Material MaterialConverter::convert(const tinygltf::Material& source, size_t ind
   const std::vector<double>& factor = pbr.baseColorFactor;
   out.base_color = rgb_or(factor, glm::vec3(1.0f));
   out.base_alpha = factor.size() == 4 ? float(factor[3]) : 1.0f;
-  choose_model(source, name, out);
-  out.base_color_texture = base_color_texture(pbr.baseColorTexture, name);
+  out.base_color_texture = textures_.reference(info_of(pbr.baseColorTexture), name + ".baseColorTexture", true);
+  if (find_extension(source.extensions, "KHR_materials_transmission") &&
+      number_or(find_extension(source.extensions, "KHR_materials_transmission"), "transmissionFactor", 0.0) > 0.0)
+    read_glass(source, name, out);
+  else
+    read_metallic_roughness(source, name, out);
   read_alpha_mode(source, out);
   out.double_sided = source.doubleSided;
-
-  const double strength = number_or(find_extension(source.extensions, "KHR_materials_emissive_strength"),
-                                    "emissiveStrength", 1.0);
-  out.emission = glm::max(rgb_or(source.emissiveFactor, glm::vec3(0.0f)) * float(strength), glm::vec3(0.0f));
-  warn_ignored_textures(source);
+  read_emission(source, name, out);
+  if (source.occlusionTexture.index >= 0)
+    diag_.warn_once("occlusionTexture", "occlusionTexture ignored: occlusion comes from the traced geometry");
   return out;
 }
 
-void MaterialConverter::choose_model(const tinygltf::Material& source, const std::string& name,
-                                     Material& out) {
+void MaterialConverter::read_glass(const tinygltf::Material& source, const std::string& name, Material& out) {
   const tinygltf::Value* transmission = find_extension(source.extensions, "KHR_materials_transmission");
-  const double transmission_factor = number_or(transmission, "transmissionFactor", 0.0);
-  if (transmission_factor > 0.0) {
-    out.type = MaterialType::Glass;
-    out.ior = float(number_or(find_extension(source.extensions, "KHR_materials_ior"), "ior", 1.5));
-    if (transmission_factor < 1.0)
-      diag_.warn_once("partial transmission", "transmissionFactor below 1 (first in " + name +
-                                                  ") treated as 1: the material is glass");
-    if (transmission->Has("transmissionTexture"))
-      diag_.warn_once("transmissionTexture", "transmissionTexture ignored: transmissionFactor is used");
-    return;
-  }
-  const double metallic = std::clamp(source.pbrMetallicRoughness.metallicFactor, 0.0, 1.0);
-  const double roughness = std::clamp(source.pbrMetallicRoughness.roughnessFactor, 0.0, 1.0);
-  if (metallic != 0.0 && metallic != 1.0)
-    diag_.warn_once("intermediate metallic",
-                    "metallicFactor between 0 and 1 (first in " + name +
-                        ") rounded to the nearest: >= 0.5 is a conductor, below is diffuse");
-  if (metallic < 0.5) {
+  out.type = MaterialType::Glass;
+  out.ior = float(number_or(find_extension(source.extensions, "KHR_materials_ior"), "ior", 1.5));
+  if (number_or(transmission, "transmissionFactor", 0.0) < 1.0)
+    diag_.warn_once("partial transmission", "transmissionFactor below 1 (first in " + name +
+                                                ") treated as 1: the material is glass");
+  if (transmission->Has("transmissionTexture"))
+    diag_.warn_once("transmissionTexture", "transmissionTexture ignored: transmissionFactor is used");
+}
+
+void MaterialConverter::read_metallic_roughness(const tinygltf::Material& source, const std::string& name,
+                                                Material& out) {
+  const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
+  out.type = MaterialType::MetallicRoughness;
+  out.metallic = float(std::clamp(pbr.metallicFactor, 0.0, 1.0));
+  out.roughness = float(std::clamp(pbr.roughnessFactor, 0.0, 1.0));
+  out.metallic_roughness_texture =
+      textures_.reference(info_of(pbr.metallicRoughnessTexture), name + ".metallicRoughnessTexture", false);
+  read_metal_maps(source, name, out);
+  read_specular(source, name, out);
+  out.normal_texture = textures_.reference(info_of(source.normalTexture), name + ".normalTexture", false);
+  out.normal_scale = float(source.normalTexture.scale);
+  out.alpha = std::max(out.roughness * out.roughness, kMinMetallicRoughnessAlpha);
+  out.min_alpha = least_alpha(out);
+  choose_model(source, out);
+}
+
+// AMD_split_roughnessMetallic: a single-channel roughness map and metal map
+// in place of the core's two-channel texture, read into its channels here
+// as two textures whose every channel holds the value.
+void MaterialConverter::read_metal_maps(const tinygltf::Material& source, const std::string& name, Material& out) {
+  const tinygltf::Value* split = find_extension(source.extensions, "AMD_split_roughnessMetallic");
+  if (!split || !split->IsObject()) return;
+  const std::string element = name + ".AMD_split_roughnessMetallic";
+  const TextureRef roughness = textures_.reference(info_of(split->Has("roughnessTexture") ? &split->Get("roughnessTexture") : nullptr),
+                                                   element + ".roughnessTexture", false);
+  const TextureRef metallic = textures_.reference(info_of(split->Has("metallicTexture") ? &split->Get("metallicTexture") : nullptr),
+                                                  element + ".metallicTexture", false);
+  if (roughness.used()) out.roughness_texture = roughness;
+  if (metallic.used()) out.metallic_texture = metallic;
+}
+
+// KHR_materials_specular and KHR_materials_ior: the coat's F0 and weight.
+void MaterialConverter::read_specular(const tinygltf::Material& source, const std::string& name, Material& out) {
+  const tinygltf::Value* ior = find_extension(source.extensions, "KHR_materials_ior");
+  out.ior = float(number_or(ior, "ior", 1.5));
+  const float f0 = (out.ior - 1.0f) / (out.ior + 1.0f);
+  const tinygltf::Value* specular = find_extension(source.extensions, "KHR_materials_specular");
+  const glm::vec3 colour = rgb_or(specular, "specularColorFactor", glm::vec3(1.0f));
+  out.specular_f0 = glm::min(f0 * f0 * glm::max(colour, glm::vec3(0.0f)), glm::vec3(1.0f));
+  out.specular_weight = float(std::clamp(number_or(specular, "specularFactor", 1.0), 0.0, 1.0));
+  if (specular && (specular->Has("specularTexture") || specular->Has("specularColorTexture")))
+    diag_.warn_once("specularTexture", "KHR_materials_specular's textures ignored (first in " + name +
+                                           "): specularFactor and specularColorFactor are used");
+}
+
+// The fast models where the glTF BRDF reduces to one: Lambert, a mirror, or
+// (extras.igi_fresnel "constant") the built-in scenes' constant-Fresnel metal.
+void MaterialConverter::choose_model(const tinygltf::Material& source, Material& out) {
+  const bool textured = out.metallic_roughness_texture.used() || out.metallic_texture.used() ||
+                        out.roughness_texture.used() || out.normal_texture.used();
+  if (textured) return;
+  const bool constant_fresnel = source.extras.IsObject() && source.extras.Has("igi_fresnel") &&
+                                source.extras.Get("igi_fresnel").IsString() &&
+                                source.extras.Get("igi_fresnel").Get<std::string>() == "constant";
+  if (out.metallic == 0.0f && out.specular_weight == 0.0f) {
     out.type = MaterialType::Diffuse;
-  } else if (roughness > 0.0) {
-    out.type = MaterialType::Conductor;
-    out.alpha = float(roughness * roughness);
-  } else {
+  } else if (out.metallic == 1.0f && out.roughness == 0.0f) {
     out.type = MaterialType::Mirror;
+    out.schlick_fresnel = !constant_fresnel;
+  } else if (out.metallic == 1.0f && constant_fresnel) {
+    out.type = MaterialType::Conductor;
+    out.alpha = out.roughness * out.roughness;
   }
+}
+
+// The least alpha a surface of m can have (the glossy threshold's choices: caustics on or off).
+float MaterialConverter::least_alpha(const Material& m) const {
+  float roughness = m.roughness;
+  auto least = [&](const TextureRef& ref, int channel) {
+    const Texture& t = scene_.textures[size_t(ref.index)];
+    float low = 1.0f;
+    for (int y = 0; y < t.height; ++y)
+      for (int x = 0; x < t.width; ++x) low = std::min(low, t.texel(x, y)[channel]);
+    return low;
+  };
+  if (m.roughness_texture.used()) roughness *= least(m.roughness_texture, 1);
+  else if (m.metallic_roughness_texture.used()) roughness *= least(m.metallic_roughness_texture, 1);
+  return std::max(roughness * roughness, kMinMetallicRoughnessAlpha);
 }
 
 void MaterialConverter::read_alpha_mode(const tinygltf::Material& source, Material& out) {
@@ -202,92 +205,21 @@ void MaterialConverter::read_alpha_mode(const tinygltf::Material& source, Materi
   }
 }
 
-void MaterialConverter::warn_ignored_textures(const tinygltf::Material& source) {
-  if (source.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
-    diag_.warn_once("metallicRoughnessTexture",
-                    "metallicRoughnessTexture ignored: metallicFactor and roughnessFactor are used");
-  if (source.normalTexture.index >= 0)
-    diag_.warn_once("normalTexture", "normalTexture ignored: shading uses interpolated vertex normals");
-  if (source.occlusionTexture.index >= 0)
-    diag_.warn_once("occlusionTexture", "occlusionTexture ignored: occlusion comes from the traced geometry");
-  if (source.emissiveTexture.index >= 0)
-    diag_.warn_once("emissiveTexture", "emissiveTexture ignored: emission is the uniform emissiveFactor");
-}
-
-int MaterialConverter::base_color_texture(const tinygltf::TextureInfo& info, const std::string& name) {
-  if (info.index < 0) return -1;
-  if (size_t(info.index) >= model_.textures.size())
-    diag_.fail(name + ".pbrMetallicRoughness.baseColorTexture",
-               "texture " + std::to_string(info.index) + " does not exist (the file has " +
-                   std::to_string(model_.textures.size()) + ")");
-  if (info.texCoord != 0)
-    diag_.warn_once("texCoord", "baseColorTexture texCoord " + std::to_string(info.texCoord) +
-                                    " ignored: TEXCOORD_0 is used");
-  const tinygltf::Texture& texture = model_.textures[size_t(info.index)];
-  warn_sampler(texture.sampler);
-  const int image = texture.source;
-  if (image >= 0 && size_t(image) >= model_.images.size())
-    diag_.fail(gltf_element("textures", size_t(info.index)),
-               "source " + std::to_string(image) + " does not exist (the file has " +
-                   std::to_string(model_.images.size()) + " images)");
-  if (image < 0) {  // e.g. only an extension's source (KHR_texture_basisu)
-    diag_.warn_once("texture source",
-                    gltf_element("textures", size_t(info.index)) +
-                        " has no image source the loader can read: baseColorFactor is used");
-    return -1;
-  }
-  auto cached = texture_of_image_.find(image);
-  if (cached != texture_of_image_.end()) return cached->second;
-  const int slot = int(scene_.textures.size());
-  scene_.textures.push_back(decode_image(image));
-  texture_of_image_[image] = slot;
-  return slot;
-}
-
-
-void MaterialConverter::warn_sampler(int sampler) {
-  if (sampler < 0 || size_t(sampler) >= model_.samplers.size()) return;
-  const tinygltf::Sampler& s = model_.samplers[size_t(sampler)];
-  if (s.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT || s.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT)
-    diag_.warn_once("sampler wrap", "sampler wrap modes other than REPEAT ignored: textures repeat");
-  const bool filtered = (s.minFilter != -1 && s.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR) ||
-                        (s.magFilter != -1 && s.magFilter != TINYGLTF_TEXTURE_FILTER_LINEAR);
-  if (filtered)
-    diag_.warn_once("sampler filter",
-                    "sampler filter modes ignored: textures are filtered bilinearly without mipmaps");
-}
-
-// Images are decoded here rather than by tinygltf, after every bufferView
-// has been checked against its buffer (see parse_model in gltf_loader.cpp).
-// A texture the file asks for and the loader cannot read is an error, not a
-// silent fallback to baseColorFactor: the render would look plausible and wrong.
-Texture MaterialConverter::decode_image(int index) {
-  const tinygltf::Image& image = model_.images[size_t(index)];
-  const std::string name = gltf_element("images", size_t(index));
-  const std::string shown = image.uri.empty() ? name : name + " ('" + image.uri.substr(0, 200) + "')";
-  const unsigned char* bytes = image.image.data();
-  size_t size = image.image.size();
-  if (image.bufferView >= 0) std::tie(bytes, size) = buffer_view_bytes(model_, image.bufferView, name, diag_);
-  if (size == 0 && image.bufferView >= 0) diag_.fail(shown, "the bufferView is empty");
-  if (size == 0) diag_.fail(shown, "the image file is missing, empty or outside the scene's folder");
-  if (size > size_t(INT_MAX)) diag_.fail(shown, std::to_string(size) + " bytes, over the 2 GiB image limit");
-  return decode_texture(bytes, size, shown, diag_);
+// Radiance: factor x strength, times the emissive texture's mean (lights
+// emit one radiance a triangle; the pattern itself is not drawn).
+void MaterialConverter::read_emission(const tinygltf::Material& source, const std::string& name, Material& out) {
+  const double strength = number_or(find_extension(source.extensions, "KHR_materials_emissive_strength"),
+                                    "emissiveStrength", 1.0);
+  out.emission = glm::max(rgb_or(source.emissiveFactor, glm::vec3(0.0f)) * float(strength), glm::vec3(0.0f));
+  if (source.emissiveTexture.index < 0 || !out.is_emissive()) return;
+  const TextureRef emissive = textures_.reference(info_of(source.emissiveTexture), name + ".emissiveTexture", true);
+  if (!emissive.used()) return;
+  out.emission *= glm::vec3(scene_.textures[size_t(emissive.index)].mean());
+  diag_.warn_once("emissiveTexture", "emissiveTexture read as its mean colour (first in " + name +
+                                         "): each emitter glows evenly, with the texture's light in total");
 }
 
 }  // namespace
-
-Texture decode_texture(const unsigned char* bytes, size_t size, const std::string& shown, const GltfDiagnostics& diag) {
-  check_image_size(bytes, size, shown, diag);
-  std::string error, warning;
-  tinygltf::Image decoded;
-  const bool ok = tinygltf::LoadImageData(&decoded, 0, &error, &warning, 0, 0, bytes, int(size), nullptr);
-  const size_t expected_bytes = size_t(decoded.width) * size_t(decoded.height) * 4 * size_t(decoded.bits / 8);
-  if (!ok || decoded.component != 4 || (decoded.bits != 8 && decoded.bits != 16) ||
-      decoded.image.size() != expected_bytes)
-    diag.fail(shown, "cannot be decoded" + (error.empty() ? std::string() : " (" + trimmed(error) + ")") +
-                         ": expected a PNG or JPEG image");
-  return to_linear_texture(decoded);
-}
 
 void convert_materials(const tinygltf::Model& model, GltfDiagnostics& diag, Scene& scene) {
   MaterialConverter converter(model, diag, scene);
@@ -299,9 +231,12 @@ void convert_materials(const tinygltf::Model& model, GltfDiagnostics& diag, Scen
 Material default_gltf_material() {
   Material material;
   material.name = "glTF default";
-  material.type = MaterialType::Conductor;
+  material.type = MaterialType::MetallicRoughness;
   material.base_color = glm::vec3(1.0f);
+  material.metallic = 1.0f;
+  material.roughness = 1.0f;
   material.alpha = 1.0f;
+  material.min_alpha = 1.0f;
   material.double_sided = false;
   return material;
 }

@@ -1,16 +1,27 @@
 #pragma once
-// glTF materials mapped onto the renderer's four material models.
+// glTF materials mapped onto the renderer's material models:
 //
 //   KHR_materials_transmission > 0      -> Glass, ior from KHR_materials_ior (1.5)
-//   metallic >= 0.5, roughness > 0      -> Conductor, alpha = roughness^2
-//   metallic >= 0.5, roughness == 0     -> Mirror
-//   metallic <  0.5                     -> Diffuse, albedo = baseColor
-// Emission is emissiveFactor * KHR_materials_emissive_strength, read as
-// radiance. Base colour textures are decoded from sRGB to linear on load;
-// alpha stays linear. A used texture whose image is missing, is not a PNG or
-// JPEG, does not decode or exceeds 2^26 pixels is an error (SceneError).
-// Everything else a glTF material can say is reported once through
-// GltfDiagnostics and left out.
+//   metallic 0, specularFactor 0        -> Diffuse (Lambert exactly), albedo = baseColor
+//   metallic 1, roughness 0             -> Mirror with glTF's Schlick Fresnel, F0 = baseColor
+//   anything else                       -> MetallicRoughness: glTF's BRDF itself
+//                                          (material/metallic_roughness.h), fractional
+//                                          metallic included
+// (the first three only without metallic-roughness and normal textures).
+// `extras: {"igi_fresnel": "constant"}` on a metallic-1 material reads it as
+// the Conductor (or Mirror) of constant Fresnel = baseColor that
+// --export-gltf writes for the built-in scenes' metal, so they come back as
+// they were. Textures: baseColorTexture and emissiveTexture decoded from
+// sRGB, metallicRoughnessTexture (blue metallic, green roughness) and
+// normalTexture (with its scale; tangents from the uv layout, scene/surface.h)
+// linearly, each with KHR_texture_transform; AMD_split_roughnessMetallic's
+// separate single-channel maps where their images can be read. Emission is
+// emissiveFactor x KHR_materials_emissive_strength x the mean of
+// emissiveTexture (per material: lights need one radiance a triangle), read
+// as radiance. KHR_materials_specular's specularFactor and specularColorFactor
+// set the coat's Fresnel. Everything else a glTF material can say
+// (occlusionTexture, the specular extension's textures, ...) is reported
+// once through GltfDiagnostics and left out.
 #include "scene/gltf_diagnostics.h"
 #include "scene/scene.h"
 
@@ -21,16 +32,11 @@ class Model;
 namespace igi {
 
 // Fills scene.materials (one per glTF material, same order) and
-// scene.textures (one per decoded image that a material uses).
+// scene.textures (one per decoded image and colour space that a material uses).
 void convert_materials(const tinygltf::Model& model, GltfDiagnostics& diag, Scene& scene);
 
-// A PNG or JPEG file's bytes as a linear texture (sRGB decoded; alpha kept),
-// after the same checks as a glTF image: its header's size at most 2^26
-// pixels and no more than its bytes can hold. Throws SceneError naming `shown`.
-Texture decode_texture(const unsigned char* bytes, size_t size, const std::string& shown, const GltfDiagnostics& diag);
-
 // The material glTF prescribes for a primitive without one: white,
-// metallic 1, roughness 1, single-sided; here a Conductor with alpha 1.
+// metallic 1, roughness 1, single-sided.
 Material default_gltf_material();
 
 }  // namespace igi

@@ -5,10 +5,12 @@
 #include <cstring>
 #include <filesystem>
 #include <optional>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "io/file_bytes.h"
+#include "scene/gltf_json.h"
 #include "scene/obj_loader.h"
 #include "scene/scene.h"
 
@@ -91,11 +93,61 @@ void pack_buffers(json& doc, std::vector<uint8_t>& bin, const fs::path& folder, 
   buffers = std::move(kept);
 }
 
-// External images become bufferViews of the BIN chunk.
+// Every texture index a material names (its textureInfo objects, the
+// extensions' too), but the occlusion texture, which nothing reads.
+void material_textures(const json& value, std::set<int64_t>& out) {
+  if (value.is_object()) {
+    const auto index = value.find("index");
+    if (index != value.end() && index->is_number_integer()) out.insert(index->get<int64_t>());
+    for (const auto& member : value.items())
+      if (member.key() != "occlusionTexture") material_textures(member.value(), out);
+  } else if (value.is_array()) {
+    for (const json& element : value) material_textures(element, out);
+  }
+}
+
+// The images those textures read: their source, or where they have none the
+// DDS that MSFT_texture_dds names (as scene/gltf_textures.h reads them).
+std::set<int64_t> used_images(const json& doc) {
+  std::set<int64_t> textures, images;
+  if (doc.contains("materials")) material_textures(doc["materials"], textures);
+  if (!doc.contains("textures") || !doc["textures"].is_array()) return images;
+  for (int64_t t : textures) {
+    if (t < 0 || size_t(t) >= doc["textures"].size() || !doc["textures"][size_t(t)].is_object()) continue;
+    const json& texture = doc["textures"][size_t(t)];
+    if (texture.contains("source") && texture["source"].is_number_integer()) {
+      images.insert(texture["source"].get<int64_t>());
+      continue;
+    }
+    const json* dds = texture.contains("extensions") ? &texture["extensions"] : nullptr;
+    if (dds && dds->contains("MSFT_texture_dds") && (*dds)["MSFT_texture_dds"].contains("source") &&
+        (*dds)["MSFT_texture_dds"]["source"].is_number_integer())
+      images.insert((*dds)["MSFT_texture_dds"]["source"].get<int64_t>());
+  }
+  return images;
+}
+
+// External images some material reads become bufferViews of the BIN chunk;
+// the others a placeholder (one byte, never decoded: the loader reads only
+// the images materials use).
 void pack_images(json& doc, std::vector<uint8_t>& bin, const fs::path& folder, const std::string& scene) {
   if (!doc.contains("images") || !doc["images"].is_array()) return;
-  for (json& image : doc["images"]) {
+  const std::set<int64_t> used = used_images(doc);
+  int64_t placeholder = -1;
+  for (size_t i = 0; i < doc["images"].size(); ++i) {
+    json& image = doc["images"][i];
     if (!is_external(image)) continue;
+    if (!used.count(int64_t(i))) {
+      if (placeholder < 0) {
+        const size_t at = append_aligned(bin, {0});
+        doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", 1}});
+        placeholder = int64_t(doc["bufferViews"].size() - 1);
+      }
+      image.erase("uri");
+      image["bufferView"] = placeholder;
+      image["mimeType"] = "image/png";
+      continue;
+    }
     const std::vector<uint8_t> bytes = read_beside(folder, image["uri"], scene);
     const size_t at = append_aligned(bin, bytes);
     doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", bytes.size()}});
@@ -138,14 +190,23 @@ bool has_external(const json& doc, const char* array) {
 
 }  // namespace
 
-SceneFile scene_file_for_workers(const std::string& path) {
+SceneFile scene_file_for_workers(const std::string& path, const std::vector<std::string>& ignored_extensions) {
   if (is_obj_file(path)) return {fs::path(path).stem().string() + ".glb", obj_as_glb(path), true};
   std::optional<std::vector<uint8_t>> bytes = read_file_bytes(path);
   if (!bytes) throw SceneError(path + ": cannot read the scene file");
   SceneFile file{fs::path(path).filename().string(), std::move(*bytes), false};
-  if (file.bytes.size() >= 4 && std::memcmp(file.bytes.data(), &kGlbMagic, 4) == 0) return file;  // a .glb: whole
+  if (file.bytes.size() >= 20 && std::memcmp(file.bytes.data(), &kGlbMagic, 4) == 0) {  // a .glb: whole
+    if (auto stripped = without_extensions(file.bytes, true, ignored_extensions)) file.bytes = std::move(*stripped);
+    return file;
+  }
   json doc = json::parse(file.bytes.begin(), file.bytes.end(), nullptr, false);
-  if (!doc.is_object() || !(has_external(doc, "buffers") || has_external(doc, "images"))) return file;
+  if (!doc.is_object()) return file;  // the loader's error
+  if (strip_extensions(doc, ignored_extensions) && !(has_external(doc, "buffers") || has_external(doc, "images"))) {
+    const std::string text = doc.dump();
+    file.bytes.assign(text.begin(), text.end());
+    return file;
+  }
+  if (!(has_external(doc, "buffers") || has_external(doc, "images"))) return file;
   const fs::path folder = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
   std::vector<uint8_t> bin;
   if (doc.contains("buffers") && doc["buffers"].is_array()) pack_buffers(doc, bin, folder, path);

@@ -39,9 +39,11 @@ void check_writable(const Scene& scene, const std::string& path) {
       throw SceneError(where + "triangle " + std::to_string(t) +
                        " indexes a vertex or material that does not exist");
   for (const Material& m : scene.materials)
-    if (m.base_color_texture >= int(scene.textures.size()))
-      throw SceneError(where + "material '" + m.name + "' names texture " +
-                       std::to_string(m.base_color_texture) + " of " + std::to_string(scene.textures.size()));
+    for (const TextureRef* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.metallic_texture,
+                                &m.roughness_texture, &m.normal_texture})
+      if (t->index >= int(scene.textures.size()))
+        throw SceneError(where + "material '" + m.name + "' names texture " + std::to_string(t->index) + " of " +
+                         std::to_string(scene.textures.size()));
 }
 
 // Appends a 4-byte aligned bufferView over `bytes` to buffer 0.
@@ -141,23 +143,78 @@ void set_extension(tinygltf::Material& material, const char* name, const char* k
   used.insert(name);
 }
 
+// KHR_texture_transform of a reference: offset, rotation and scale from its
+// matrix (rotation x scale, as the loader builds it).
+tinygltf::ExtensionMap texture_transform(const TextureRef& ref, std::set<std::string>& used) {
+  if (!ref.transformed) return {};
+  used.insert("KHR_texture_transform");
+  const glm::vec2 x = ref.linear[0], y = ref.linear[1];  // (c sx, -s sx), (s sy, c sy)
+  const double sx = glm::length(x), sy = glm::length(y), rotation = std::atan2(-double(x.y), double(x.x));
+  auto pair = [](double a, double b) { return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(a), tinygltf::Value(b)}); };
+  Object transform{{"offset", pair(ref.offset.x, ref.offset.y)}, {"rotation", tinygltf::Value(rotation)},
+                   {"scale", pair(sx, sy)}};
+  return {{"KHR_texture_transform", tinygltf::Value(std::move(transform))}};
+}
+
+template <typename Info>
+void set_texture(Info& info, const TextureRef& ref, std::set<std::string>& used) {
+  info.index = ref.index;
+  info.extensions = texture_transform(ref, used);
+}
+
+// The glTF BRDF's own parameters (gltf_materials.h reads them back).
+void write_metallic_roughness(const Material& m, tinygltf::Material& out, std::set<std::string>& used) {
+  tinygltf::PbrMetallicRoughness& pbr = out.pbrMetallicRoughness;
+  pbr.metallicFactor = m.metallic;
+  pbr.roughnessFactor = m.roughness;
+  set_texture(pbr.metallicRoughnessTexture, m.metallic_roughness_texture, used);
+  if (m.metallic_texture.used() || m.roughness_texture.used())
+    throw SceneError("material '" + m.name + "': AMD_split_roughnessMetallic's maps cannot be written");
+  set_texture(out.normalTexture, m.normal_texture, used);
+  out.normalTexture.scale = m.normal_scale;
+  if (m.ior != 1.5f) set_extension(out, "KHR_materials_ior", "ior", m.ior, used);
+  const float f0 = (m.ior - 1.0f) / (m.ior + 1.0f);
+  const glm::vec3 colour = f0 > 0.0f ? m.specular_f0 / (f0 * f0) : glm::vec3(1.0f);
+  if (m.specular_weight != 1.0f || colour != glm::vec3(1.0f)) {
+    Object specular{{"specularFactor", tinygltf::Value(double(m.specular_weight))}};
+    specular["specularColorFactor"] = tinygltf::Value(
+        tinygltf::Value::Array{tinygltf::Value(double(colour.r)), tinygltf::Value(double(colour.g)), tinygltf::Value(double(colour.b))});
+    out.extensions["KHR_materials_specular"] = tinygltf::Value(std::move(specular));
+    used.insert("KHR_materials_specular");
+  }
+}
+
+// Built-in models as glTF: Lambert exactly (metallic 0 with no specular
+// reflection, KHR_materials_specular's specularFactor 0); the conductor and
+// the tinted mirror as metallic 1, which glTF draws with Schlick's Fresnel
+// from F0 = base colour, marked {"igi_fresnel": "constant"} so that igi (and
+// scripts/mitsuba/) read them back with their constant Fresnel.
 tinygltf::Material to_gltf(const Material& m, std::set<std::string>& used) {
   tinygltf::Material out;
   out.name = m.name;
   tinygltf::PbrMetallicRoughness& pbr = out.pbrMetallicRoughness;
   pbr.baseColorFactor = {m.base_color.r, m.base_color.g, m.base_color.b, m.base_alpha};
-  pbr.baseColorTexture.index = m.base_color_texture;
+  set_texture(pbr.baseColorTexture, m.base_color_texture, used);
+  const tinygltf::Value constant_fresnel(Object{{"igi_fresnel", tinygltf::Value(std::string("constant"))}});
   switch (m.type) {
-    case MaterialType::Diffuse: pbr.metallicFactor = 0.0, pbr.roughnessFactor = 1.0; break;
+    case MaterialType::Diffuse:
+      pbr.metallicFactor = 0.0, pbr.roughnessFactor = 1.0;
+      set_extension(out, "KHR_materials_specular", "specularFactor", 0.0, used);
+      break;
     case MaterialType::Conductor:
       pbr.metallicFactor = 1.0, pbr.roughnessFactor = std::sqrt(double(m.alpha));
+      out.extras = constant_fresnel;
       break;
-    case MaterialType::Mirror: pbr.metallicFactor = 1.0, pbr.roughnessFactor = 0.0; break;
+    case MaterialType::Mirror:
+      pbr.metallicFactor = 1.0, pbr.roughnessFactor = 0.0;
+      if (!m.schlick_fresnel) out.extras = constant_fresnel;
+      break;
     case MaterialType::Glass:
       pbr.metallicFactor = 0.0, pbr.roughnessFactor = 0.0;
       set_extension(out, "KHR_materials_transmission", "transmissionFactor", 1.0, used);
       set_extension(out, "KHR_materials_ior", "ior", m.ior, used);
       break;
+    case MaterialType::MetallicRoughness: write_metallic_roughness(m, out, used); break;
   }
   // emissiveFactor is clamped to [0, 1]; the strength extension carries the rest.
   const float peak = std::max({m.emission.r, m.emission.g, m.emission.b});
@@ -175,20 +232,25 @@ unsigned char linear_to_srgb8(float c) {
   return static_cast<unsigned char>(std::lround(encoded * 255.0f));
 }
 
-// 8-bit sRGB RGBA that tinygltf hands to stb_image_write as a PNG.
+// 8-bit RGBA that tinygltf hands to stb_image_write as a PNG: the bytes a
+// texture was decoded from as they were, floats encoded as the texture
+// reads them (sRGB colour, linear data and alpha).
 tinygltf::Image to_png_image(const Texture& texture, const std::string& uri) {
   tinygltf::Image image;
   image.uri = uri;
   image.mimeType = "image/png";
   image.width = texture.width, image.height = texture.height;
   image.component = 4, image.bits = 8, image.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  if (!texture.bytes.empty()) {
+    image.image = texture.bytes;
+    return image;
+  }
   image.image.resize(texture.texels.size() * 4);
+  auto linear8 = [](float c) { return static_cast<unsigned char>(std::lround(std::clamp(c, 0.0f, 1.0f) * 255.0f)); };
   for (size_t i = 0; i < texture.texels.size(); ++i) {
     const glm::vec4 t = texture.texels[i];
-    image.image[4 * i + 0] = linear_to_srgb8(t.r);
-    image.image[4 * i + 1] = linear_to_srgb8(t.g);
-    image.image[4 * i + 2] = linear_to_srgb8(t.b);
-    image.image[4 * i + 3] = static_cast<unsigned char>(std::lround(std::clamp(t.a, 0.0f, 1.0f) * 255.0f));
+    for (int c = 0; c < 3; ++c) image.image[4 * i + size_t(c)] = texture.srgb ? linear_to_srgb8(t[c]) : linear8(t[c]);
+    image.image[4 * i + 3] = linear8(t.a);
   }
   return image;
 }

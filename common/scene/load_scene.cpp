@@ -88,10 +88,10 @@ Scene load_scene(const std::string& name_or_path, const SceneOptions& options, S
   if (is_obj_file(name_or_path)) {  // as glTF: the bytes workers are sent (scene/obj_loader.h)
     std::vector<std::string> obj_warnings;
     const std::vector<uint8_t> glb = obj_as_glb(name_or_path, &obj_warnings);
-    loaded = load_gltf_memory(glb, name_or_path, "", {radiance, options.light_units, options.camera_given});
+    loaded = load_gltf_memory(glb, name_or_path, "", {radiance, options.light_units, options.camera_given, options.ignored_extensions});
     loaded.warnings.insert(loaded.warnings.begin(), obj_warnings.begin(), obj_warnings.end());
   } else {
-    loaded = load_gltf(name_or_path, {radiance, options.light_units, options.camera_given});
+    loaded = load_gltf(name_or_path, {radiance, options.light_units, options.camera_given, options.ignored_extensions});
   }
   if (map) {
     loaded.scene.environment_map = std::move(map);

@@ -15,6 +15,7 @@
 #include "io/file_bytes.h"
 #include "scene/gltf_diagnostics.h"
 #include "scene/gltf_materials.h"
+#include "scene/texture_decode.h"
 #include "scene/gltf_writer.h"
 #include "scene/scene.h"
 
@@ -152,7 +153,7 @@ Material ObjConverter::to_material(const tinyobj::material_t& m) {
     if (luminance(kd) > 0.0f) diag_.warn_once("Kd beside Ks", "Kd beside a brighter Ks dropped: no layered material");
   } else {
     out.base_color = kd;
-    if (!m.diffuse_texname.empty()) out.base_color_texture = texture(m.diffuse_texname, m.name);
+    if (!m.diffuse_texname.empty()) out.base_color_texture.index = texture(m.diffuse_texname, m.name);
     if (luminance(ks) > 0.0f) diag_.warn_once("Ks beside Kd", "Ks beside a brighter Kd dropped: no layered material");
   }
   report_unmapped(m);

@@ -1,7 +1,10 @@
 #include "scene/scene.h"
 
+#include <array>
 #include <cmath>
 #include <string>
+
+#include "image/image.h"
 
 namespace igi {
 
@@ -11,8 +14,34 @@ const char* material_type_name(MaterialType type) {
     case MaterialType::Conductor: return "conductor";
     case MaterialType::Mirror: return "mirror";
     case MaterialType::Glass: return "glass";
+    case MaterialType::MetallicRoughness: return "metallic-roughness";
   }
   return "unknown";
+}
+
+namespace {
+
+// Byte to linear value, as decoding a whole image to floats gives it
+// (scene/texture_decode.cpp once did): the same float expression, so either store samples alike.
+struct ByteDecoding {
+  std::array<float, 256> linear, srgb;
+  ByteDecoding() {
+    for (int i = 0; i < 256; ++i) {
+      linear[size_t(i)] = float(i) * (1.0f / 255.0f);
+      srgb[size_t(i)] = srgb_to_linear(linear[size_t(i)]);
+    }
+  }
+};
+const ByteDecoding kBytes;
+
+}  // namespace
+
+glm::vec4 Texture::texel(int x, int y) const {
+  const size_t at = size_t(y) * size_t(width) + size_t(x);
+  if (bytes.empty()) return texels[at];
+  const uint8_t* b = bytes.data() + 4 * at;
+  const std::array<float, 256>& colour = srgb ? kBytes.srgb : kBytes.linear;
+  return {colour[b[0]], colour[b[1]], colour[b[2]], kBytes.linear[b[3]]};
 }
 
 glm::vec4 Texture::sample(glm::vec2 uv) const {
@@ -24,10 +53,17 @@ glm::vec4 Texture::sample(glm::vec2 uv) const {
   auto at = [&](int x, int y) {
     x = ((x % width) + width) % width;
     y = ((y % height) + height) % height;
-    return texels[size_t(y) * width + x];
+    return texel(x, y);
   };
   return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), tx),
                   glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), tx), ty);
+}
+
+glm::vec4 Texture::mean() const {
+  glm::dvec4 sum(0.0);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) sum += glm::dvec4(texel(x, y));
+  return width > 0 && height > 0 ? glm::vec4(sum / (double(width) * double(height))) : glm::vec4(1.0f);
 }
 
 Bounds Scene::bounds() const {
@@ -98,9 +134,11 @@ void Scene::validate() const {
                        std::to_string(triangle_material[i]) + " of " + std::to_string(materials.size()));
   }
   for (const Material& m : materials)
-    if (m.base_color_texture >= int(textures.size()))
-      throw SceneError(where + "material '" + m.name + "' names texture " +
-                       std::to_string(m.base_color_texture) + " of " + std::to_string(textures.size()));
+    for (const TextureRef* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.metallic_texture,
+                                &m.roughness_texture, &m.normal_texture})
+      if (t->index >= int(textures.size()))
+        throw SceneError(where + "material '" + m.name + "' names texture " + std::to_string(t->index) + " of " +
+                         std::to_string(textures.size()));
   if (!finite(environment) || environment.x < 0.0f || environment.y < 0.0f || environment.z < 0.0f)
     throw SceneError(where + "the environment's radiance must be finite and >= 0");
   if (!has_light())

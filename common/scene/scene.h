@@ -27,19 +27,63 @@ namespace igi {
 enum class MaterialType : uint8_t {
   Diffuse,    // Lambertian, albedo = base_color
   Conductor,  // GGX microfacet metal, alpha = roughness^2, Fresnel = base_color
-  Mirror,     // perfect specular reflection, tinted by base_color
+  Mirror,     // perfect specular reflection, tinted by base_color (or glTF's Schlick: schlick_fresnel)
   Glass,      // smooth dielectric with index of refraction ior
+  // glTF 2.0's metallic-roughness BRDF (its Appendix B; material/metallic_roughness.h):
+  // a Lambertian base under a GGX dielectric coat, mixed by `metallic` with a
+  // GGX conductor of Fresnel F0 = base colour; alpha = roughness^2.
+  MetallicRoughness,
 };
 
 const char* material_type_name(MaterialType type);
+
+// A texture as a material uses it: which one, and KHR_texture_transform's
+// affine map of the uv (u' = linear u + offset; the identity when the file
+// gives none).
+struct TextureRef {
+  int index = -1;  // into Scene::textures, or -1: none
+  glm::mat2 linear{1.0f};
+  glm::vec2 offset{0.0f};
+  bool transformed = false;
+
+  bool used() const { return index >= 0; }
+  glm::vec2 uv(glm::vec2 uv) const { return transformed ? linear * uv + offset : uv; }
+};
+
+// The smallest GGX alpha of the metallic-roughness model: roughness 0 (a
+// perfectly smooth coat) is read as this, a lobe far sharper than any
+// --glossy-threshold, so it is gathered with rays (and focuses light as a
+// caustic) while its diffuse base takes VPL light.
+inline constexpr float kMinMetallicRoughnessAlpha = 1e-3f;
 
 struct Material {
   std::string name;
   MaterialType type = MaterialType::Diffuse;
   glm::vec3 base_color{0.8f};
-  float alpha = 1.0f;              // GGX roughness parameter (Conductor only)
-  float ior = 1.5f;                // Glass only
-  int base_color_texture = -1;     // index into Scene::textures, or -1
+  float alpha = 1.0f;              // GGX roughness parameter (Conductor; MetallicRoughness: roughness^2, untextured)
+  float ior = 1.5f;                // Glass; MetallicRoughness: what its specular_f0 was made from
+  TextureRef base_color_texture;   // linear RGBA, times base_color (and alpha times base_alpha)
+  // MetallicRoughness only. Per point: metallic x the texture's blue channel,
+  // roughness x its green (linear), alpha = max(roughness^2, kMinMetallicRoughnessAlpha).
+  float metallic = 0.0f;
+  float roughness = 1.0f;
+  TextureRef metallic_roughness_texture;
+  // AMD_split_roughnessMetallic's maps, each in place of its channel of the
+  // texture above (every channel of these holds the value).
+  TextureRef metallic_texture, roughness_texture;
+  float min_alpha = 1.0f;          // the least alpha over the texture's texels (for the threshold's choices)
+  // The dielectric coat's Fresnel (KHR_materials_specular, KHR_materials_ior):
+  // F0 = min(((ior - 1) / (ior + 1))^2 x specularColorFactor, 1), and the
+  // coat's weight specularFactor, which scales its reflection and how much
+  // of the diffuse base it hides. The core material: F0 0.04, weight 1.
+  glm::vec3 specular_f0{0.04f};
+  float specular_weight = 1.0f;
+  // A tangent-space normal map (glTF normalTexture), its x and y scaled by normal_scale.
+  TextureRef normal_texture;
+  float normal_scale = 1.0f;
+  // Mirror: glTF's metal Fresnel, F0 = base colour rising to 1 at grazing
+  // angles (Schlick), instead of the constant base colour.
+  bool schlick_fresnel = false;
   bool alpha_mask = false;         // glTF alphaMode MASK
   float alpha_cutoff = 0.5f;
   float base_alpha = 1.0f;         // baseColorFactor.a
@@ -54,13 +98,21 @@ struct Material {
   bool is_emissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
 };
 
-// Texels are linear RGBA, row 0 at the top (glTF/image convention).
+// Texels are linear RGBA, row 0 at the top (glTF/image convention), held
+// either as floats or, as 8-bit images are (a quarter of the memory: Sponza's
+// 34 M texels take 138 MB, not 550), as bytes decoded at lookup: colour
+// channels through the sRGB curve when `srgb`, alpha and data maps (normals,
+// metallic-roughness) linearly. Both give the same values for the same bytes.
 struct Texture {
   int width = 0;
   int height = 0;
   std::vector<glm::vec4> texels;
+  std::vector<uint8_t> bytes;  // RGBA8, when texels is empty
+  bool srgb = true;            // bytes only: RGB encoded in sRGB
   // Bilinear lookup with repeat wrapping; uv as in glTF (v down).
   glm::vec4 sample(glm::vec2 uv) const;
+  glm::vec4 texel(int x, int y) const;  // 0 <= x < width, 0 <= y < height
+  glm::vec4 mean() const;               // over every texel
 };
 
 enum class LightType : uint8_t { Point, Spot, Directional };

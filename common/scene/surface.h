@@ -15,6 +15,10 @@ struct SurfacePoint {
   uint32_t triangle = 0;
   const Material* material = nullptr;
   glm::vec3 albedo{0.0f};      // base colour times texture, linear
+  // MetallicRoughness: the material's metallic and GGX alpha here (its
+  // metallic-roughness texture applied); others: metallic 0 and the material's alpha.
+  float metallic = 0.0f;
+  float alpha = 1.0f;
   bool front_face = true;      // whether the ray arrived on the front side
 
   // Radiance leaving the surface towards -ray_direction (front face only).
@@ -27,6 +31,8 @@ struct SurfacePoint {
   glm::vec3 geometric_normal_facing(glm::vec3 wo) const { return faces(wo) ? geometric_normal : -geometric_normal; }
 };
 
+// The surface a ray met: position, normals (the shading normal bent by the
+// material's normal map, if any), uv, and the material's textured values.
 SurfacePoint surface_at(const Scene& scene, const Hit& hit, glm::vec3 ray_direction);
 
 // A ray origin nudged off the surface, to the side `direction` leaves from,

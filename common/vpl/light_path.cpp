@@ -62,7 +62,7 @@ LightPathStart start_light_path(const LightSet& lights, const Scene& scene, Samp
 }
 
 std::optional<Ray> bounce_light_path(const SurfacePoint& sp, glm::vec3 wo, glm::vec3& flux, SampleStream u,
-                                     BounceDraws draws) {
+                                     BounceDraws draws, BsdfSample* sampled) {
   const glm::vec2 u_dir = u.next_2d();
   glm::vec2 u_lobe_roulette;
   if (draws == BounceDraws::OnePair) {
@@ -73,6 +73,7 @@ std::optional<Ray> bounce_light_path(const SurfacePoint& sp, glm::vec3 wo, glm::
   }
   const auto bs = bsdf_sample(sp, wo, u_dir, u_lobe_roulette.x);
   if (!bs) return std::nullopt;
+  if (sampled) *sampled = *bs;
   // Russian roulette by albedo: survivors carry the lost share.
   const float q = std::min(1.0f, max_component(bs->weight));
   if (!(u_lobe_roulette.y < q)) return std::nullopt;

@@ -13,6 +13,7 @@
 
 #include "core/settings.h"
 #include "lighting/lights.h"
+#include "material/bsdf.h"
 #include "sampling/sobol.h"
 #include "scene/accel.h"
 #include "scene/surface.h"
@@ -58,12 +59,14 @@ struct LightPathVertex {
   glm::vec3 wo;    // towards where the light came from
   glm::vec3 flux;  // power the path carries to this surface (W, per path)
   int depth;       // surfaces before this one
+  const BsdfSample& arrived_by;  // the bounce that left the previous surface (depth > 0)
 };
 
 // The path's next ray from `sp`, BSDF-sampled, with `flux` scaled by the
-// sample's weight and Russian roulette; nothing where the path ends.
+// sample's weight and Russian roulette; nothing where the path ends. The
+// sample itself goes to `sampled` (which lobe: material/bsdf.h `focused`).
 std::optional<Ray> bounce_light_path(const SurfacePoint& sp, glm::vec3 wo, glm::vec3& flux, SampleStream u,
-                                     BounceDraws draws);
+                                     BounceDraws draws, BsdfSample* sampled = nullptr);
 
 // Walks path `path` of stream `seed` from `start` through at most
 // depth_limit(light_depth) surfaces, calling visit(const LightPathVertex&) at
@@ -75,15 +78,16 @@ int walk_light_path(const Accel& accel, const Scene& scene, const LightPathStart
   glm::vec3 flux = start.flux;
   const int max_depth = depth_limit(light_depth);
   int rays = 0;
+  BsdfSample bounce{};
   for (int depth = 0; depth < max_depth; ++depth) {
     Hit hit;
     ++rays;
     if (!accel.intersect(ray, hit)) return rays;
     const SurfacePoint sp = surface_at(scene, hit, ray.direction);
     const glm::vec3 wo = -ray.direction;
-    if (!visit(LightPathVertex{hit, sp, wo, flux, depth})) return rays;
+    if (!visit(LightPathVertex{hit, sp, wo, flux, depth, bounce})) return rays;
     const SampleStream u(path, seed, kStartDims + kDimsPerBounce * uint32_t(depth));
-    const std::optional<Ray> next = bounce_light_path(sp, wo, flux, u, draws);
+    const std::optional<Ray> next = bounce_light_path(sp, wo, flux, u, draws, &bounce);
     if (!next) return rays;
     ray = *next;
   }

@@ -38,17 +38,19 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
                   [&](const LightPathVertex& v) {
                     // Mirrors and glass get no VPL; the path carries their light on. Nor, with caustics
                     // on, do sharp GGX surfaces: their light reaches diffuse surfaces as caustic photons
-                    // (material/bsdf.h: focuses_light). Without caustics, VPLs on them radiate through a
-                    // widened lobe (VplShading::vpl_bsdf).
-                    const Material& m = *v.sp.material;
-                    if (settings.caustics ? focuses_light(m, settings.glossy_threshold) : m.is_specular()) {
+                    // (material/bsdf.h: focuses_light); a metallic-roughness surface with a sharp lobe keeps
+                    // a VPL that radiates through its diffuse base alone. Without caustics, VPLs on them
+                    // radiate through a widened lobe (VplShading::vpl_bsdf).
+                    const SurfacePoint& sp = v.sp;
+                    if (settings.caustics ? focuses_light(sp, settings.glossy_threshold) : sp.material->is_specular()) {
                       previous = {LightVertex::From::Specular, 0};
                       return true;
                     }
                     // The VPL reflects towards the side the light arrived from.
-                    out.push_back(Vpl{v.sp.position, v.sp.shading_normal_facing(v.wo), v.flux * inv_paths, v.wo,
-                                      v.sp.albedo, ctx.scene.triangle_material[v.hit.triangle], 0,
-                                      VplKind::Surface});
+                    Vpl vpl{sp.position, sp.shading_normal_facing(v.wo), v.flux * inv_paths, v.wo, sp.albedo,
+                            ctx.scene.triangle_material[v.hit.triangle], 0, sp.metallic, sp.alpha, VplKind::Surface};
+                    vpl.diffuse_only = settings.caustics && vpl_lobes(sp, settings.glossy_threshold) == Lobes::Diffuse;
+                    out.push_back(vpl);
                     if (options.vertices) options.vertices->push_back({previous.from, previous.index, v.depth});
                     previous = {LightVertex::From::Vpl, uint32_t(out.size() - 1)};
                     return true;

@@ -41,8 +41,9 @@ std::string check_lights(const Scene& scene) {
 std::string check_textures(const Scene& scene) {
   for (size_t i = 0; i < scene.textures.size(); ++i) {
     const Texture& t = scene.textures[i];
-    if (t.width <= 0 || t.height <= 0 || t.texels.size() != size_t(t.width) * size_t(t.height))
-      return "texture " + std::to_string(i) + " has " + std::to_string(t.texels.size()) + " texels for " +
+    const size_t held = t.bytes.empty() ? t.texels.size() : t.bytes.size() / 4;
+    if (t.width <= 0 || t.height <= 0 || held != size_t(t.width) * size_t(t.height))
+      return "texture " + std::to_string(i) + " has " + std::to_string(held) + " texels for " +
              std::to_string(t.width) + " x " + std::to_string(t.height);
     for (size_t v = 0; v < scene.uvs.size() && v < 4096; ++v) t.sample(scene.uvs[v]);
   }

@@ -137,7 +137,7 @@ Scene textured_quad() {
   s.textures.push_back(texture);
   Material m;
   m.name = "checker";
-  m.base_color_texture = 0;
+  m.base_color_texture.index = 0;
   m.alpha_mask = true;
   s.materials.push_back(m);
   s.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
