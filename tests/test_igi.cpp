@@ -41,7 +41,8 @@ struct TileCase {
 // glossy, the sharp floor's light as photons and sparse photons gathered wide), light
 // importance (rooms), bidirectional IR (corridor, by option and by view) and the sky's directional
 // VPLs and misses (courtyard, with the glossy gather on its metal ball), and
-// VPLs drawn from a light tree (--vpl-draws) with all of them.
+// VPLs drawn from a light tree (--vpl-draws) with all of them, and glTF's
+// metallic-roughness materials (Blender's interior).
 std::vector<TileCase> tile_cases() {
   RenderSettings all = vpl_settings(MethodKind::Igi, 4, 0.05f, true, 2);
   all.aa_samples = 4;
@@ -71,6 +72,7 @@ std::vector<TileCase> tile_cases() {
   draws_wavelet.wavelet_levels = 2;
   RenderSettings ir_draws = vpl_settings(MethodKind::InstantRadiosity, 4, 0.05f);
   ir_draws.vpl_draws = 2;
+  const std::string interior = std::string(IGI_TEST_DATA_DIR) + "/interior/interior.glb";
   return {{"ir", "cornell", vpl_settings(MethodKind::InstantRadiosity, 4, 0.05f)},
           {"igi", "cornell", vpl_settings(MethodKind::Igi, 4, 0.05f)},
           {"igi_aa_glossy_compensation", "glossy", all},
@@ -90,7 +92,11 @@ std::vector<TileCase> tile_cases() {
           {"igi_draws_aa_glossy_compensation", "glossy", draws},
           {"igi_aa_ggx_floor_compensation", "glossy-medium", all},  // compensation drawn from a GGX lobe, two levels
           {"igi_draws_wavelet_sky", "courtyard", draws_wavelet},
-          {"ir_draws", "corner", ir_draws}};
+          {"ir_draws", "corner", ir_draws},
+          // glTF's metallic-roughness model (Blender's room): textured, a sharp metal ball's lobe gathered
+          // and its light as photons, the rough walls' lobes clamped and compensated.
+          {"igi_aa_gltf_materials_caustics", interior, caustics},
+          {"ir_aa_gltf_materials", interior, ir_all}};
 }
 
 class TileInvariance : public ::testing::TestWithParam<TileCase> {};

@@ -30,6 +30,48 @@ glm::vec3 light_sample(const Accel& accel, const LightSet& lights, const GSample
   return f * ls.radiance * (cos_i * w / ls.pdf);
 }
 
+// A gather ray's hit y on a lobe that is itself gathered (a sharp GGX
+// surface) reflects more than the VPL light its other lobes take: the rest of
+// the scene through that lobe, which no VPL shades. It is followed as the
+// camera's gather follows the camera's: one BSDF-sampled ray through y's
+// lobe, its hit a point of its own weighted by the product of the weights,
+// and so on while the hits are sharp glossy (at most the specular depth;
+// Russian roulette on the weight from the third on). Emission and sky found
+// so count in full: no light sample is taken at y. Where every surface has
+// a sharp coat (an all-gloss furnace of metallic 0.2, roughness 0.36) the
+// gather lost 8 % of the light without it. Random numbers: dimensions 6 + 4 k
+// (direction) and 8 + 4 k (roulette) of ray j's sample, level k.
+void follow_glossy_hits(const Accel& accel, GSample y, glm::vec3 weight, uint32_t owner, uint32_t j, uint32_t seed,
+                        const RenderSettings& settings, GlossyHits& out, RayCounts& rays) {
+  const int max_levels = depth_limit(settings.specular_depth);
+  for (int level = 0; level < max_levels && y.valid() && is_gathered_glossy(y.surface, settings.glossy_threshold);
+       ++level) {
+    const uint32_t dimension = 6 + 4 * uint32_t(level);
+    const auto bs = bsdf_sample(y.surface, y.wo, sample_2d(j, dimension, seed), 0.0f, kGathered);
+    if (!bs) return;
+    weight *= y.throughput * bs->weight;
+    if (level >= 2) {
+      const float q = std::min(1.0f, max_component(weight));
+      if (!(sample_1d(j, dimension + 2, seed) < q)) return;
+      weight /= q;
+    }
+    const Ray ray{offset_origin(y.surface, bs->wi), bs->wi};
+    ++rays.secondary;
+    Hit hit;
+    GSample next;
+    if (accel.intersect(ray, hit))
+      follow_specular_chain(accel, ray, hit, hash(seed, j, uint32_t(level) + 1), depth_limit(settings.specular_depth),
+                            next, rays);
+    else
+      next.emitted = accel.scene().sky(ray.direction);
+    if (!next.valid() && next.emitted == glm::vec3(0.0f)) return;
+    out.points.push_back(next);
+    out.owner.push_back(owner);
+    out.weight.push_back(weight);
+    y = next;
+  }
+}
+
 void gather_at(const Accel& accel, const LightSet& lights, const GSample& g, uint32_t owner, uint32_t seed,
                const RenderSettings& settings, GlossyHits& out, RayCounts& rays) {
   const SurfacePoint& sp = g.surface;
@@ -62,6 +104,7 @@ void gather_at(const Accel& accel, const LightSet& lights, const GSample& g, uin
     out.points.push_back(y);
     out.owner.push_back(owner);
     out.weight.push_back(bs->weight * inv_rays);
+    follow_glossy_hits(accel, y, bs->weight * inv_rays, owner, uint32_t(j), seed, settings, out, rays);
   }
   if (sampled != glm::vec3(0.0f)) {
     out.light_owner.push_back(owner);

@@ -1,10 +1,18 @@
 """Maps a glTF 2.0 scene to a Mitsuba 3 scene dict (mi.load_dict) the way igi
 reads it (README "Conventions"), for an independent reference render.
 
-  metallic 0            -> twosided diffuse, reflectance = baseColor x texture
-  metallic 1, rough > 0 -> twosided roughconductor, GGX, alpha = roughness^2,
-                           perfect reflector tinted by baseColor (constant Fresnel)
-  metallic 1, rough 0   -> twosided conductor (mirror) tinted by baseColor
+  metallic 0, KHR_materials_specular specularFactor 0 (igi's Lambert, as
+                           --export-gltf writes it) -> twosided diffuse,
+                           reflectance = baseColor x texture
+  metallic 1, extras.igi_fresnel "constant" (--export-gltf's built-in metal) ->
+                           twosided roughconductor, GGX, alpha = roughness^2,
+                           perfect reflector tinted by baseColor (constant
+                           Fresnel), or conductor (mirror) at roughness 0
+  any other metallic-roughness material -> twosided gltf_metallic_roughness
+                           (gltf_bsdf.py: the specification's BRDF, exactly as
+                           igi reads it: fractional metallic, KHR_materials_specular,
+                           KHR_materials_ior, metallicRoughnessTexture, each
+                           texture with KHR_texture_transform)
   transmission          -> dielectric, int_ior = KHR_materials_ior (1.5), tint
   emission              -> area emitter, emissiveFactor x emissive_strength, front
                            (counter-clockwise) face only; emissive meshes drop
@@ -20,7 +28,11 @@ reads it (README "Conventions"), for an independent reference render.
 
 Opaque materials are two-sided because igi shades either side of a
 double-sided face alike (common/material/bsdf.cpp); glass is not wrapped.
-Whatever the mapping cannot reproduce raises UnsupportedFeature naming it.
+An emissiveTexture is read as its mean (igi's reading), an occlusionTexture
+ignored (igi ignores it). Not mapped: normal maps (normalTexture), DDS
+images (MSFT_texture_dds, AMD_split_roughnessMetallic), texture coordinate
+sets other than TEXCOORD_0. Whatever the mapping cannot reproduce raises
+UnsupportedFeature naming it.
 """
 import math
 
@@ -30,11 +42,12 @@ import numpy as np
 from gltf_reader import Gltf, GltfError, extension_names
 
 mi.set_variant("scalar_rgb")
+import gltf_bsdf  # noqa: E402,F401 (registers the gltf_metallic_roughness plugin, once a variant is set)
 
 SUPPORTED_EXTENSIONS = {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
-                        "KHR_materials_emissive_strength"}
+                        "KHR_materials_emissive_strength", "KHR_materials_specular", "KHR_texture_transform"}
 IGNORABLE_ATTRIBUTES = ("TEXCOORD_", "TANGENT")  # unused without textures on them or normal maps
-OTHER_TEXTURES = ("normalTexture", "occlusionTexture", "emissiveTexture")
+OTHER_TEXTURES = ("normalTexture",)
 SPOT_PROFILE_TEXELS = 1024
 MAX_SPOT_CONE = math.radians(85.0)  # Mitsuba's spot texture is projected over tan(cutoff)
 NEAR_CLIP, FAR_CLIP = 1e-4, 1e8     # igi's camera rays are unclipped
@@ -65,8 +78,8 @@ def rgb(value):
     return {"type": "rgb", "value": [float(c) for c in value]}
 
 
-def decoded_image(gltf, index):
-    """glTF image `index` as a linear float RGB array, decoded from sRGB as igi does."""
+def decoded_image(gltf, index, srgb=True):
+    """glTF image `index` as a linear float RGB array, decoded from sRGB as igi does (colour), or as stored (data)."""
     stream = mi.MemoryStream()
     stream.write(gltf.image_bytes(index))
     stream.seek(0)
@@ -74,7 +87,7 @@ def decoded_image(gltf, index):
         bitmap = mi.Bitmap(stream)
     except RuntimeError as error:
         gltf.fail(f"images[{index}]", f"cannot be decoded ({error})")
-    bitmap.set_srgb_gamma(True)
+    bitmap.set_srgb_gamma(srgb)
     return np.array(bitmap.convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False))
 
 
@@ -82,8 +95,33 @@ def check_sampler(gltf, texture, element):
     sampler = gltf.element("samplers", texture["sampler"]) if "sampler" in texture else {}
     if sampler.get("wrapS", 10497) != 10497 or sampler.get("wrapT", 10497) != 10497:
         unsupported(gltf, element, "a sampler wrap mode other than REPEAT")
-    if sampler.get("magFilter", 9729) != 9729 or sampler.get("minFilter", 9729) != 9729:
-        unsupported(gltf, element, "a sampler filter other than LINEAR (igi filters bilinearly, no mipmaps)")
+    # Filters: igi reads every texture bilinearly without mipmaps (it warns), as the bitmaps here do.
+
+
+def texture_info(gltf, info, element, name):
+    """(glTF texture, Mitsuba to_uv transform or None) of a textureInfo."""
+    transform = info.get("extensions", {}).get("KHR_texture_transform")
+    if info.get("texCoord", 0) != 0 or (transform or {}).get("texCoord", 0) != 0:
+        unsupported(gltf, element, f"a {name} on a texCoord other than 0")
+    texture = gltf.element("textures", info.get("index"))
+    check_sampler(gltf, texture, element)
+    if "source" not in texture:
+        unsupported(gltf, element, f"a {name} without a core image source (DDS, KTX)")
+    if transform is None:
+        return texture, None
+    # u' = T R S u (KHR_texture_transform), R = [cos r, sin r; -sin r, cos r]
+    (ox, oy), r, (sx, sy) = transform.get("offset", [0, 0]), transform.get("rotation", 0.0), transform.get("scale", [1, 1])
+    c, s = math.cos(r), math.sin(r)
+    matrix = [[c * sx, s * sy, ox], [-s * sx, c * sy, oy], [0.0, 0.0, 1.0]]
+    return texture, mi.ScalarTransform3f(mi.ScalarMatrix3f(matrix))
+
+
+def bitmap_texture(values, to_uv):
+    texture = {"type": "bitmap", "bitmap": mi.Bitmap(values.astype(np.float32)), "raw": True,
+               "filter_type": "bilinear", "wrap_mode": "repeat"}
+    if to_uv is not None:
+        texture["to_uv"] = to_uv
+    return texture
 
 
 def base_colour(gltf, pbr, element):
@@ -92,13 +130,30 @@ def base_colour(gltf, pbr, element):
     info = pbr.get("baseColorTexture")
     if info is None:
         return rgb(factor)
-    if info.get("texCoord", 0) != 0:
-        unsupported(gltf, element, "a baseColorTexture on a texCoord other than 0")
-    texture = gltf.element("textures", info.get("index"))
-    check_sampler(gltf, texture, element)
-    linear = decoded_image(gltf, texture.get("source")) * np.asarray(factor, dtype=np.float32)
-    return {"type": "bitmap", "bitmap": mi.Bitmap(linear.astype(np.float32)), "raw": True,
-            "filter_type": "bilinear", "wrap_mode": "repeat"}
+    texture, to_uv = texture_info(gltf, info, element, "baseColorTexture")
+    return bitmap_texture(decoded_image(gltf, texture.get("source")) * np.asarray(factor, dtype=np.float32), to_uv)
+
+
+def metallic_roughness(gltf, pbr, element):
+    """(metallic, roughness) textures: the factors times the metallicRoughnessTexture's blue and green, linear."""
+    metallic, roughness = pbr.get("metallicFactor", 1.0), pbr.get("roughnessFactor", 1.0)
+    info = pbr.get("metallicRoughnessTexture")
+    if info is None:
+        return {"type": "uniform", "value": float(metallic)}, {"type": "uniform", "value": float(roughness)}
+    texture, to_uv = texture_info(gltf, info, element, "metallicRoughnessTexture")
+    texels = decoded_image(gltf, texture.get("source"), srgb=False)
+    return (bitmap_texture(texels[:, :, 2:3] * np.float32(metallic), to_uv),
+            bitmap_texture(texels[:, :, 1:2] * np.float32(roughness), to_uv))
+
+
+def coat(material):
+    """(F0, weight) of the dielectric coat: KHR_materials_ior and KHR_materials_specular."""
+    extensions = material.get("extensions", {})
+    ior = extensions.get("KHR_materials_ior", {}).get("ior", 1.5)
+    specular = extensions.get("KHR_materials_specular", {})
+    colour = np.asarray(specular.get("specularColorFactor", [1, 1, 1]), dtype=np.float64)
+    f0 = np.minimum(((ior - 1.0) / (ior + 1.0)) ** 2 * np.maximum(colour, 0.0), 1.0)
+    return f0.tolist(), float(min(max(specular.get("specularFactor", 1.0), 0.0), 1.0))
 
 
 def glass_ior(gltf, material, element):
@@ -119,23 +174,29 @@ def bsdf_dict(gltf, material, element):
     if ior is not None:
         return {"type": "dielectric", "int_ior": float(ior), "ext_ior": 1.0, "specular_transmittance": colour}
     metallic, roughness = pbr.get("metallicFactor", 1.0), pbr.get("roughnessFactor", 1.0)
-    if metallic == 0.0:
+    f0, weight = coat(material)
+    constant_fresnel = material.get("extras", {}).get("igi_fresnel") == "constant"
+    textured = "metallicRoughnessTexture" in pbr
+    if metallic == 0.0 and weight == 0.0 and not textured:
         inner = {"type": "diffuse", "reflectance": colour}
-    elif metallic != 1.0:
-        unsupported(gltf, element, f"metallicFactor {metallic} (only 0 and 1 map to igi's models)")
-    elif roughness > 0.0:
+    elif metallic == 1.0 and constant_fresnel and roughness > 0.0 and not textured:
         inner = {"type": "roughconductor", "distribution": "ggx", "alpha": float(roughness) ** 2,
                  "material": "none", "specular_reflectance": colour, "sample_visible": True}
-    else:
+    elif metallic == 1.0 and constant_fresnel and not textured:
         inner = {"type": "conductor", "material": "none", "specular_reflectance": colour}
+    else:
+        metallic_texture, roughness_texture = metallic_roughness(gltf, pbr, element)
+        inner = {"type": "gltf_metallic_roughness", "base_color": colour, "metallic": metallic_texture,
+                 "roughness": roughness_texture, "f0": f0, "weight": weight}
     return {"type": "twosided", "bsdf": inner}
 
 
 def check_material_features(gltf, material, element):
     if not material.get("doubleSided", False):
         unsupported(gltf, element, "a single-sided material (doubleSided false: igi culls its back for camera rays only)")
-    if "metallicRoughnessTexture" in material.get("pbrMetallicRoughness", {}):
-        unsupported(gltf, element, "metallicRoughnessTexture")
+    specular = material.get("extensions", {}).get("KHR_materials_specular", {})
+    if "specularTexture" in specular or "specularColorTexture" in specular:
+        unsupported(gltf, element, "KHR_materials_specular's textures (igi reads its factors)")
     for name in OTHER_TEXTURES:
         if name in material:
             unsupported(gltf, element, name)
@@ -153,10 +214,14 @@ def is_cut_out(material):
     return material.get("pbrMetallicRoughness", {}).get("baseColorFactor", [1, 1, 1, 1])[3] < cutoff
 
 
-def emission(material):
+def emission(gltf, material, element):
+    """Radiance: emissiveFactor x strength x the emissiveTexture's mean (igi's reading of it)."""
     strength = material.get("extensions", {}).get("KHR_materials_emissive_strength", {}).get("emissiveStrength", 1.0)
-    radiance = [float(c) * strength for c in material.get("emissiveFactor", [0, 0, 0])]
-    return radiance if any(c > 0 for c in radiance) else None
+    radiance = np.asarray(material.get("emissiveFactor", [0, 0, 0]), dtype=np.float64) * strength
+    if "emissiveTexture" in material and np.any(radiance > 0):
+        texture, _ = texture_info(gltf, material["emissiveTexture"], element, "emissiveTexture")
+        radiance = radiance * decoded_image(gltf, texture.get("source")).reshape(-1, 3).mean(axis=0)
+    return radiance.tolist() if np.any(radiance > 0) else None
 
 
 class MappedMaterial:
@@ -167,9 +232,10 @@ class MappedMaterial:
         material = gltf.element("materials", index)
         check_material_features(gltf, material, element)
         self.bsdf = mi.load_dict(bsdf_dict(gltf, material, element))
-        self.radiance = emission(material)
+        self.radiance = emission(gltf, material, element)
         self.cut_out = is_cut_out(material)
-        self.textured = "baseColorTexture" in material.get("pbrMetallicRoughness", {})
+        pbr = material.get("pbrMetallicRoughness", {})
+        self.textured = "baseColorTexture" in pbr or "metallicRoughnessTexture" in pbr
 
 
 def check_attributes(gltf, attributes, element):

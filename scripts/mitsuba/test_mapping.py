@@ -38,12 +38,15 @@ class SceneFile:
                                       "count": len(values), "type": kind})
         return len(self.doc["accessors"]) - 1
 
-    def material(self, colour=(0.5, 0.5, 0.5), metallic=0.0, roughness=1.0, emission=None, **extra):
+    def material(self, colour=(0.5, 0.5, 0.5), metallic=0.0, roughness=1.0, emission=None, lambert=True, **extra):
+        """lambert: metallic 0 with no specular reflection (igi's Lambert, as --export-gltf writes it)."""
         material = {"doubleSided": True, "pbrMetallicRoughness": {
             "baseColorFactor": list(colour) + [1.0], "metallicFactor": metallic, "roughnessFactor": roughness}}
+        if lambert and metallic == 0.0:
+            material["extensions"] = {"KHR_materials_specular": {"specularFactor": 0.0}}
         if emission is not None:
             material["emissiveFactor"] = [1.0, 1.0, 1.0]
-            material["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": emission}}
+            material.setdefault("extensions", {})["KHR_materials_emissive_strength"] = {"emissiveStrength": emission}
         material.update(extra)
         self.doc["materials"].append(material)
         return len(self.doc["materials"]) - 1
@@ -209,10 +212,14 @@ class MappingTest(unittest.TestCase):
         self.assertAlmostEqual(float(self.render(scene).mean()), 0.5, delta=0.02)
 
     def test_material_models(self):
+        constant = {"extras": {"igi_fresnel": "constant"}}
         cases = [
             (dict(metallic=0.0), "diffuse", {}),
-            (dict(metallic=1.0, roughness=0.5), "roughconductor", {"alpha": 0.25, "distribution": "ggx"}),
-            (dict(metallic=1.0, roughness=0.0), "conductor", {"material": "none"}),
+            (dict(metallic=1.0, roughness=0.5, **constant), "roughconductor", {"alpha": 0.25, "distribution": "ggx"}),
+            (dict(metallic=1.0, roughness=0.0, **constant), "conductor", {"material": "none"}),
+            (dict(metallic=0.0, lambert=False), "gltf_metallic_roughness", {"f0": [(0.5 / 2.5) ** 2] * 3, "weight": 1.0}),
+            (dict(metallic=0.3, roughness=0.5), "gltf_metallic_roughness", {"metallic": {"type": "uniform", "value": 0.3}}),
+            (dict(metallic=1.0, roughness=0.5), "gltf_metallic_roughness", {"roughness": {"type": "uniform", "value": 0.5}}),
         ]
         for options, kind, fields in cases:
             with self.subTest(kind):
@@ -226,6 +233,31 @@ class MappingTest(unittest.TestCase):
             "KHR_materials_transmission": {"transmissionFactor": 1.0}, "KHR_materials_ior": {"ior": 1.7}}}
         self.assertEqual(bsdf_dict(None, glass, "material")["type"], "dielectric")
         self.assertEqual(bsdf_dict(None, glass, "material")["int_ior"], 1.7)
+
+    def test_metallic_roughness_samples_its_own_density(self):
+        # The mean of sample weights (f cos / pdf) equals f cos integrated over the
+        # hemisphere by a midpoint rule: sampling, pdf and eval of gltf_bsdf.py agree.
+        scene = SceneFile()
+        material = scene.doc["materials"][scene.material(colour=(0.8, 0.5, 0.2), metallic=0.3, roughness=0.6)]
+        bsdf = mi.load_dict(bsdf_dict(None, material, "material")["bsdf"])
+        si = mi.SurfaceInteraction3f()
+        si.wi = mi.Vector3f(0.6, 0.0, 0.8)
+        ctx = mi.BSDFContext()
+        rng = np.random.default_rng(3)
+        sampled = np.zeros(3)
+        for _ in range(20000):
+            _, weight = bsdf.sample(ctx, si, float(rng.random()), mi.Point2f(*rng.random(2)))
+            sampled += np.array(weight)
+        sampled /= 20000
+        integral, n = np.zeros(3), 160
+        for i in range(n):
+            cos_theta = (i + 0.5) / n
+            for j in range(2 * n):
+                phi = (j + 0.5) / (2 * n) * 2 * math.pi
+                sin_theta = math.sqrt(1 - cos_theta * cos_theta)
+                wo = mi.Vector3f(sin_theta * math.cos(phi), sin_theta * math.sin(phi), cos_theta)
+                integral += np.array(bsdf.eval(ctx, si, wo)) * (1.0 / n) * (math.pi / n)
+        np.testing.assert_allclose(sampled, integral, rtol=0.02)
 
     def test_texture_is_decoded_from_srgb_with_v_down(self):
         # A 1 x 2 texture: sRGB 188 in the top row (v = 0 in glTF), black below.
@@ -294,14 +326,14 @@ class MappingTest(unittest.TestCase):
             scene_dict(scene.write(self.path("map.gltf")), SIZE, SIZE)
 
     def test_unsupported_features_are_named(self):
-        def alter(doc):
-            doc["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 0.5
+        def normal_map(doc):
+            doc["materials"][0]["normalTexture"] = {"index": 0}
 
         def single_sided(doc):
             doc["materials"][0]["doubleSided"] = False
 
         def extension(doc):
-            doc["extensionsUsed"] = ["KHR_texture_transform"]
+            doc["extensionsUsed"] = ["MSFT_texture_dds"]
 
         def lines(doc):
             doc["meshes"][0]["primitives"][0]["mode"] = 1
@@ -314,8 +346,8 @@ class MappingTest(unittest.TestCase):
             doc["nodes"].append({"extensions": {"KHR_lights_punctual": {"light": 0}}})
             doc["scenes"][0]["nodes"].append(len(doc["nodes"]) - 1)
 
-        cases = [(alter, "metallicFactor 0.5"), (single_sided, "single-sided"),
-                 (extension, "KHR_texture_transform"), (lines, "primitive mode 1"),
+        cases = [(normal_map, "normalTexture"), (single_sided, "single-sided"),
+                 (extension, "MSFT_texture_dds"), (lines, "primitive mode 1"),
                  (no_camera, "without a perspective camera"), (area_light_kind, "light type 'area'")]
         for change, message in cases:
             with self.subTest(message):
