@@ -232,11 +232,12 @@ TEST(Options, IgiMasterRefusesTheOptionsItWouldIgnore) {
 // chose; igi-render and igi-master say so.
 TEST(Options, CausticsAreOnWhereTheSceneHasMirrorsOrGlassUnlessAnOptionChose) {
   const Scene glass = load_scene("glass"), cornell = load_scene("cornell");
-  // The courtyard's ball is GGX at alpha 0.02, glossy-rough's floor at 0.3.
+  // The courtyard's ball is GGX at alpha 0.02, glossy-rough's floor at 0.3: lobes
+  // sharper than a quarter of the threshold focus light.
   EXPECT_TRUE(photons::has_specular_surfaces(load_scene("courtyard"), 0.2f));
   EXPECT_FALSE(photons::has_specular_surfaces(load_scene("courtyard"), 0.0f)) << "0: VPLs shade every GGX lobe";
-  EXPECT_FALSE(photons::has_specular_surfaces(load_scene("glossy-rough"), 0.2f));
-  EXPECT_TRUE(photons::has_specular_surfaces(load_scene("glossy-rough"), 0.5f));
+  EXPECT_FALSE(photons::has_specular_surfaces(load_scene("glossy-rough"), 0.5f));
+  EXPECT_TRUE(photons::has_specular_surfaces(load_scene("glossy-rough"), 1.5f));
   struct Case {
     std::vector<std::string> args;
     const Scene* scene;

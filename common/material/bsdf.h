@@ -97,28 +97,42 @@ inline bool receives_vpls(const SurfacePoint& sp, float glossy_threshold) {
   return !sp.material->is_specular() && !is_gathered_glossy(sp, glossy_threshold);
 }
 
-// With caustics on, what focuses light: mirrors, glass and the GGX lobes the
-// camera side gathers (sharper than the glossy threshold). Light paths leave
-// no VPL where a surface has nothing else (a metallic-roughness surface with
-// a sharp coat keeps a VPL that radiates through its diffuse base) and carry
-// the light on; photon paths count a bounce through such a lobe as specular
-// (`focused`), so its light reaches diffuse surfaces as caustic photons. A
-// VPL on such a lobe lit its neighbours through a lobe widened to the
-// threshold: a few bright squares on the ground beside the courtyard's metal
-// ball, dark streaks at the foot of the glossy scene's walls, and an image
-// that converged to the widened lobe (glossy at 64 passes: FLIP 0.069 by
-// VPLs, 0.048 by photons; tests/bench/history/RESULTS-to-2026-12-05.md,
-// "Sharp glossy light as caustics").
+// With caustics on, what focuses light: mirrors, glass and GGX lobes sharper
+// than a quarter of the glossy threshold (focus_alpha). Light paths leave no
+// VPL where a surface has nothing else (a metallic-roughness surface with so
+// sharp a coat keeps a VPL that radiates through its diffuse base alone) and
+// carry the light on; photon paths count a bounce through such a lobe as
+// specular (`focused`), so its light reaches diffuse surfaces as caustic
+// photons. A VPL on such a lobe lit its neighbours through a lobe widened to
+// the threshold: a few bright squares on the ground beside the courtyard's
+// metal ball (alpha 0.02), dark streaks at the foot of the glossy scene's
+// walls (0.04), and an image that converged to the widened lobe (glossy at 64
+// passes: FLIP 0.069 by VPLs, 0.048 by photons;
+// tests/bench/history/RESULTS-to-2026-12-05.md, "Sharp glossy light as
+// caustics"). Lobes between a quarter of the threshold and the threshold
+// (the glossy coats of paint and plastic that glTF files are full of,
+// roughness 0.22 to 0.45) are gathered from the camera but light the scene
+// through VPLs, their lobe widened to the threshold at most 4 times: as
+// photons, the light a glossy white wall reflects onto the next speckled it
+// in bright blotches that 16 passes did not smooth (BreakfastRoom).
+inline float focus_alpha(float glossy_threshold) { return 0.25f * glossy_threshold; }
 inline bool focuses_light(const SurfacePoint& sp, float glossy_threshold) {
-  return !receives_vpls(sp, glossy_threshold);
+  const Material& m = *sp.material;
+  if (m.type == MaterialType::MetallicRoughness) return sp.metallic >= 1.0f && sp.alpha < focus_alpha(glossy_threshold);
+  return m.is_specular() || (m.type == MaterialType::Conductor && m.alpha < focus_alpha(glossy_threshold));
 }
 inline bool focused(const BsdfSample& s, float glossy_threshold) {
-  return s.specular || s.lobe_alpha < glossy_threshold;
+  return s.specular || s.lobe_alpha < focus_alpha(glossy_threshold);
 }
 // Whether some point of a surface of material m focuses light, or has a lobe that does.
 inline bool may_focus_light(const Material& m, float glossy_threshold) {
-  if (m.type == MaterialType::MetallicRoughness) return m.min_alpha < glossy_threshold;
-  return m.is_specular() || (m.type == MaterialType::Conductor && m.alpha < glossy_threshold);
+  if (m.type == MaterialType::MetallicRoughness) return m.min_alpha < focus_alpha(glossy_threshold);
+  return m.is_specular() || (m.type == MaterialType::Conductor && m.alpha < focus_alpha(glossy_threshold));
+}
+// The lobes a VPL on sp radiates through with caustics on: all but a focusing one.
+inline Lobes radiating_lobes(const SurfacePoint& sp, float glossy_threshold) {
+  const bool sharp = sp.material->type == MaterialType::MetallicRoughness && sp.alpha < focus_alpha(glossy_threshold);
+  return sharp ? Lobes::Diffuse : Lobes::All;
 }
 
 }  // namespace igi

@@ -28,10 +28,10 @@ inline constexpr uint64_t kBytesPerPhoton = 2 * 52 + 16;
 // are off, or the memory is unknown: 0), else why not, naming the option.
 std::string memory_error(const RenderSettings& s, uint64_t memory_bytes);
 
-// Whether any triangle of the scene is a mirror, glass or GGX sharper than
-// the glossy threshold (material/bsdf.h: may_focus_light): where caustics can
-// form. The command lines turn caustics on for such scenes unless told
-// (--caustics, --no-caustics or a --caustic-* option).
+// Whether any triangle of the scene is a mirror, glass or GGX sharper than a
+// quarter of the glossy threshold (material/bsdf.h: may_focus_light): where
+// caustics can form. The command lines turn caustics on for such scenes
+// unless told (--caustics, --no-caustics or a --caustic-* option).
 bool has_specular_surfaces(const Scene& scene, float glossy_threshold);
 
 }  // namespace igi::photons

@@ -37,10 +37,10 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
   walk_light_path(ctx.accel, ctx.scene, start, settings.light_depth, path, seed, BounceDraws::TwoSingles,
                   [&](const LightPathVertex& v) {
                     // Mirrors and glass get no VPL; the path carries their light on. Nor, with caustics
-                    // on, do sharp GGX surfaces: their light reaches diffuse surfaces as caustic photons
-                    // (material/bsdf.h: focuses_light); a metallic-roughness surface with a sharp lobe keeps
-                    // a VPL that radiates through its diffuse base alone. Without caustics, VPLs on them
-                    // radiate through a widened lobe (VplShading::vpl_bsdf).
+                    // on, do very sharp GGX surfaces: their light reaches diffuse surfaces as caustic photons
+                    // (material/bsdf.h: focuses_light); a metallic-roughness surface with such a lobe keeps
+                    // a VPL that radiates through its diffuse base alone. Otherwise VPLs on sharp lobes
+                    // radiate through them widened to the threshold (VplShading::vpl_bsdf).
                     const SurfacePoint& sp = v.sp;
                     if (settings.caustics ? focuses_light(sp, settings.glossy_threshold) : sp.material->is_specular()) {
                       previous = {LightVertex::From::Specular, 0};
@@ -49,7 +49,7 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
                     // The VPL reflects towards the side the light arrived from.
                     Vpl vpl{sp.position, sp.shading_normal_facing(v.wo), v.flux * inv_paths, v.wo, sp.albedo,
                             ctx.scene.triangle_material[v.hit.triangle], 0, sp.metallic, sp.alpha, VplKind::Surface};
-                    vpl.diffuse_only = settings.caustics && vpl_lobes(sp, settings.glossy_threshold) == Lobes::Diffuse;
+                    vpl.diffuse_only = settings.caustics && radiating_lobes(sp, settings.glossy_threshold) == Lobes::Diffuse;
                     out.push_back(vpl);
                     if (options.vertices) options.vertices->push_back({previous.from, previous.index, v.depth});
                     previous = {LightVertex::From::Vpl, uint32_t(out.size() - 1)};
