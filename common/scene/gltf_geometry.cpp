@@ -46,7 +46,7 @@ std::string attribute_family(const std::string& name) {
 std::string attribute_consequence(const std::string& family) {
   if (family == "TEXCOORD_n") return "every texture uses TEXCOORD_0";
   if (family == "COLOR_n") return "colour comes from the material alone";
-  if (family == "TANGENT") return "shading uses interpolated vertex normals, without normal maps";
+  if (family == "TANGENT") return "normal maps use tangents from the uv layout (scene/surface.cpp)";
   if (family == "JOINTS_n" || family == "WEIGHTS_n") return "meshes are rendered in their bind pose";
   return "the renderer has no use for it";
 }

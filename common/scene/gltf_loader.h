@@ -1,11 +1,12 @@
 #pragma once
 // Reads a glTF 2.0 file (.gltf with its buffers and images, or .glb) into a
 // Scene: triangles flattened into world space, materials mapped onto the
-// renderer's four models, KHR_lights_punctual lights and the first
+// renderer's material models, KHR_lights_punctual lights and the first
 // perspective camera. The mapping lives next to each step:
 //   gltf_nodes.h      node tree, lights, camera
 //   gltf_geometry.h   primitives into world-space triangles
-//   gltf_materials.h  materials and base colour textures
+//   gltf_materials.h  materials (glTF's metallic-roughness model and the fast ones it reduces to)
+//   gltf_textures.h   their textures, KHR_texture_transform, DDS maps
 //   gltf_features.h   what is not modelled, reported once each
 //   gltf_accessors.h  bounds-checked reads of the binary data
 //
