@@ -10,15 +10,15 @@
 #include <thread>
 
 #include "cli/option_checks.h"
-#include "local_workers.h"
-#include "master_options.h"
-#include "master_session.h"
+#include "cluster/local_workers.h"
+#include "options/master_options.h"
+#include "session/master_session.h"
 #include "protocol/curve.h"
-#include "run_modes.h"
+#include "run/run_modes.h"
 #include "scene/animation.h"
 #include "scene/builtin_scenes.h"
 #include "scene/load_scene.h"
-#include "camera_bookmark.h"
+#include "view/camera_bookmark.h"
 
 namespace {
 

@@ -8,9 +8,9 @@
 #include <gtest/gtest.h>
 
 #include "cli/option_checks.h"
-#include "frame_plan.h"
+#include "view/frame_plan.h"
 #include "image/image.h"
-#include "master_options.h"
+#include "options/master_options.h"
 #include "scene/load_scene.h"
 #include "support/image_compare.h"
 #include "support/process.h"

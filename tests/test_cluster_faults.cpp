@@ -18,7 +18,7 @@
 #include <unistd.h>
 
 #include "build_id.h"
-#include "master_session.h"
+#include "session/master_session.h"
 #include "protocol/socket.h"
 #include "support/image_compare.h"
 #include "support/process.h"

@@ -8,7 +8,7 @@
 
 #include "core/pixel_surface.h"
 #include "image/metrics.h"
-#include "master_session.h"
+#include "session/master_session.h"
 #include "scene/builtin_scenes.h"
 #include "scene/load_scene.h"
 #include "support/image_compare.h"

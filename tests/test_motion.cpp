@@ -6,14 +6,14 @@
 
 #include <cstring>
 
-#include "frame_budget.h"
-#include "frame_rate.h"
-#include "motion_planner.h"
+#include "view/frame_budget.h"
+#include "view/frame_rate.h"
+#include "view/motion_planner.h"
 #include "render/accumulator.h"
 #include "scene/animation.h"
 #include "scene/builtin_scenes.h"
 #include "scene/camera_rays.h"
-#include "view_history.h"
+#include "render/view_history.h"
 
 namespace igi {
 namespace {

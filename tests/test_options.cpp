@@ -12,8 +12,8 @@
 #include <gtest/gtest.h>
 
 #include "build_id.h"
-#include "master_options.h"
-#include "render_options.h"
+#include "options/master_options.h"
+#include "options/render_options.h"
 #include "methods/memory_check.h"
 #include "photons/caustic_settings.h"
 #include "protocol/codec.h"

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "frame_plan.h"
+#include "view/frame_plan.h"
 #include "sampling/sobol.h"
 #include "scene/builtin_scenes.h"
 #include "scene/load_scene.h"

@@ -7,7 +7,7 @@
 #include <set>
 #include <queue>
 
-#include "scheduler.h"
+#include "scheduler/scheduler.h"
 
 namespace igi {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "stats_writer.h"
+#include "output/stats_writer.h"
 #include "support/image_compare.h"
 #include "support/sanitizers.h"
 #include "support/stats_file.h"

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 #include <imgui.h>
 
-#include "camera_bookmark.h"
+#include "view/camera_bookmark.h"
 #include "display/cluster_panel.h"
 #include "display/settings_panel.h"
 #include "display/tile_overlay.h"

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "image/image.h"
-#include "frame_plan.h"
-#include "render_options.h"
+#include "view/frame_plan.h"
+#include "options/render_options.h"
 
 namespace igi::soak {
 

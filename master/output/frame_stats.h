@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "master_session.h"
+#include "session/master_session.h"
 
 namespace igi {
 

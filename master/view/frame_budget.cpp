@@ -1,4 +1,4 @@
-#include "frame_budget.h"
+#include "view/frame_budget.h"
 
 #include <algorithm>
 

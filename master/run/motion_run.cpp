@@ -23,11 +23,11 @@
 #include <filesystem>
 #include <fstream>
 
-#include "camera_bookmark.h"
-#include "motion_planner.h"
-#include "run_modes.h"
+#include "view/camera_bookmark.h"
+#include "view/motion_planner.h"
+#include "run/run_modes.h"
 #include "scene/animation.h"
-#include "view_history.h"
+#include "render/view_history.h"
 
 namespace igi {
 namespace {

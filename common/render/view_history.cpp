@@ -1,4 +1,4 @@
-#include "view_history.h"
+#include "render/view_history.h"
 
 #include <algorithm>
 #include <cmath>

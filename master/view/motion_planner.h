@@ -23,9 +23,9 @@
 
 #include <glm/glm.hpp>
 
-#include "frame_budget.h"
-#include "master_options.h"
-#include "master_session.h"
+#include "view/frame_budget.h"
+#include "options/master_options.h"
+#include "session/master_session.h"
 #include "scene/scene.h"
 
 namespace igi {

@@ -1,4 +1,4 @@
-#include "frame_plan.h"
+#include "view/frame_plan.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "frame_stats.h"
+#include "output/frame_stats.h"
 
 #include <sys/resource.h>
 

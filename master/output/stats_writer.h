@@ -16,7 +16,7 @@
 #include <thread>
 #include <vector>
 
-#include "frame_stats.h"
+#include "output/frame_stats.h"
 
 namespace igi {
 

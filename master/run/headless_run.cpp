@@ -4,13 +4,13 @@
 #include <filesystem>
 #include <optional>
 
-#include "frame_plan.h"
-#include "frame_sink.h"
+#include "view/frame_plan.h"
+#include "output/frame_sink.h"
 #include "image/exposure_check.h"
 #include "scene/builtin_scenes.h"
-#include "frame_stats.h"
-#include "run_modes.h"
-#include "stats_writer.h"
+#include "output/frame_stats.h"
+#include "run/run_modes.h"
+#include "output/stats_writer.h"
 
 namespace igi {
 namespace {

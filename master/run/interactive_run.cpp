@@ -22,15 +22,15 @@
 #include <thread>
 #include <utility>
 
-#include "camera_bookmark.h"
+#include "view/camera_bookmark.h"
 #include "display/interactive_window.h"
 #include "display/window_panel.h"
-#include "frame_rate.h"
-#include "motion_planner.h"
-#include "run_modes.h"
+#include "view/frame_rate.h"
+#include "view/motion_planner.h"
+#include "run/run_modes.h"
 #include "scene/animation.h"
-#include "stats_writer.h"
-#include "view_history.h"
+#include "output/stats_writer.h"
+#include "render/view_history.h"
 
 namespace igi {
 namespace {

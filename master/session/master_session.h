@@ -39,15 +39,15 @@
 
 #include <zmq.hpp>
 
-#include "frame_buffer_pool.h"
-#include "master_options.h"
+#include "frames/frame_buffer_pool.h"
+#include "options/master_options.h"
 #include "protocol/codec.h"
 #include "protocol/curve.h"
 #include "protocol/messages.h"
 #include "protocol/monitor.h"
 #include "protocol/zap.h"
-#include "master_renderer.h"
-#include "scheduler.h"
+#include "trust/master_renderer.h"
+#include "scheduler/scheduler.h"
 
 namespace igi {
 

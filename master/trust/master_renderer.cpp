@@ -1,4 +1,4 @@
-#include "master_renderer.h"
+#include "trust/master_renderer.h"
 
 #include <chrono>
 #include <exception>

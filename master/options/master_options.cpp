@@ -1,4 +1,4 @@
-#include "master_options.h"
+#include "options/master_options.h"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -8,7 +8,7 @@
 
 #include "cli/option_checks.h"
 #include "display/window_keys.h"
-#include "liveness_options.h"
+#include "options/liveness_options.h"
 #include "protocol/curve.h"
 #include "protocol/messages.h"
 

@@ -1,4 +1,4 @@
-#include "local_workers.h"
+#include "cluster/local_workers.h"
 
 #include <chrono>
 #include <csignal>

@@ -1,4 +1,4 @@
-#include "master_session.h"
+#include "session/master_session.h"
 
 #include <algorithm>
 #include <cerrno>

@@ -1,4 +1,4 @@
-#include "frame_sink.h"
+#include "output/frame_sink.h"
 
 namespace igi {
 

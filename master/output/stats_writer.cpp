@@ -1,4 +1,4 @@
-#include "stats_writer.h"
+#include "output/stats_writer.h"
 
 #include <cstdio>
 #include <stdexcept>

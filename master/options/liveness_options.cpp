@@ -1,4 +1,4 @@
-#include "liveness_options.h"
+#include "options/liveness_options.h"
 
 #include <CLI/CLI.hpp>
 

@@ -1,6 +1,6 @@
-#include "motion_planner.h"
+#include "view/motion_planner.h"
 
-#include "frame_plan.h"
+#include "view/frame_plan.h"
 #include "scene/animation.h"
 
 namespace igi {

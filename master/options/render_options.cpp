@@ -1,4 +1,4 @@
-#include "render_options.h"
+#include "options/render_options.h"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>

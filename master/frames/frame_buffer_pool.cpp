@@ -1,4 +1,4 @@
-#include "frame_buffer_pool.h"
+#include "frames/frame_buffer_pool.h"
 
 namespace igi {
 

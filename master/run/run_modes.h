@@ -4,9 +4,9 @@
 // thread that does nothing else; files and the display have threads of their own.
 #include <atomic>
 
-#include "local_workers.h"
-#include "master_options.h"
-#include "master_session.h"
+#include "cluster/local_workers.h"
+#include "options/master_options.h"
+#include "session/master_session.h"
 #include "scene/scene.h"
 
 namespace igi {

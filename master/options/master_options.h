@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "frame_plan.h"
+#include "view/frame_plan.h"
 #include "image/frame_buffer.h"
-#include "render_options.h"
+#include "options/render_options.h"
 
 namespace igi {
 

@@ -3,7 +3,7 @@
 // seed, samples and sub-pixel position. One function, so that a test can
 // render the very same frames in one process (tests/soak).
 #include "core/frame.h"
-#include "render_options.h"
+#include "options/render_options.h"
 #include "scene/scene.h"
 
 namespace igi {

@@ -1,4 +1,4 @@
-#include "camera_bookmark.h"
+#include "view/camera_bookmark.h"
 
 #include <cmath>
 #include <fstream>
