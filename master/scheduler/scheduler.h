@@ -43,36 +43,15 @@
 //    starts again from one job. take_benched() names it. A benched worker is
 //    no voter that a frame waits for.
 //
-// The VPL-set hash (a frame's per-frame state, identical on every correct
-// worker) is the frame's reference, never whatever the first to answer says:
-//  - With `master_reference` (the master's default) the caller computes each
-//    frame's hash itself (master_renderer.h) and hands it to set_reference();
-//    every worker is judged against it, so no number of agreeing peers can
-//    outvote it. Results are held until a worker's agrees with it; then the
-//    others' workers are quarantined, and later results are judged at once.
-//    While none agrees, the frame waits for every proven worker present (one
-//    that has returned a result) to vote; then, if two or more voted and all
-//    agree on another hash, the caller is the odd one out (another maths
-//    library, say): the frame is disputed (take_disputes()) and waits for the
-//    caller, which may follow_workers(); otherwise the dissenters are quarantined.
-//  - Otherwise, or for a frame whose hash the caller could not compute, the
-//    workers vote: a hash decides when at least two workers and a strict
-//    majority of the frame's possible voters (workers present, and voters
-//    since gone) reported it, so never more workers are quarantined than
-//    agree. A worker that is the only possible voter decides alone once it
-//    has answered every job.
-//  - Until then results are held: their pixels are kept, but they do not
-//    count. A held job is not reissued; when a vote lacks voters once all its
-//    jobs are held, an idle worker that has not voted gets a copy to verify
-//    (a late copy still out on a held job counts as lost, and its worker's
-//    credit comes back so it can be the one).
-//  - When the reference is decided, held results with it count, the others go
-//    back to the pool, and every worker that reported another hash for the
-//    frame is quarantined: removed, its jobs reissued, its unconfirmed results
-//    elsewhere dropped. A late result whose hash differs from its frame's
-//    reference quarantines its worker too.
-//  - A vote with no majority among the workers present: the frame waits
-//    (stalled_split() reports it) until another worker joins.
+// Which results count is the referee's (trust/referee.h): the scheduler
+// hands it each result's hash and what it knows of a frame's voters, and
+// applies its decisions: results it holds wait (a held job is not reissued;
+// when a vote lacks voters once all its jobs are held, an idle worker that
+// has not voted gets a copy to verify, and a late copy still out on a held
+// job counts as lost, its worker's credit back so it can be the one), held
+// results that agree count, the others go back to the pool, and losers are
+// quarantined: removed, their jobs reissued, their unconfirmed results
+// elsewhere dropped.
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -84,10 +63,10 @@
 #include <vector>
 
 #include "core/frame.h"
+#include "trust/referee.h"
 
 namespace igi {
 
-using WorkerId = std::string;  // the ZeroMQ identity
 using SchedulerClock = std::chrono::steady_clock;
 using TimePoint = SchedulerClock::time_point;
 
@@ -140,22 +119,10 @@ struct SchedulerStats {
   uint64_t benched = 0;       // times a worker was benched for holding jobs it did not answer
 };
 
-// A frame whose every proven worker agrees on a hash that is not the caller's own.
-struct HashDispute {
-  uint64_t frame_id = 0;
-  uint64_t callers_hash = 0, workers_hash = 0;
-  std::vector<WorkerId> workers;
-};
-
-// A frame whose voters disagree with no majority possible among the workers present.
-struct HashSplit {
-  uint64_t frame_id = 0;
-  std::map<uint64_t, std::vector<WorkerId>> voters;  // hash -> workers that reported it
-};
 
 class Scheduler {
  public:
-  explicit Scheduler(SchedulerConfig config = {}) : config_(config) {}
+  explicit Scheduler(SchedulerConfig config = {}) : config_(config), referee_(config.master_reference) {}
   Scheduler(int credits, int frames_in_flight) : Scheduler(SchedulerConfig{credits, frames_in_flight}) {}
 
   // credits: jobs this worker may hold; 0 means the configured default.
@@ -168,7 +135,10 @@ class Scheduler {
   size_t worker_count() const { return workers_.size(); }
 
   // Frames added from now on wait for set_reference() (master_reference). Before the first frame.
-  void judge_by_reference() { config_.master_reference = true; }
+  void judge_by_reference() {
+    config_.master_reference = true;
+    referee_.judge_by_reference();
+  }
   void add_frame(uint64_t frame_id, const std::vector<TileJob>& tiles);
   bool can_add_frame() const { return int(frames_.size()) < config_.frames_in_flight; }
   // The view moved on: the frame and its jobs are forgotten, and the credit
@@ -249,8 +219,6 @@ class Scheduler {
     uint64_t frame_id = 0;
     TileJob tile;
     std::vector<Holder> holders;  // workers rendering it now (at most two)
-    std::optional<WorkerId> held_by;  // its first result, waiting for the frame's hash
-    uint64_t held_hash = 0;
     bool done = false;
     bool queued = false;  // in unassigned_
     std::set<WorkerId> failed_on;    // every worker that failed it: it never goes back to them
@@ -262,12 +230,6 @@ class Scheduler {
     std::vector<uint64_t> jobs;
     size_t done = 0;
     size_t copies = 0;  // straggler copies handed out
-    std::optional<uint64_t> reference;  // decided: results with it count
-    bool by_vote = true;  // false while the caller's reference is awaited
-    std::optional<uint64_t> callers_hash;  // the caller's reference, until a worker agrees with it
-    bool disputed = false;
-    std::map<uint64_t, std::set<WorkerId>> votes;  // until the reference is decided
-    std::vector<uint64_t> held;
   };
   struct Worker {
     std::vector<uint64_t> jobs;  // in the order given (at most its credits)
@@ -305,16 +267,16 @@ class Scheduler {
   void requeue(uint64_t job_id);  // back to the front of the pool, unless out, held, done or queued
   bool release_holder(Job& job, const WorkerId& id, TimePoint now, bool sample);
   void complete(Frame& frame, Job& job);
+  Roll roll(const Frame& frame) const;
   void try_decide(Frame& frame);
-  void judge(Frame& frame);
-  void decide(Frame& frame, uint64_t reference);
+  void apply(const Decision& decision);
   void quarantine(const WorkerId& id);
   ResultVerdict record_result(const WorkerId& id, uint64_t job_id, uint64_t hash, TimePoint now);
   std::vector<WorkerId> overtaken_hoarders(const WorkerId& id, uint64_t job_id, TimePoint now);
   void bench(const WorkerId& id);
-  size_t possible_voters(const Frame& frame) const;
 
   SchedulerConfig config_;
+  Referee referee_;  // the verdict on each frame's hash
   int forced_duplicates_ = 0;
   uint64_t next_job_id_ = 1;
   uint64_t next_serial_ = 0;  // of copies given
@@ -328,7 +290,6 @@ class Scheduler {
   std::deque<Issue> issued_;         // copies in the order handed out; stale entries skipped
   std::set<uint64_t> failing_;       // queued jobs that failed somewhere: may be the caller's now
   std::vector<JobAssignment> own_jobs_;  // for the caller to render (take_own_jobs)
-  std::vector<HashDispute> disputes_;
   std::vector<WorkerId> newly_benched_;
   std::vector<double> round_trips_;  // the latest kRoundTrips, as a ring
   size_t round_trip_next_ = 0;
