@@ -84,7 +84,7 @@ int run(igi::MasterOptions o) {
   source.light_units = o.render.light_units;
   if (scene.environment_map)  // --environment FILE's, or the glTF scene's extras'
     igi::add_environment_map(source, scene.environment_map->source(), scene.environment_map->rotation());
-  igi::MasterSession session(o, std::move(source), context, curve ? &curve->server : nullptr);
+  igi::MasterSession session(igi::session_settings(o), std::move(source), context, curve ? &curve->server : nullptr);
   session.judge_by(std::move(as_workers_load_it));
   if (curve)
     std::fprintf(stderr, "igi-master: listening on %s (CURVE; master public key %s; %zu authorised worker keys)\n",

@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "build_id.h"
+#include "options/master_options.h"
 #include "session/master_session.h"
 #include "protocol/socket.h"
 #include "support/image_compare.h"
@@ -186,7 +187,7 @@ TEST(ClusterFaults, ASendToAPeerThatStoppedReadingNeverBlocks) {
   const MasterOptions o = parse_master_options({"--workers", "0", "--listen", "inproc://igi-deaf-peer", "--frames", "1",
                                                 "--heartbeat-ms", "10", "--timeout-ms", "5000", "--test-send-hwm", "2",
                                                 "--quiet", "--no-write", "--size", "64x48"});
-  MasterSession session(o, make_scene_source("cornell"), context);
+  MasterSession session(session_settings(o), make_scene_source("cornell"), context);
   zmq::socket_t deaf(context, zmq::socket_type::dealer);
   deaf.set(zmq::sockopt::rcvhwm, 1);
   deaf.set(zmq::sockopt::linger, 0);
@@ -241,7 +242,7 @@ TEST(ClusterFaults, AResumedWorkersBacklogIsStaleNotBad) {
   const MasterOptions o = parse_master_options({"--workers", "0", "--listen", "inproc://igi-resumed-peer", "--frames", "1",
                                                 "--heartbeat-ms", "10", "--timeout-ms", "100", "--no-write",
                                                 "--size", "64x48"});  // not --quiet: the log is checked
-  MasterSession session(o, make_scene_source("cornell"), context);
+  MasterSession session(session_settings(o), make_scene_source("cornell"), context);
   zmq::socket_t peer(context, zmq::socket_type::dealer);
   peer.set(zmq::sockopt::linger, 0);
   peer.connect("inproc://igi-resumed-peer");
@@ -276,9 +277,9 @@ TEST(ClusterFaults, AResumedWorkersBacklogIsStaleNotBad) {
 // a peer connected to it that has said hello.
 struct LivenessRig {
   LivenessRig(const std::string& endpoint, int heartbeat_ms, int timeout_ms)
-      : session(parse_master_options({"--workers", "0", "--listen", endpoint, "--frames", "1", "--heartbeat-ms",
-                                      std::to_string(heartbeat_ms), "--timeout-ms", std::to_string(timeout_ms),
-                                      "--no-write", "--size", "64x48"}),
+      : session(session_settings(parse_master_options({"--workers", "0", "--listen", endpoint, "--frames", "1",
+                                                       "--heartbeat-ms", std::to_string(heartbeat_ms), "--timeout-ms",
+                                                       std::to_string(timeout_ms), "--no-write", "--size", "64x48"})),
                 make_scene_source("cornell"), context) {
     peer.set(zmq::sockopt::linger, 0);
     peer.connect(endpoint);
@@ -360,7 +361,7 @@ TEST(ClusterFaults, ARepeatedHelloGetsTheSameWelcomeAndResetsNothing) {
   const MasterOptions o = parse_master_options({"--workers", "0", "--listen", "inproc://igi-repeated-hello", "--frames", "1",
                                                 "--heartbeat-ms", "1000", "--timeout-ms", "20000", "--quiet", "--no-write",
                                                 "--size", "64x48", "--tile", "16"});
-  MasterSession session(o, make_scene_source("cornell"), context);
+  MasterSession session(session_settings(o), make_scene_source("cornell"), context);
   zmq::socket_t peer(context, zmq::socket_type::dealer);
   peer.set(zmq::sockopt::linger, 0);
   peer.connect("inproc://igi-repeated-hello");
@@ -421,7 +422,7 @@ TEST(ClusterFaults, APeerWhoseConnectionClosedIsDroppedAtOnceNotAfterTheTimeout)
   const MasterOptions o = parse_master_options({"--workers", "0", "--listen", "inproc://igi-closed-peer", "--frames", "1",
                                                 "--heartbeat-ms", "20", "--timeout-ms", "60000", "--quiet", "--no-write",
                                                 "--size", "64x48"});
-  MasterSession session(o, make_scene_source("cornell"), context);
+  MasterSession session(session_settings(o), make_scene_source("cornell"), context);
   {
     zmq::socket_t peer(context, zmq::socket_type::dealer);
     peer.set(zmq::sockopt::linger, 0);
@@ -444,7 +445,7 @@ TEST(ClusterFaults, ASilentPeerIsCountedAsDeclaredDead) {
   const MasterOptions o = parse_master_options({"--workers", "0", "--listen", "inproc://igi-silent-peer", "--frames", "1",
                                                 "--heartbeat-ms", "10", "--timeout-ms", "100", "--quiet", "--no-write",
                                                 "--size", "64x48"});
-  MasterSession session(o, make_scene_source("cornell"), context);
+  MasterSession session(session_settings(o), make_scene_source("cornell"), context);
   zmq::socket_t peer(context, zmq::socket_type::dealer);
   peer.set(zmq::sockopt::linger, 0);
   peer.connect("inproc://igi-silent-peer");

@@ -8,6 +8,7 @@
 
 #include "core/pixel_surface.h"
 #include "image/metrics.h"
+#include "options/master_options.h"
 #include "session/master_session.h"
 #include "scene/builtin_scenes.h"
 #include "scene/load_scene.h"
@@ -51,8 +52,9 @@ Image render_here(const test::Prepared& scene, const RenderSettings& settings, c
 struct Cluster {
   const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(test::free_port());
   zmq::context_t context;
-  MasterSession session{parse_master_options({"--workers", "0", "--listen", endpoint, "--frames", "2", "--quiet",
-                                              "--no-write", "--size", "48x36", "--tile", "13", "--pixels", "float"}),
+  MasterSession session{session_settings(parse_master_options({"--workers", "0", "--listen", endpoint, "--frames",
+                                                               "2", "--quiet", "--no-write", "--size", "48x36",
+                                                               "--tile", "13", "--pixels", "float"})),
                         make_scene_source("cornell"), context};
   const pid_t worker =
       test::start(std::string(IGI_WORKER_BINARY) + " --connect " + endpoint + " --threads 2 --quiet");

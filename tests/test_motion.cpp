@@ -1,6 +1,6 @@
 // A view that moves: the history carried through camera moves
-// (master/view_history.h), the frame-time budget (master/frame_budget.h),
-// what the session plans and cancels (master/motion_planner.h) and the
+// (common/render/view_history.h), the frame-time budget (master/view/frame_budget.h),
+// what the session plans and cancels (master/view/motion_planner.h) and the
 // window's frame rate. No sockets, no window.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// igi-master's --stats writer (master/stats_writer.h): frame lines reach the
+// igi-master's --stats writer (master/output/stats_writer.h): frame lines reach the
 // file by count and by time without a totals write, so a killed master leaves
 // all but the last second's and a long run holds no growing backlog.
 #include <chrono>

@@ -192,6 +192,23 @@ PixelFormat session_pixel_format(const MasterOptions& o) {
   return float_file ? PixelFormat::Float32 : PixelFormat::Float16;
 }
 
+SessionSettings session_settings(const MasterOptions& o) {
+  SessionSettings s;
+  s.listen = o.listen;
+  s.settings = o.render.settings;
+  s.tile_size = o.render.tile_size;
+  s.pixel_format = session_pixel_format(o);
+  s.pixel_codec = o.pixel_codec;
+  s.credits = o.credits;
+  s.heartbeat_ms = o.heartbeat_ms;
+  s.timeout_ms = o.timeout_ms;
+  s.detailed_stats = !o.stats.empty();
+  s.quiet = o.render.quiet;
+  s.send_hwm = o.send_hwm;
+  s.force_duplicates = o.force_duplicates;
+  return s;
+}
+
 // igi-render's options that igi-master would otherwise take and ignore.
 static void check_render_only_options(const CLI::App& app, const MasterOptions& o) {
   if (app.count("--spp") && o.render.settings.method != MethodKind::PathTracer)

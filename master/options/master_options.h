@@ -5,9 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "view/frame_plan.h"
+#include "options/camera_path.h"
 #include "image/frame_buffer.h"
 #include "options/render_options.h"
+#include "session/session_settings.h"
 
 namespace igi {
 
@@ -63,6 +64,8 @@ inline constexpr double kWindowFrameBudgetMs = 40.0;
 // The pixel format of the session: --pixels, or for "auto" float when the
 // output is a float file (.exr, .hdr, .pfm, .tif) and half otherwise (PNG, the window).
 PixelFormat session_pixel_format(const MasterOptions& options);
+// What the master's session reads of them (session/session_settings.h).
+SessionSettings session_settings(const MasterOptions& options);
 
 // Parses argv[1] on; throws cli::OptionError with a message naming the option and the value.
 MasterOptions parse_master_options(const std::vector<std::string>& args);

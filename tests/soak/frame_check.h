@@ -27,7 +27,7 @@ class ReferenceRenderer {
  public:
   ReferenceRenderer(const RenderOptions& options, const CameraPath& path);
   ~ReferenceRenderer();
-  // Frame i as igi-master renders it along `path` (plan_frame in master/frame_plan.h).
+  // Frame i as igi-master renders it along `path` (plan_frame in master/view/frame_plan.h).
   Image render(int frame) const;
 
  private:
