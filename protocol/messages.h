@@ -60,7 +60,7 @@ inline constexpr double kMaxSceneTime = 1e9;  // seconds
 inline constexpr double kMaxEnvironment = 1e6;  // a sky's radiance, per channel (--environment)
 // Welcome's liveness and flow control: the decoder refuses a Welcome outside
 // these, and the master's command line refuses the options that would fill
-// them in (master/liveness_options.h, --credits), so both say the same.
+// them in (master/options/liveness_options.h, --credits), so both say the same.
 inline constexpr uint32_t kMinTimeoutMs = 50, kMaxTimeoutMs = 3600000;
 inline constexpr uint32_t kMinHeartbeatMs = 10, kMaxHeartbeatMs = 60000;
 inline constexpr uint32_t kMaxCredits = 64;  // jobs a worker holds at once
