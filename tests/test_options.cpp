@@ -14,6 +14,8 @@
 #include "build_id.h"
 #include "options/master_options.h"
 #include "options/render_options.h"
+#include "core/settings_table.h"
+#include "options/options_reference.h"
 #include "methods/memory_check.h"
 #include "photons/caustic_settings.h"
 #include "protocol/codec.h"
@@ -291,7 +293,8 @@ TEST(Options, HelpListsTheOptionsAndExitsZero) {
 }
 
 // --help shows the defaults the code has: each option's line ends in the
-// struct's value (RenderOptions, RenderSettings), in both programs.
+// struct's value (RenderOptions, and RenderSettings for every row of the
+// settings' table), in both programs.
 TEST(Options, HelpShowsTheDefaultsOfTheSettingsStructs) {
   const RenderOptions o{};
   const RenderSettings& s = o.settings;
@@ -300,34 +303,51 @@ TEST(Options, HelpShowsTheDefaultsOfTheSettingsStructs) {
     std::snprintf(text, sizeof text, "%g", v);
     return std::string(text);
   };
-  const std::pair<const char*, std::string> defaults[] = {
-      {"--method", method_name(s.method)}, {"--spp", std::to_string(o.samples)},
+  std::vector<std::pair<std::string, std::string>> defaults = {
+      {"--spp", std::to_string(o.samples)},
       {"--size", std::to_string(o.width) + "x" + std::to_string(o.height)}, {"--seed", std::to_string(o.seed)},
-      {"--tile", std::to_string(o.tile_size)}, {"--path-depth", std::to_string(s.path_depth)},
-      {"--light-depth", std::to_string(s.light_depth)}, {"--specular-depth", std::to_string(s.specular_depth)},
-      {"--vpl-sets", std::to_string(s.interleave)}, {"--vpl-paths", std::to_string(s.paths_per_set)},
-      {"--aa", std::to_string(s.aa_samples)}, {"--glossy-threshold", g(s.glossy_threshold)},
-      {"--glossy-rays", std::to_string(s.glossy_rays)}, {"--clamp", g(s.clamp)},
-      {"--compensate", std::to_string(s.compensation_samples)}, {"--glass-branches", std::to_string(s.glass_branches)},
-      {"--filter-normal", g(s.filter_normal_cos)}, {"--filter-depth", g(s.filter_depth_ratio)},
-      {"--wavelet", std::to_string(s.wavelet_levels)},
-      {"--caustic-photons", std::to_string(s.caustic_photons)}, {"--caustic-radius", g(s.caustic_radius)},
-      {"--lightcuts-error", g(s.lightcuts_error)}, {"--lightcuts-max-cut", std::to_string(s.lightcuts_max_cut)},
-      {"--lightcuts-block", std::to_string(s.lightcuts_block)},
-      {"--importance", std::to_string(s.importance_paths)}, {"--importance-floor", g(s.importance_floor)},
-      {"--bidir", s.bidir_vpls == kBidirAuto ? "auto" : std::to_string(s.bidir_vpls)}};
+      {"--tile", std::to_string(o.tile_size)}};
+  for (const Setting& row : settings_table()) {
+    if (!*row.option || std::holds_alternative<bool RenderSettings::*>(row.member)) continue;  // switches show none
+    std::visit(
+        [&](auto member) {
+          using T = std::remove_cvref_t<decltype(s.*member)>;
+          if constexpr (std::is_same_v<T, MethodKind>) defaults.push_back({row.option, method_name(s.*member)});
+          else if constexpr (std::is_same_v<T, float>) defaults.push_back({row.option, g(s.*member)});
+          else if constexpr (std::is_same_v<T, int>)
+            defaults.push_back({row.option, s.*member == kBidirAuto ? "auto" : std::to_string(s.*member)});
+        },
+        row.member);
+  }
+  ASSERT_EQ(defaults.size(), 4u + 27u);
   for (const std::string binary : {IGI_RENDER_BINARY, IGI_MASTER_BINARY}) {
     const test::RunResult r = test::run(binary + " --help", 30);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     for (const auto& [option, value] : defaults) {
       // The option's entry: from "  --name " to the next line that starts an option.
-      const size_t at = r.output.find("  " + std::string(option) + " ");
+      const size_t at = r.output.find("  " + option + " ");
       ASSERT_NE(at, std::string::npos) << binary << " lists " << option;
       const size_t next = r.output.find("\n  -", at + 1);
       const std::string entry = r.output.substr(at, next == std::string::npos ? std::string::npos : next - at);
       EXPECT_NE(entry.find("[" + value + "]"), std::string::npos)
           << binary << ": " << option << " should show [" << value << "]:\n" << entry;
     }
+  }
+}
+
+// master/options/OPTIONS.md is what the settings' table and the command lines
+// say now: scripts/options-reference.sh writes it after a change.
+TEST(Options, TheOptionsReferenceIsCurrent) {
+  const std::filesystem::path file =
+      std::filesystem::path(IGI_TEST_DATA_DIR).parent_path().parent_path() / "master" / "options" / "OPTIONS.md";
+  std::ifstream in(file);
+  ASSERT_TRUE(in) << file;
+  const std::string committed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string current = options_reference();
+  if (committed != current) {
+    std::ofstream(test::output_path("OPTIONS.md")) << current;
+    FAIL() << file << " is not the options reference of this build (the current one is "
+           << test::output_path("OPTIONS.md") << "): run scripts/options-reference.sh";
   }
 }
 

@@ -11,6 +11,7 @@
 #include "view/camera_bookmark.h"
 #include "display/cluster_panel.h"
 #include "display/settings_panel.h"
+#include "core/settings_table.h"
 #include "display/tile_overlay.h"
 #include "display/panel_layout.h"
 #include "image/metrics.h"
@@ -21,22 +22,24 @@
 namespace igi {
 namespace {
 
-// The panel's widgets span kLimits (issue 48: ranges written once): each
-// range's ends pass check_settings() and a step past either end fails it,
-// naming the field, so the check and the panel cannot drift apart.
+// The panel's widgets span the rows' ranges (core/settings_table.h; issue 48:
+// ranges written once): each range's ends pass check_settings() and a step
+// past either end fails it, naming the field, so the check and the panel
+// cannot drift apart. Every row with a range, so a new setting is covered.
 template <class T>
-void expect_range(const char* field, T RenderSettings::*member, Range<T> range, bool open = false) {
+void expect_range(const Setting& row, T RenderSettings::*member) {
   RenderSettings s;
   s.method = MethodKind::Igi;
   s.paths_per_set = 64;  // room for every anti-aliasing count
   s.aa_samples = 1;
-  for (T v : {range.lo, range.hi}) {
+  const bool open = row.bound == Bound::Open;
+  for (T v : {T(row.lo), T(row.hi)}) {
     s.*member = v;
     const auto error = check_settings(s);
     if (open) {
-      ASSERT_TRUE(error) << field << " = " << v << ": an open range's end";
+      ASSERT_TRUE(error) << row.field << " = " << v << ": an open range's end";
     } else {
-      EXPECT_FALSE(error) << field << " = " << v << ": " << error->message;
+      EXPECT_FALSE(error) << row.field << " = " << v << ": " << error->message;
     }
   }
   // One step past each end: the next integer, or the next float.
@@ -44,37 +47,26 @@ void expect_range(const char* field, T RenderSettings::*member, Range<T> range, 
     if constexpr (std::is_integral_v<T>) return T(up ? v + 1 : v - 1);
     else return std::nextafter(v, up ? std::numeric_limits<T>::infinity() : -std::numeric_limits<T>::infinity());
   };
-  for (T v : {past(range.lo, false), past(range.hi, true)}) {
+  for (T v : {past(T(row.lo), false), past(T(row.hi), true)}) {
+    if (row.bound == Bound::ClosedOrAuto && v == T(kBidirAuto)) continue;  // auto is not below the range
     s.*member = v;
     const auto error = check_settings(s);
-    ASSERT_TRUE(error) << field << " = " << v << " passed the check";
-    EXPECT_EQ(error->field, field);
+    ASSERT_TRUE(error) << row.field << " = " << v << " passed the check";
+    EXPECT_EQ(error->field, row.field);
   }
 }
 
 TEST(WindowPanel, EveryWidgetsRangeIsTheRangeTheSettingsCheckAccepts) {
-  expect_range("path_depth", &RenderSettings::path_depth, kLimits.path_depth);
-  expect_range("light_depth", &RenderSettings::light_depth, kLimits.light_depth);
-  expect_range("specular_depth", &RenderSettings::specular_depth, kLimits.specular_depth);
-  expect_range("interleave", &RenderSettings::interleave, kLimits.interleave);
-  expect_range("vpl_draws", &RenderSettings::vpl_draws, kLimits.vpl_draws);
-  expect_range("glossy_threshold", &RenderSettings::glossy_threshold, kLimits.glossy_threshold);
-  expect_range("glossy_rays", &RenderSettings::glossy_rays, kLimits.glossy_rays);
-  expect_range("clamp", &RenderSettings::clamp, kLimits.clamp);
-  expect_range("compensation_samples", &RenderSettings::compensation_samples, kLimits.compensation_samples);
-  expect_range("filter_normal_cos", &RenderSettings::filter_normal_cos, kLimits.filter_normal_cos);
-  expect_range("filter_depth_ratio", &RenderSettings::filter_depth_ratio, kLimits.filter_depth_ratio);
-  expect_range("wavelet_levels", &RenderSettings::wavelet_levels, kLimits.wavelet_levels);
-  expect_range("glass_branches", &RenderSettings::glass_branches, kLimits.glass_branches);
-  expect_range("lightcuts_error", &RenderSettings::lightcuts_error, kLimits.lightcuts_error, /*open=*/true);
-  expect_range("lightcuts_max_cut", &RenderSettings::lightcuts_max_cut, kLimits.lightcuts_max_cut);
-  expect_range("lightcuts_spacing", &RenderSettings::lightcuts_spacing, kLimits.lightcuts_spacing);
-  expect_range("lightcuts_block", &RenderSettings::lightcuts_block, kLimits.lightcuts_block);
-  expect_range("caustic_photons", &RenderSettings::caustic_photons, kLimits.caustic_photons);
-  expect_range("caustic_radius", &RenderSettings::caustic_radius, kLimits.caustic_radius);
-  expect_range("importance_paths", &RenderSettings::importance_paths, kLimits.importance_paths);
-  expect_range("importance_floor", &RenderSettings::importance_floor, kLimits.importance_floor);
-  expect_range("bidir_camera_paths", &RenderSettings::bidir_camera_paths, kLimits.bidir_camera_paths);
+  int ranges = 0;
+  for (const Setting& row : settings_table()) {
+    if (row.bound != Bound::Closed && row.bound != Bound::Open && row.bound != Bound::AtLeast &&
+        row.bound != Bound::ClosedOrAuto)
+      continue;
+    ++ranges;
+    if (auto* member = std::get_if<int RenderSettings::*>(&row.member)) expect_range(row, *member);
+    if (auto* member = std::get_if<float RenderSettings::*>(&row.member)) expect_range(row, *member);
+  }
+  EXPECT_EQ(ranges, 24) << "every count and number but the square counts";
 }
 
 TEST(WindowPanel, CommitSendsValidChangesOnceAndHoldsBackSetsThatDoNotFit) {

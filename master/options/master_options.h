@@ -10,6 +10,10 @@
 #include "options/render_options.h"
 #include "session/session_settings.h"
 
+namespace CLI {
+class App;
+}
+
 namespace igi {
 
 struct MasterOptions {
@@ -70,5 +74,7 @@ SessionSettings session_settings(const MasterOptions& options);
 // Parses argv[1] on; throws cli::OptionError with a message naming the option and the value.
 MasterOptions parse_master_options(const std::vector<std::string>& args);
 std::string master_usage(const std::string& program);
+// Declares igi-master's command line on `app` (the options reference reads it).
+void declare_master_options(CLI::App& app, MasterOptions& options);
 
 }  // namespace igi

@@ -7,7 +7,7 @@
 #include <thread>
 
 #include "cli/option_checks.h"
-#include "core/clamp.h"
+#include "core/settings_table.h"
 #include "image/image.h"
 #include "methods/memory_check.h"
 #include "photons/caustic_settings.h"
@@ -33,7 +33,7 @@ std::string shown_default(double value) {
   return shown_default(std::string(text));
 }
 
-std::string bidir_text(int k) { return k == kBidirAuto ? "auto" : std::to_string(k); }
+std::string auto_text(int k) { return k == kBidirAuto ? "auto" : std::to_string(k); }
 
 constexpr int kMaxSamples = 1 << 20;    // --spp: samples per pixel or passes
 
@@ -52,9 +52,7 @@ void add_image_options(CLI::App& app, RenderOptions& o) {
   for (const std::string& n : builtin_scene_names()) scenes += " " + n;
   app.add_option("--scene", o.scene, "built-in scene (" + scenes + " ) or .gltf/.glb file" + shown_default(kDefaults.scene))
       ->type_name("NAME|FILE");
-  app.add_option_function<std::string>(
-         "--method", [&o](const std::string& m) { o.settings.method = *parse_method(m); }, "rendering method" + shown_default(std::string(method_name(kDefaults.settings.method))))
-      ->check(cli::one_of({"pt", "ir", "igi", "lightcuts"}))->type_name("pt|ir|igi|lightcuts");
+  app.add_option("--max-depth")->group("");  // split: refused with a message that says how
   app.add_option("--spp", o.samples, "pt: samples per pixel; ir/igi: passes with fresh VPLs" + shown_default(kDefaults.samples))
       ->check(integer(1, kMaxSamples))->type_name("N");
   cli::add_size_option(app, "--size", o.width, o.height, protocol::kMaxImageSide, "image size" + shown_default(std::to_string(kDefaults.width) + "x" + std::to_string(kDefaults.height)));
@@ -97,119 +95,73 @@ void add_image_options(CLI::App& app, RenderOptions& o) {
       ->check(cli::one_of({"photometric", "radiometric"}))->type_name("photometric|radiometric");
 }
 
-void add_vpl_options(CLI::App& app, RenderSettings& s) {
-  app.add_option("--path-depth", s.path_depth, "pt: longest path in bounces, 0 = unbounded (Russian roulette)" + shown_default(kDefaults.settings.path_depth))
-      ->check(integer<int>())->type_name("D");
-  app.add_option("--light-depth", s.light_depth, "ir/igi: longest VPL light path, 0 = unbounded (Russian roulette)" + shown_default(kDefaults.settings.light_depth))
-      ->check(integer<int>())->type_name("D");
-  app.add_option("--specular-depth", s.specular_depth,
-                 "ir/igi: mirrors and glass followed from the camera, 0 = unbounded" + shown_default(kDefaults.settings.specular_depth))
-      ->check(integer<int>())->type_name("D");
-  app.add_option("--max-depth")->group("");  // split: refused with a message that says how
-  app.add_option("--vpl-sets", s.interleave, "ir/igi: N x N interleaved VPL sets" + shown_default(kDefaults.settings.interleave))
-      ->check(integer<int>())->type_name("N");
-  app.add_option("--vpl-paths", s.paths_per_set, "ir/igi: light paths per VPL set" + shown_default(kDefaults.settings.paths_per_set))
-      ->check(integer<int>())->type_name("M");
-  app.add_option("--vpl-draws", s.vpl_draws, "ir/igi: each shading point draws K VPLs of all N x N sets from a "
-                 "light tree by their bound, one shadow ray each (stochastic lightcuts), instead of its set's; 0 = sets" +
-                 shown_default(kDefaults.settings.vpl_draws))
-      ->check(integer<int>())->type_name("K");
-  app.add_option("--aa", s.aa_samples, "ir/igi: S sub-samples per pixel (1, 4, 9, ...), each shaded by 1/S of the "
-                 "pixel's light paths (anti-aliasing by VPL groups); needs --vpl-paths >= S" + shown_default(kDefaults.settings.aa_samples))
-      ->check(integer<int>())->type_name("S");
-  app.add_option("--glossy-threshold", s.glossy_threshold, "ir/igi: GGX surfaces with alpha below A gather their "
-                 "lobe with rays instead of VPL light; 0 = VPLs shade every glossy surface" + shown_default(kDefaults.settings.glossy_threshold))
-      ->check(cli::number())->type_name("A");
-  app.add_option("--glossy-rays", s.glossy_rays, "ir/igi: gather rays per sub-sample of such a surface" + shown_default(kDefaults.settings.glossy_rays))
-      ->check(integer<int>())->type_name("K");
-  app.add_option("--clamp", s.clamp, "ir/igi/lightcuts: clamp 1/r^2 below distance C x the scene's mean chord (about "
-                 "a room); pass k of --spp clamps at C / (k + 1)^(1/4) of it, so passes converge; 0 = off, at most "
-                 + std::to_string(int(kMaxClamp)) + shown_default(kDefaults.settings.clamp))
-      ->check(cli::number())->type_name("C");
-  app.add_option("--compensate", s.compensation_samples,
-                 "ir/igi: bias compensation, N eye samples per pixel (needs --clamp), 0 = off" + shown_default(kDefaults.settings.compensation_samples))
-      ->check(integer<int>())->type_name("N");
-  app.add_option("--glass-branches", s.glass_branches, "ir/igi: glass seen from the camera splits into reflection "
-                 "and refraction at its first B - 1 surfaces, each branch filtered on its own; 1 = pick one by "
-                 "Fresnel" + shown_default(kDefaults.settings.glass_branches))->check(integer<int>())->type_name("B");
+// An option its row says turns on a switch too (--caustic-photons: caustics);
+// any caustics option means the scene does not choose (choose_caustics()).
+void given(RenderOptions& o, const Setting& row) {
+  if (const Setting* implied = *row.implies ? setting_of_field(row.implies) : nullptr)
+    o.settings.*std::get<bool RenderSettings::*>(implied->member) = true;
+  if (std::string(row.field) == "caustics" || std::string(row.implies) == "caustics") o.caustics_given = true;
 }
 
-void add_filter_and_caustic_options(CLI::App& app, RenderOptions& o) {
-  RenderSettings& s = o.settings;
-  app.add_flag_callback("--no-filter", [&s] { s.filter = false; }, "igi: skip the discontinuity buffer");
-  app.add_option("--filter-normal", s.filter_normal_cos, "igi: neighbours need normal dot above C" + shown_default(kDefaults.settings.filter_normal_cos))
-      ->check(cli::number())->type_name("C");
-  app.add_option("--filter-depth", s.filter_depth_ratio,
-                 "igi: neighbours need relative depth difference below R" + shown_default(kDefaults.settings.filter_depth_ratio))
-      ->check(cli::number())->type_name("R");
-  app.add_option("--wavelet", s.wavelet_levels,
-                 "ir/igi: levels of the edge-avoiding wavelet filter after the discontinuity buffer (smooths one "
-                 "pass; a tile's border grows by 2^(L+1), so larger --tile costs less); 0 = off" +
-                     shown_default(kDefaults.settings.wavelet_levels))
-      ->check(integer<int>())->type_name("L");
-  app.add_flag_callback("--caustics", [&o] { o.settings.caustics = o.caustics_given = true; },
-                        "ir/igi: add caustics from a photon map (light through mirrors, glass and GGX sharper "
-                        "than --glossy-threshold); the default where the scene has them");
-  app.add_flag_callback("--no-caustics", [&o] { o.settings.caustics = false, o.caustics_given = true; },
-                        "ir/igi: no caustics, even where the scene has mirrors or glass (sharp GGX then holds "
-                        "VPLs)");
-  app.add_option_function<int>(
-         "--caustic-photons", [&o](int n) { o.settings.caustic_photons = n, o.settings.caustics = o.caustics_given = true; },
-         "ir/igi: photon paths shot per frame, >= 1; implies --caustics" +
-             shown_default(kDefaults.settings.caustic_photons))
-      ->check(integer<int>())->type_name("N");
-  app.add_option_function<float>(
-         "--caustic-radius", [&o](float r) { o.settings.caustic_radius = r, o.settings.caustics = o.caustics_given = true; },
-         "ir/igi: photon gather radius, a fraction of the scene diagonal; implies --caustics" +
-             shown_default(kDefaults.settings.caustic_radius))
-      ->check(cli::number())->type_name("R");
+// "ir/igi: what it does [default]": the methods that read it, and RenderSettings' default.
+std::string setting_help(const Setting& row, const char* text, const std::string& shown) {
+  const std::string methods = methods_text(row.methods);
+  return (methods.empty() ? "" : methods + ": ") + text + shown;
 }
 
-void add_lightcuts_and_importance_options(CLI::App& app, RenderSettings& s) {
-  app.add_option("--lightcuts-error", s.lightcuts_error, "lightcuts (over all --vpl-sets x --vpl-paths VPLs): refine "
-                 "until every cluster's error bound is below E x the pixel's total, 0 < E < 1" + shown_default(kDefaults.settings.lightcuts_error))
-      ->check(cli::number())->type_name("E");
-  app.add_option("--lightcuts-max-cut", s.lightcuts_max_cut, "lightcuts: at most N nodes (shadow rays) in a cut" + shown_default(kDefaults.settings.lightcuts_max_cut))
-      ->check(integer<int>())->type_name("N");
-  app.add_option("--lightcuts-spacing", s.lightcuts_spacing,
-                 "lightcuts: reconstruction cuts, full cuts every S pixels only, 0 = off" + shown_default(kDefaults.settings.lightcuts_spacing))
-      ->check(integer<int>())->type_name("S");
-  app.add_option("--lightcuts-block", s.lightcuts_block,
-                 "lightcuts: one cut shared by the B x B pixels of a block on one diffuse surface, 0..8, 0 or 1 = a cut "
-                 "per pixel; plain cuts only" + shown_default(kDefaults.settings.lightcuts_block))
-      ->check(integer<int>())->type_name("B");
-  app.add_option("--lightcuts-samples", s.lightcuts_samples,
-                 "lightcuts: K = 1, 4, 9 ... 64 gather points per pixel (multidimensional)" + shown_default(kDefaults.settings.lightcuts_samples))
-      ->check(integer<int>())->type_name("K");
-  app.add_option("--importance", s.importance_paths, "ir/igi: start VPL light paths at lights by their estimated "
-                 "share of the image, from N camera paths (light importance for the view), 0 = by power" + shown_default(kDefaults.settings.importance_paths))
-      ->check(integer<int>())->type_name("N");
-  app.add_option("--importance-floor", s.importance_floor, "ir/igi: share of light paths still started by power, "
-                 "0..1" + shown_default(kDefaults.settings.importance_floor))->check(cli::number())->type_name("F");
+void add_setting(CLI::App& app, RenderOptions& o, const Setting& row, MethodKind RenderSettings::*member) {
   app.add_option_function<std::string>(
-         "--bidir", [&s](const std::string& k) { s.bidir_vpls = k == "auto" ? kBidirAuto : std::stoi(k); },
-         "ir/igi: bidirectional instant radiosity: per set, keep K of the VPLs of --vpl-paths light paths and R "
-         "camera paths, by their estimated contribution; 0 = off; auto = where the view sees few of the light "
-         "paths' VPLs, 2 x --vpl-paths light and camera paths and K = 2 x --vpl-paths, else off" +
-             shown_default(bidir_text(kDefaults.settings.bidir_vpls)))
-      ->check(CLI::Validator(
-          [](std::string& k) -> std::string {
-            return k == "auto" || integer<int>()(k).empty() ? "" : "expected an integer or auto, got '" + k + "'";
-          },
-          ""))
-      ->type_name("K|auto");
-  app.add_option("--bidir-camera-paths", s.bidir_camera_paths,
-                 "ir/igi with --bidir: camera paths per set, 0 = --vpl-paths" + shown_default(kDefaults.settings.bidir_camera_paths))
-      ->check(integer<int>())->type_name("R");
+         row.option, [&o, member](const std::string& m) { o.settings.*member = *parse_method(m); },
+         setting_help(row, row.help, shown_default(std::string(method_name(kDefaults.settings.*member)))))
+      ->check(cli::one_of({"pt", "ir", "igi", "lightcuts"}))->type_name(row.value);
+}
+
+void add_setting(CLI::App& app, RenderOptions& o, const Setting& row, bool RenderSettings::*member) {
+  if (*row.option)
+    app.add_flag_callback(row.option, [&o, &row, member] { o.settings.*member = true, given(o, row); },
+                          setting_help(row, row.help, ""));
+  if (*row.off_option)
+    app.add_flag_callback(row.off_option, [&o, &row, member] { o.settings.*member = false, given(o, row); },
+                          setting_help(row, row.off_help, ""));
+}
+
+void add_setting(CLI::App& app, RenderOptions& o, const Setting& row, int RenderSettings::*member) {
+  if (row.bound == Bound::ClosedOrAuto) {  // --bidir K|auto
+    app.add_option_function<std::string>(
+           row.option, [&o, member](const std::string& k) { o.settings.*member = k == "auto" ? kBidirAuto : std::stoi(k); },
+           setting_help(row, row.help, shown_default(auto_text(kDefaults.settings.*member))))
+        ->check(CLI::Validator(
+            [](std::string& k) -> std::string {
+              return k == "auto" || integer<int>()(k).empty() ? "" : "expected an integer or auto, got '" + k + "'";
+            },
+            ""))
+        ->type_name(row.value);
+    return;
+  }
+  app.add_option_function<int>(
+         row.option, [&o, &row, member](int v) { o.settings.*member = v, given(o, row); },
+         setting_help(row, row.help, shown_default(kDefaults.settings.*member)))
+      ->check(integer<int>())->type_name(row.value);
+}
+
+void add_setting(CLI::App& app, RenderOptions& o, const Setting& row, float RenderSettings::*member) {
+  app.add_option_function<float>(
+         row.option, [&o, &row, member](float v) { o.settings.*member = v, given(o, row); },
+         setting_help(row, row.help, shown_default(double(kDefaults.settings.*member))))
+      ->check(cli::number())->type_name(row.value);
+}
+
+// Every setting's option, as its row says (core/settings_table.h).
+void add_settings_options(CLI::App& app, RenderOptions& o) {
+  for (const Setting& row : settings_table())
+    std::visit([&](auto member) { add_setting(app, o, row, member); }, row.member);
 }
 
 }  // namespace
 
 void add_render_options(CLI::App& app, RenderOptions& o) {
   add_image_options(app, o);
-  add_vpl_options(app, o.settings);
-  add_filter_and_caustic_options(app, o);
-  add_lightcuts_and_importance_options(app, o.settings);
+  add_settings_options(app, o);
 }
 
 SceneOptions scene_options(const RenderOptions& o) {
