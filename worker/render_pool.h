@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/method.h"
+#include "render/frame_job.h"
 #include "protocol/messages.h"
 #include "render/scene_state.h"
 
@@ -55,7 +56,7 @@ class RenderPool {
   struct FrameState {
     FrameSetup setup;
     RenderSettings settings;
-    std::unique_ptr<Method> method;
+    std::unique_ptr<FrameJob> job;
     std::once_flag begun;  // made and begun (VPLs) by the first job, off the socket thread, at the frame's pose
   };
   void run();

@@ -159,13 +159,3 @@ std::optional<SettingsError> check_settings(const RenderSettings& settings);
 std::optional<std::string> settings_error(const RenderSettings& settings);
 
 }  // namespace igi
-
-namespace igi {
-// Extra pixels around a tile that the method needs to read: the
-// discontinuity buffer's window, and around it the wavelet filter's footprint.
-inline int tile_border(const RenderSettings& s) {
-  const bool vpl = s.method == MethodKind::Igi || s.method == MethodKind::InstantRadiosity;
-  return (s.method == MethodKind::Igi && s.filter ? s.interleave / 2 : 0) +
-         (vpl ? wavelet_footprint(s.wavelet_levels) : 0);
-}
-}  // namespace igi

@@ -43,7 +43,7 @@
 // (never clamped, core/direct_lights.h) light y too: their light reflected
 // over the short hop is what the clamp cut from the VPLs their paths left on y.
 //
-// Random numbers: sample_2d(k n / S + i, level - 1, hash(hash(x, y, frame seed), b))
+// Random numbers: sample_2d(k n / S + i, level - 1, PixelSamples{frame seed}.sequence(x, y, b))
 // in GLOBAL pixel coordinates (x, y), sub-sample k, glass branch b of G-buffer
 // layer l = b S + k (core/gbuffer.h), so a pixel's compensation is the
 // same in whatever tile, thread or process renders it. All methods are const
