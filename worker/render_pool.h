@@ -37,8 +37,9 @@ class RenderPool {
 
   // A frame's setup must be added before its jobs; its method is made for the
   // frame's own settings (they may change between frames). Throws
-  // std::invalid_argument for settings this machine cannot render. Old frames are
-  // forgotten once a newer one is added and they have no queued jobs.
+  // std::invalid_argument for settings this machine cannot render. The four
+  // newest frames are kept (results of older ones may still be in flight); an
+  // older one is forgotten, and its jobs still queued are dropped.
   void add_frame(const FrameSetup& frame, const RenderSettings& settings);
   void add_job(const protocol::TileJobMsg& job);
   // The master left the frame behind: its queued jobs are dropped and it is
