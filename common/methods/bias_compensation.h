@@ -33,7 +33,7 @@
 // are clamped like the rest (core/vpl.h), so Le(y) over the short hop is
 // exactly the direct light the clamp cut. Point and spot lights are never
 // clamped and have no surface a ray could hit. Measured in the furnace
-// (tests/test_bias_compensation.cpp): with Le(y) one level gives 1.775
+// (tests/common/methods/test_bias_compensation.cpp): with Le(y) one level gives 1.775
 // against its analytic 1.778; without it 1.440.
 //
 // With anti-aliasing (core/subpixel.h) the pixel's n samples are shared

@@ -17,7 +17,7 @@
 //                          frame seed hashed first, then the pixel, an older
 //                          order kept so their pixels stay as they were
 //
-// ConsistentValues (tests/test_pixel_samples.cpp) revisits addresses in
+// ConsistentValues (tests/common/sampling/test_pixel_samples.cpp) revisits addresses in
 // another order and gets the same values.
 #include <cstdint>
 

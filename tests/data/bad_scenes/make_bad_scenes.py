@@ -3,7 +3,7 @@
 the files are checked in, this documents how each was made).
 
 Each is a small emissive quad with exactly one thing broken. MANIFEST lists
-"file<TAB>substring the error message must contain"; tests/test_bad_scenes.cpp
+"file<TAB>substring the error message must contain"; tests/common/scene/test_bad_scenes.cpp
 runs igi-render on each and checks the exit status and the message."""
 import base64, copy, json, os, struct
 
