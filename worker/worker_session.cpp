@@ -266,7 +266,8 @@ WorkerSession::LoadResult WorkerSession::find_and_load(const SceneCache& cache, 
     sky.map = *map;
     sky.rotation = w.environment_rotation;
   }
-  return load(scene, {sky, w.light_units, false}, fail);
+  // No --ignore-extension: the master leaves ignored extensions out of the file it sends (scene/gltf_pack.h).
+  return load(scene, {sky, w.light_units, false, {}}, fail);
 }
 
 WorkerSession::LoadResult WorkerSession::load(const std::string& scene, const SceneOptions& options, bool fail) {

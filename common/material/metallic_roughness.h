@@ -19,7 +19,7 @@
 // grazing views the coat's reflection adds to a nearly undimmed base: a
 // white smooth dielectric seen at 86 degrees reflects 1.55 of what arrives
 // (roughness 0.55: 1.10). That is the specification's model, and what every
-// renderer of it draws (tests/test_metallic_roughness.cpp measures it).
+// renderer of it draws (tests/common/material/test_metallic_roughness.cpp measures it).
 //
 // Two lobes, sampled by one choice: the diffuse one (cosine) and the GGX one
 // (visible normals, shared by the coat and the metal), picked with the

@@ -15,7 +15,7 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
                       uint32_t seed, float inv_paths, std::vector<Vpl>& out, const LightPathOptions& options) {
   SampleStream start_stream(path, seed, 0);
   const size_t first = out.size();
-  const LightPathStart start = start_light_path(ctx.lights, ctx.scene, start_stream, options.selection);
+  const LightPathStart start = start_light_path(ctx.lights, ctx.scene, start_stream, options.selection, options.guide);
   // The vertex the path leaves from: the Area VPL it leaves on the light, or the punctual light.
   LightVertex previous{LightVertex::From::Punctual, start.light};
   // An area light leaves a VPL on itself, the environment a directional one.
@@ -36,21 +36,12 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
   }
   walk_light_path(ctx.accel, ctx.scene, start, settings.light_depth, path, seed, BounceDraws::TwoSingles,
                   [&](const LightPathVertex& v) {
-                    // Mirrors and glass get no VPL; the path carries their light on. Nor, with caustics
-                    // on, do very sharp GGX surfaces: their light reaches diffuse surfaces as caustic photons
-                    // (material/bsdf.h: focuses_light); a metallic-roughness surface with such a lobe keeps
-                    // a VPL that radiates through its diffuse base alone. Otherwise VPLs on sharp lobes
-                    // radiate through them widened to the threshold (VplShading::vpl_bsdf).
-                    const SurfacePoint& sp = v.sp;
-                    if (settings.caustics ? focuses_light(sp, settings.glossy_threshold) : sp.material->is_specular()) {
+                    const std::optional<Vpl> vpl = surface_vpl(ctx.scene, settings, v, inv_paths);
+                    if (!vpl) {
                       previous = {LightVertex::From::Specular, 0};
                       return true;
                     }
-                    // The VPL reflects towards the side the light arrived from.
-                    Vpl vpl{sp.position, sp.shading_normal_facing(v.wo), v.flux * inv_paths, v.wo, sp.albedo,
-                            ctx.scene.triangle_material[v.hit.triangle], 0, sp.metallic, sp.alpha, VplKind::Surface};
-                    vpl.diffuse_only = settings.caustics && radiating_lobes(sp, settings.glossy_threshold) == Lobes::Diffuse;
-                    out.push_back(vpl);
+                    out.push_back(*vpl);
                     if (options.vertices) options.vertices->push_back({previous.from, previous.index, v.depth});
                     previous = {LightVertex::From::Vpl, uint32_t(out.size() - 1)};
                     return true;
@@ -58,6 +49,21 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
 }
 
 }  // namespace
+
+std::optional<Vpl> surface_vpl(const Scene& scene, const RenderSettings& settings, const LightPathVertex& v,
+                               float scale) {
+  // With caustics on, very sharp GGX lobes' light reaches diffuse surfaces as
+  // caustic photons; a metallic-roughness surface with such a lobe keeps a VPL
+  // that radiates through its diffuse base alone. Otherwise VPLs on sharp
+  // lobes radiate through them widened to the threshold (VplShading::vpl_bsdf).
+  const SurfacePoint& sp = v.sp;
+  if (settings.caustics ? focuses_light(sp, settings.glossy_threshold) : sp.material->is_specular())
+    return std::nullopt;
+  Vpl vpl{sp.position, sp.shading_normal_facing(v.wo), v.flux * scale, v.wo, sp.albedo,
+          scene.triangle_material[v.hit.triangle], 0, sp.metallic, sp.alpha, VplKind::Surface};
+  vpl.diffuse_only = settings.caustics && radiating_lobes(sp, settings.glossy_threshold) == Lobes::Diffuse;
+  return vpl;
+}
 
 uint64_t hash_vpls(const std::vector<Vpl>& vpls) {
   ContentHasher h;

@@ -2,7 +2,11 @@
 // Light paths from the addressable sampler: same scene, settings and seed give
 // bit-identical VPL sets in any process and with any thread count.
 #include "core/method.h"
+#include <optional>
+
 #include "core/vpl.h"
+#include "vpl/light_path.h"
+#include "vpl/start_guide.h"
 
 namespace igi {
 
@@ -24,6 +28,7 @@ struct LightVertex {
 // What the light-importance methods change about light paths (common/importance/).
 struct LightPathOptions {
   const Distribution1D* selection = nullptr;  // lights chosen by this instead of by power (flux / its probability)
+  const StartGuide* guide = nullptr;          // where on a light paths start (importance/view_guide.h)
   std::vector<LightVertex>* vertices = nullptr;  // filled with one entry per VPL, in the order of VplSets::vpls
 };
 
@@ -31,6 +36,14 @@ struct LightPathOptions {
 // points of one low-discrepancy sequence scrambled by `seed`.
 VplSets generate_vpls(const SceneContext& context, const RenderSettings& settings, uint32_t seed,
                       const LightPathOptions& options = {});
+
+// The VPL a light path leaves where it arrives at `v`, of flux v.flux x
+// `scale`, reflecting towards the side the light came from; none on mirrors
+// and glass, nor, with caustics on, where the surface focuses light
+// (material/bsdf.h: focuses_light): the path carries their light on. The one
+// rule for light paths' VPLs and the light guide's pilots' (importance/view_guide.h).
+std::optional<Vpl> surface_vpl(const Scene& scene, const RenderSettings& settings, const LightPathVertex& v,
+                               float scale);
 
 uint64_t hash_vpls(const std::vector<Vpl>& vpls);
 

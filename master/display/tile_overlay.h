@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "master_session.h"
+#include "session/master_session.h"
 
 namespace igi {
 

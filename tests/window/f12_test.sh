@@ -2,7 +2,7 @@
 # Presses F12 in igi-master's window as a user does, under Xvfb, in a
 # scratch folder: the master writes the accumulated image and says so on the
 # terminal (and, for a few seconds, in the window). Prints the master's
-# output, then the files written. Run by tests/test_window.cpp
+# output, then the files written. Run by tests/master/display/test_window.cpp
 # (Window.F12WritesTheImageAndSaysSo).
 #   f12_test.sh SLOWDOWN IGI_MASTER DIR     (inside xvfb-run)
 set -euo pipefail
