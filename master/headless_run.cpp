@@ -83,7 +83,7 @@ class HeadlessRun {
   HeadlessRun(const MasterOptions& o, const Scene& scene, MasterSession& session)
       : o_(o), scene_(scene), session_(session), replay_(o.progressive ? o.first_frame : 0),
         total_(replay_ + o.frames), first_index_(o.first_frame - replay_), gathered_(o.min_workers == 0),
-        sink_(o.render.width, o.render.height, o.render.exposure, o.progressive) {
+        sink_(o.render.width, o.render.height, o.render.exposure, o.render.view, o.progressive) {
     if (!o.stats.empty()) stats_.emplace(o.stats);
   }
 
@@ -172,7 +172,8 @@ class HeadlessRun {
     const std::optional<Image> last = sink_.last_written();
     if (!last) return;
     const bool file_lamps = !is_builtin_scene(o_.render.scene) && !scene_.lights.empty();
-    if (auto advice = exposure_advice(*last, {o_.render.exposure, !is_float_format(o_.render.output), file_lamps,
+    if (auto advice = exposure_advice(*last, {sink_.last_exposure(), o_.render.exposure.metered, o_.render.view,
+                                             !is_float_format(o_.render.output), file_lamps,
                                              o_.render.light_units == LightUnits::Photometric,
                                              !scene_.camera}))
       std::fprintf(stderr, "igi-master: %s\n", advice->c_str());

@@ -1,6 +1,7 @@
 #pragma once
-// The settings panel: the method and its settings, as RenderSettings, and the
-// display's exposure. Every widget offers its field's range from kLimits
+// The settings panel: the method and its settings, as RenderSettings, and
+// how the window shows the image (exposure in stops, the view transform).
+// Every widget offers its field's range from kLimits
 // (core/settings.h), the range check_settings() accepts, so a VPL count below
 // 1 or a clamp below 0 cannot be entered, and no value is rewritten: one the
 // panel cannot show stays as it was typed on the command line. Settings that
@@ -9,8 +10,10 @@
 // frame (protocol FrameSetup); no worker reconnects.
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "core/settings.h"
+#include "image/view_transform.h"
 
 namespace igi {
 
@@ -23,7 +26,7 @@ std::optional<std::string> panel_settings_error(const RenderSettings& settings);
 
 class SettingsPanel {
  public:
-  SettingsPanel(const RenderSettings& settings, float exposure);
+  SettingsPanel(const RenderSettings& settings, const ToneMapping& tone);
   // Draws the widgets in three sections, quality (open), filter and lighting
   // (closed), inside an ImGui window the caller opened; each widget's tooltip
   // names its command-line option, in the command line's units.
@@ -34,7 +37,12 @@ class SettingsPanel {
   // Settings changed since the last call: the caller starts a new view with them.
   bool take_change();
   const RenderSettings& settings() const { return committed_; }
-  float exposure() const { return exposure_; }
+  // How the window shows the image: the display's own, never sent (the workers' colours stay linear).
+  const ToneMapping& tone() const { return tone_; }
+  void set_exposure(float factor) { tone_.exposure = factor; }  // the meter's
+  void next_view();  // standard, neutral, agx, standard ...
+  // The "auto" button was pressed since the last call: the caller meters the image shown.
+  bool take_meter_request() { return std::exchange(meter_requested_, false); }
   const std::string& error() const { return error_; }
 
  private:
@@ -42,8 +50,10 @@ class SettingsPanel {
   void draw_lightcuts(RenderSettings& s);
   void draw_filter(RenderSettings& s);
   void draw_lighting(RenderSettings& s);
+  void draw_tone();
   RenderSettings committed_, editing_;
-  float exposure_;
+  ToneMapping tone_;
+  bool meter_requested_ = false;
   std::string error_;
   bool changed_ = false;
 };
