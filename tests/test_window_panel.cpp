@@ -126,6 +126,20 @@ TEST(WindowPanel, PickingAMethodDropsWhatItRefuses) {
   EXPECT_EQ(ir.bidir_vpls, 8);
 }
 
+// The window's V and the panel's combo go through the views in order, back to the first; the exposure is the
+// meter's when it says so. Neither is sent: the settings stay as they were.
+TEST(WindowPanel, TheViewsCycleAndTheExposureIsTheDisplaysOwn) {
+  SettingsPanel panel(RenderSettings{}, ToneMapping{2.0f, ViewTransform::Standard});
+  for (ViewTransform want : {ViewTransform::Neutral, ViewTransform::Agx, ViewTransform::Standard}) {
+    panel.next_view();
+    EXPECT_EQ(panel.tone().view, want);
+  }
+  panel.set_exposure(8.0f);
+  EXPECT_EQ(panel.tone().exposure, 8.0f);
+  EXPECT_FALSE(panel.take_change()) << "the display's own: nothing to send";
+  EXPECT_FALSE(panel.take_meter_request());
+}
+
 // The widgets themselves, in an ImGui context with no window: every method's page draws.
 TEST(WindowPanel, EveryMethodsPageDrawsHeadless) {
   ImGui::CreateContext();
