@@ -190,26 +190,43 @@ PanelOptions panel_options(const MasterOptions& o, const InteractiveWindow& wind
   return p;
 }
 
+// The exposure on opening (--exposure auto, the window's default): the
+// image is metered after each frame it takes until a full frame has come
+// (frames that arrive together are metered one by one, so the exposure is
+// the first full frame's, as igi-render's of the same image), said once, and
+// then holds while the view changes (M meters again).
+struct OpeningMeter {
+  bool metering;
+  bool quiet;
+  void shown(const Image& image, bool full, SettingsPanel& settings) {
+    if (!metering) return;
+    settings.set_exposure(metered_exposure(image));
+    metering = !full;
+    if (full && !quiet)
+      std::fprintf(stderr, "igi-master: %s (M meters again)\n", metered_line(settings.tone().exposure).c_str());
+  }
+};
+
 // A frame of the current settings: into the history (carried into its view),
-// the status line, the stats file and the panel.
+// the opening meter, the status line, the stats file and the panel.
 struct Shower {
   InteractiveWindow& window;
   WindowPanel& panel;
   CameraController& controller;
   ViewHistory& history;
   std::optional<StatsWriter>& stats;
+  OpeningMeter& meter;
   bool animated, camera_animated;
   int shown_frames = 0;
   FrameRate rate;
-  bool full = false;  // the last frame shown was a full frame, not a preview
 
   void show(Shown& shown) {
     if (animated) history.reset();  // each frame stands at its own time
     if (camera_animated) controller.follow(shown.frame.setup.camera);  // a first move starts from the view shown
     ++shown_frames;
-    full = shown.planned.level == 0;  // FrameBudget's levels: full first
     history.add(shown.frame.pixels->to_image(), shown.frame.surfaces, shown.frame.setup.camera, shown.weight);
     shown.frame.pixels.reset();  // back to the pool
+    if (meter.metering) meter.shown(history.resolve(), shown.planned.level == 0, panel.settings());  // 0: full
     const auto now = FrameRate::Clock::now();
     rate.shown(now);
     const double fps = rate.fps(now);
@@ -223,20 +240,6 @@ struct Shower {
 };
 
 
-// The exposure on opening (--exposure auto, the window's default): each
-// image shown is metered until a full frame has been, said once, and then
-// the exposure holds while the view changes (M meters again).
-struct OpeningMeter {
-  bool metering;
-  bool quiet;
-  void shown(const Image& image, bool full, SettingsPanel& settings) {
-    if (!metering) return;
-    settings.set_exposure(metered_exposure(image));
-    metering = !full;
-    if (full && !quiet)
-      std::fprintf(stderr, "igi-master: %s (M meters again)\n", metered_line(settings.tone().exposure).c_str());
-  }
-};
 
 // The window's loop until it closes, is interrupted or the session stops.
 void window_loop(const MasterOptions& o, const Scene& scene, MasterSession& session, std::atomic<bool>& interrupted,
@@ -264,7 +267,7 @@ void window_loop(const MasterOptions& o, const Scene& scene, MasterSession& sess
   auto last_draw = std::chrono::steady_clock::now();
   bool edited = !o.test_panel_settings;  // the test hook edits once, after the first frame shown
   int shots = 0;
-  Shower shower{window, panel, controller, history, stats, animated, camera_animated, 0, {}};
+  Shower shower{window, panel, controller, history, stats, meter, animated, camera_animated, 0, {}};
   while (window.poll(controller) && !interrupted && !handover.stopped()) {
     const bool lights_moved = controller.light_offset() != light_offset;
     if (panel.settings().take_change() || lights_moved) {  // the image starts over
@@ -288,11 +291,7 @@ void window_loop(const MasterOptions& o, const Scene& scene, MasterSession& sess
     const auto now = std::chrono::steady_clock::now();
     if (!fresh && now - last_draw < std::chrono::milliseconds(50)) continue;  // redraw for the panel at 20 Hz
     last_draw = now;
-    if (fresh) {
-      const Image image = history.resolve();
-      window.upload(image);
-      meter.shown(image, shower.full, panel.settings());
-    }
+    if (fresh) window.upload(history.resolve());
     if (!fresh && shower.rate.waiting(now) > 1.0) window.set_status(waiting_line(shower.rate.waiting(now)));
     if (!fresh) panel.set_waiting(shower.rate.waiting(now));
     window.draw(panel.image_viewport(float(window.width()), float(window.height())), panel.settings().tone());

@@ -11,6 +11,7 @@
 #include "image/exposure_check.h"
 #include "image/image.h"
 #include "image/view_transform.h"
+#include "support/image_compare.h"
 
 namespace igi {
 namespace {
@@ -176,6 +177,21 @@ TEST(ViewTransform, TheWindowsTableShowsWhatThePngWriterWrites) {
     EXPECT_LT(delta_e, 2.0f) << view_name(view);
     EXPECT_EQ(view_table_lookup(table, glm::vec3(0.0f)), glm::vec3(0.0f)) << "black stays black";
   }
+}
+
+// Float files stay linear: no exposure, no view; a PNG of the same image shows both.
+TEST(ViewTransform, FloatFilesStayLinearAndUntouched) {
+  Image image(8, 4);
+  for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = glm::vec3(0.01f * float(i), 3.0f, 40.0f);
+  const ToneMapping tone{8.0f, ViewTransform::Agx};
+  const std::string exr = test::output_path("view-linear.exr"), png = test::output_path("view-agx.png");
+  write_image(image, exr, tone);
+  write_image(image, png, tone);
+  const Image back = read_image(exr);
+  EXPECT_EQ(back.pixels, image.pixels);
+  const Image shown = read_image(png);
+  const std::array<uint8_t, 3> want = tone_map_srgb8(image.pixels[5], tone);
+  EXPECT_NEAR(shown.pixels[5].y, srgb_to_linear(float(want[1]) / 255.0f), 1e-6f);
 }
 
 Image uniform(glm::vec3 value) {

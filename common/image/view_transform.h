@@ -17,7 +17,7 @@
 //             4.0, after EaryChow/AgX_LUT_Gen's AgXBaseRec2020.py): Rec.2020
 //             primaries pulled in (inset), a log2 encoding from 10 stops under
 //             to 6.5 over middle grey, a sigmoid through middle grey that rolls
-//             highlights off to white at 16.3 x middle grey, primaries pushed
+//             highlights off to white at 16.3 (6.5 stops over), primaries pushed
 //             out again (outset). Left out, as in Allen Pestaluky's port for
 //             Godot (allenwp/AgX-GLSL-Shaders): Blender's 40 % hue mix and its
 //             guard rails for negative input.
