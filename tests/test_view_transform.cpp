@@ -173,7 +173,9 @@ TEST(ViewTransform, TheWindowsTableShowsWhatThePngWriterWrites) {
     std::printf("%s: the table's largest error: greys %.2f of an 8-bit step, colours %.2f, delta E %.2f\n",
                 view_name(view), grey_steps, steps, delta_e);
     EXPECT_LT(grey_steps, 1.0f) << view_name(view);
-    if (view == ViewTransform::Standard) EXPECT_LT(steps, 1.0f);
+    if (view == ViewTransform::Standard) {
+      EXPECT_LT(steps, 1.0f);
+    }
     EXPECT_LT(delta_e, 2.0f) << view_name(view);
     EXPECT_EQ(view_table_lookup(table, glm::vec3(0.0f)), glm::vec3(0.0f)) << "black stays black";
   }
