@@ -10,15 +10,15 @@
 #include <thread>
 
 #include "cli/option_checks.h"
-#include "local_workers.h"
-#include "master_options.h"
-#include "master_session.h"
+#include "cluster/local_workers.h"
+#include "options/master_options.h"
+#include "session/master_session.h"
 #include "protocol/curve.h"
-#include "run_modes.h"
+#include "run/run_modes.h"
 #include "scene/animation.h"
 #include "scene/builtin_scenes.h"
 #include "scene/load_scene.h"
-#include "camera_bookmark.h"
+#include "view/camera_bookmark.h"
 
 namespace {
 
@@ -84,7 +84,7 @@ int run(igi::MasterOptions o) {
   source.light_units = o.render.light_units;
   if (scene.environment_map)  // --environment FILE's, or the glTF scene's extras'
     igi::add_environment_map(source, scene.environment_map->source(), scene.environment_map->rotation());
-  igi::MasterSession session(o, std::move(source), context, curve ? &curve->server : nullptr);
+  igi::MasterSession session(igi::session_settings(o), std::move(source), context, curve ? &curve->server : nullptr);
   session.judge_by(std::move(as_workers_load_it));
   if (curve)
     std::fprintf(stderr, "igi-master: listening on %s (CURVE; master public key %s; %zu authorised worker keys)\n",

@@ -11,11 +11,11 @@
 
 #include <unistd.h>
 
-#include "camera_bookmark.h"
+#include "view/camera_bookmark.h"
 #include "cli/option_checks.h"
 #include "display/image_window.h"
 #include "image/exposure_check.h"
-#include "render_options.h"
+#include "options/render_options.h"
 #include "render/offline_render.h"
 #include "render/scene_state.h"
 #include "scene/animation.h"

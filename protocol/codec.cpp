@@ -8,10 +8,12 @@
 #include <cstdio>
 #include <numbers>
 #include <type_traits>
+#include <variant>
 
 #include <lz4.h>
 #include <zstd.h>
 
+#include "core/settings_table.h"
 #include "protocol/wire.h"
 
 namespace igi::protocol {
@@ -157,61 +159,35 @@ void check_camera(Reader& r, const Camera& camera) {
 
 // ---- Shared parts.
 
-// Every field of RenderSettings once, in the wire's order: write() and read()
-// both walk this list, so the two cannot drift apart.
-template <class Settings, class Field>
-void settings_fields(Settings& s, Field&& field) {
-  field("settings.method", s.method);
-  field("settings.path_depth", s.path_depth);
-  field("settings.light_depth", s.light_depth);
-  field("settings.specular_depth", s.specular_depth);
-  field("settings.interleave", s.interleave);
-  field("settings.paths_per_set", s.paths_per_set);
-  field("settings.vpl_draws", s.vpl_draws);
-  field("settings.aa_samples", s.aa_samples);
-  field("settings.glossy_threshold", s.glossy_threshold);
-  field("settings.glossy_rays", s.glossy_rays);
-  field("settings.clamp", s.clamp);
-  field("settings.compensation_samples", s.compensation_samples);
-  field("settings.filter", s.filter);
-  field("settings.filter_normal_cos", s.filter_normal_cos);
-  field("settings.filter_depth_ratio", s.filter_depth_ratio);
-  field("settings.wavelet_levels", s.wavelet_levels);
-  field("settings.lightcuts_error", s.lightcuts_error);
-  field("settings.lightcuts_max_cut", s.lightcuts_max_cut);
-  field("settings.lightcuts_spacing", s.lightcuts_spacing);
-  field("settings.lightcuts_samples", s.lightcuts_samples);
-  field("settings.glass_branches", s.glass_branches);
-  field("settings.caustics", s.caustics);
-  field("settings.caustic_photons", s.caustic_photons);
-  field("settings.caustic_radius", s.caustic_radius);
-  field("settings.importance_paths", s.importance_paths);
-  field("settings.importance_floor", s.importance_floor);
-  field("settings.bidir_vpls", s.bidir_vpls);
-  field("settings.bidir_camera_paths", s.bidir_camera_paths);
-  field("settings.lightcuts_block", s.lightcuts_block);
-}
-
+// Every field of RenderSettings once, in the wire's order: its row in
+// core/settings_table.h. write() and read() both walk the table, so the two
+// cannot drift apart, and a setting needs no line here.
 void write(Writer& w, const RenderSettings& s) {
-  settings_fields(s, [&](const char*, const auto& v) {
-    using T = std::decay_t<decltype(v)>;
-    if constexpr (std::is_same_v<T, MethodKind>) w.u8(static_cast<uint8_t>(v));
-    else if constexpr (std::is_same_v<T, bool>) w.boolean(v);
-    else if constexpr (std::is_same_v<T, float>) w.f32(v);
-    else w.i32(v);
-  });
+  for (const Setting& row : settings_table())
+    std::visit(
+        [&](auto member) {
+          using T = std::remove_cvref_t<decltype(s.*member)>;
+          if constexpr (std::is_same_v<T, MethodKind>) w.u8(static_cast<uint8_t>(s.*member));
+          else if constexpr (std::is_same_v<T, bool>) w.boolean(s.*member);
+          else if constexpr (std::is_same_v<T, float>) w.f32(s.*member);
+          else w.i32(s.*member);
+        },
+        row.member);
 }
 
 // RenderSettings in write()'s order, then the one check of them all
 // (core/settings.h): the wire knows the fields, not each method's rules.
 void read(Reader& r, RenderSettings& s) {
-  settings_fields(s, [&](const char* name, auto& v) {
-    using T = std::decay_t<decltype(v)>;
-    if constexpr (std::is_same_v<T, MethodKind>) v = static_cast<MethodKind>(r.u8(name));
-    else if constexpr (std::is_same_v<T, bool>) v = r.boolean(name);
-    else if constexpr (std::is_same_v<T, float>) v = r.f32(name);
-    else v = r.i32(name);
-  });
+  for (const Setting& row : settings_table())
+    std::visit(
+        [&](auto member) {
+          using T = std::remove_cvref_t<decltype(s.*member)>;
+          if constexpr (std::is_same_v<T, MethodKind>) s.*member = static_cast<MethodKind>(r.u8(row.wire));
+          else if constexpr (std::is_same_v<T, bool>) s.*member = r.boolean(row.wire);
+          else if constexpr (std::is_same_v<T, float>) s.*member = r.f32(row.wire);
+          else s.*member = r.i32(row.wire);
+        },
+        row.member);
   if (!r.ok()) return;
   if (auto error = check_settings(s)) r.fail(("settings." + error->field).c_str(), error->message);
 }

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The window's behaviour while the camera moves, measured headless through
-# the same session code (igi-master --motion, master/motion_run.cpp): a
+# the same session code (igi-master --motion, master/run/motion_run.cpp): a
 # scripted user drags (30 degrees a second) or walks (W held) for 2 s, then
 # holds still for 4 s; today's behaviour against the one before motion was
 # handled (--motion-legacy: no budget, stale frames dropped, the image thrown

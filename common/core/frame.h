@@ -24,7 +24,7 @@ struct FrameSetup {
   float jitter_x = 0.5f, jitter_y = 0.5f;
   ScenePose pose;  // the scene's animation time and moved lights in this frame
   // Each TileResult also carries its pixels' surfaces (PixelSurface): the
-  // master's reprojection asks for them (master/view_history.h).
+  // master's reprojection asks for them (render/view_history.h).
   bool want_surfaces = false;
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 // The surfaces a frame's pixels show, for the master's reprojection
-// (master/view_history.h): one camera ray through each pixel's centre, the
+// (render/view_history.h): one camera ray through each pixel's centre, the
 // same ray in every tile, thread and worker (core/camera_front_end.h).
 #include <span>
 

@@ -2,8 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <type_traits>
+#include <variant>
 
 #include "core/clamp.h"
+#include "core/settings_table.h"
 #include "core/subpixel.h"
 
 namespace igi {
@@ -24,8 +27,9 @@ std::optional<MethodKind> parse_method(const std::string& name) {
   return std::nullopt;
 }
 
-// ---- The one check of RenderSettings. Each rule names the field (as the wire
-// format does) and the option (as igi-render's command line does).
+// ---- The one check of RenderSettings: each field within its row's bound
+// (core/settings_table.h), then what must hold between fields. Each rule names
+// the field (as the wire format does) and the option (as igi-render's command line does).
 namespace {
 
 using Check = std::optional<SettingsError>;
@@ -38,73 +42,69 @@ std::string text(double v) {
 
 Check wrong(const char* field, std::string message) { return SettingsError{field, std::move(message)}; }
 
-Check integer(const char* field, const char* option, int v, Range<int> range, const char* note = "") {
-  if (v >= range.lo && v <= range.hi) return std::nullopt;
-  return wrong(field, std::string(option) + ": expected " + std::to_string(range.lo) + ".." + std::to_string(range.hi) + note +
-                          ", got " + std::to_string(v));
+// A count's or a number's bound, as its row says (core/settings_table.h).
+Check bounded(const Setting& row, double v, bool integral) {
+  const std::string option = row.option;
+  auto number = [&](double x) { return integral ? std::to_string(long(x)) : text(x); };
+  switch (row.bound) {
+    case Bound::Method:
+    case Bound::None:
+      return std::nullopt;
+    case Bound::ClosedOrAuto:
+      if (v == kBidirAuto) return std::nullopt;
+      [[fallthrough]];
+    case Bound::Closed:
+      if (v >= row.lo && v <= row.hi) return std::nullopt;
+      if (integral)
+        return wrong(row.field, option + ": expected " + number(row.lo) + ".." + number(row.hi) + row.note +
+                                    ", got " + number(v));
+      return wrong(row.field, option + ": expected " + row.what + " in [" + text(row.lo) + ", " + text(row.hi) +
+                                  "]" + row.note + ", got " + text(v));
+    case Bound::Open:
+      if (v > row.lo && v < row.hi) return std::nullopt;
+      return wrong(row.field, option + ": expected " + row.what + " in (" + text(row.lo) + ", " + text(row.hi) +
+                                  "), got " + text(v));
+    case Bound::AtLeast:
+      if (v >= row.lo && v <= row.hi) return std::nullopt;
+      return wrong(row.field, option + ": expected " + row.what + " >= " + text(row.lo) + ", got " + text(v));
+    case Bound::Square:
+      if (subpixel_side(int(v)) != 0 && v <= row.hi) return std::nullopt;
+      return wrong(row.field, option + ": expected a square number of " + row.what + " (1, 4, 9, ..., " +
+                                  number(row.hi) + "), got " + number(v));
+  }
+  return std::nullopt;
 }
 
-// lo <= v <= hi, which NaN fails; `what` says what the number is.
-Check closed(const char* field, const char* option, float v, Range<float> range, const char* what,
-             const char* note = "") {
-  if (v >= range.lo && v <= range.hi) return std::nullopt;
-  return wrong(field, std::string(option) + ": expected " + what + " in [" + text(range.lo) + ", " + text(range.hi) + "]" +
-                          note + ", got " + text(v));
+// Every field within its row's bound, in the table's order.
+Check check_bounds(const RenderSettings& s) {
+  for (const Setting& row : settings_table()) {
+    Check error = std::visit(
+        [&](auto member) -> Check {
+          using T = std::remove_cvref_t<decltype(s.*member)>;
+          if constexpr (std::is_same_v<T, MethodKind>) {
+            if (uint8_t(s.*member) <= uint8_t(MethodKind::Lightcuts)) return std::nullopt;
+            return wrong(row.field, std::string(row.option) + ": expected pt, ir, igi or lightcuts (0..3), got " +
+                                        std::to_string(int(s.*member)));
+          } else if constexpr (std::is_same_v<T, bool>) {
+            return std::nullopt;
+          } else {
+            return bounded(row, double(s.*member), std::is_integral_v<T>);
+          }
+        },
+        row.member);
+    if (error) return error;
+  }
+  return std::nullopt;
 }
 
-Check check_paths(const RenderSettings& s) {
-  const char* unbounded = " (0 = unbounded)";
-  if (uint8_t(s.method) > uint8_t(MethodKind::Lightcuts))
-    return wrong("method", "--method: expected pt, ir, igi or lightcuts (0..3), got " + std::to_string(int(s.method)));
-  if (auto e = integer("path_depth", "--path-depth", s.path_depth, kLimits.path_depth, unbounded)) return e;
-  if (auto e = integer("light_depth", "--light-depth", s.light_depth, kLimits.light_depth, unbounded)) return e;
-  if (auto e = integer("specular_depth", "--specular-depth", s.specular_depth, kLimits.specular_depth, unbounded)) return e;
-  if (auto e = integer("interleave", "--vpl-sets", s.interleave, kLimits.interleave)) return e;
-  if (auto e = integer("paths_per_set", "--vpl-paths", s.paths_per_set, kLimits.paths_per_set)) return e;
-  if (auto e = integer("vpl_draws", "--vpl-draws", s.vpl_draws, kLimits.vpl_draws, " VPLs drawn per shading point (0 = sets)"))
-    return e;
-  if (subpixel_side(s.aa_samples) == 0 || s.aa_samples > kLimits.aa_samples.hi)
-    return wrong("aa_samples", "--aa: expected a square number of sub-samples per pixel (1, 4, 9, ..., " +
-                                   std::to_string(kLimits.aa_samples.hi) + "), got " + std::to_string(s.aa_samples));
+// ---- What must hold between fields.
+
+Check check_samples(const RenderSettings& s) {
   if (s.paths_per_set < s.aa_samples)
     return wrong("aa_samples", "--aa " + std::to_string(s.aa_samples) + " needs --vpl-paths >= " +
                                    std::to_string(s.aa_samples) +
                                    " (each sub-sample takes its own group of the set's light paths), got " +
                                    std::to_string(s.paths_per_set));
-  if (auto e = closed("glossy_threshold", "--glossy-threshold", s.glossy_threshold, kLimits.glossy_threshold,
-                      "a GGX alpha",
-                      " (0 = VPLs shade every glossy surface)"))
-    return e;
-  if (auto e = integer("glossy_rays", "--glossy-rays", s.glossy_rays, kLimits.glossy_rays)) return e;
-  if (auto e = closed("clamp", "--clamp", s.clamp, kLimits.clamp, "a fraction of the scene's mean chord", " (0 = off)"))
-    return e;
-  return integer("compensation_samples", "--compensate", s.compensation_samples, kLimits.compensation_samples);
-}
-
-Check check_filters(const RenderSettings& s) {
-  if (auto e = closed("filter_normal_cos", "--filter-normal", s.filter_normal_cos, kLimits.filter_normal_cos, "a cosine")) return e;
-  if (!(s.filter_depth_ratio >= kLimits.filter_depth_ratio.lo && s.filter_depth_ratio <= kLimits.filter_depth_ratio.hi))
-    return wrong("filter_depth_ratio", "--filter-depth: expected a finite number >= 0, got " + text(s.filter_depth_ratio));
-  if (auto e = integer("wavelet_levels", "--wavelet", s.wavelet_levels, kLimits.wavelet_levels)) return e;
-  return integer("glass_branches", "--glass-branches", s.glass_branches, kLimits.glass_branches);
-}
-
-Check check_lightcuts(const RenderSettings& s) {
-  if (!(s.lightcuts_error > kLimits.lightcuts_error.lo && s.lightcuts_error < kLimits.lightcuts_error.hi))
-    return wrong("lightcuts_error", "--lightcuts-error: expected a number in (" + text(kLimits.lightcuts_error.lo) + ", " +
-                                        text(kLimits.lightcuts_error.hi) + "), got " + text(s.lightcuts_error));
-  if (auto e = integer("lightcuts_max_cut", "--lightcuts-max-cut", s.lightcuts_max_cut, kLimits.lightcuts_max_cut))
-    return e;
-  if (auto e = integer("lightcuts_spacing", "--lightcuts-spacing", s.lightcuts_spacing, kLimits.lightcuts_spacing,
-                       " (0 = off)"))
-    return e;
-  if (auto e = integer("lightcuts_block", "--lightcuts-block", s.lightcuts_block, kLimits.lightcuts_block,
-                       " (0 or 1 = a cut per pixel)"))
-    return e;
-  if (subpixel_side(s.lightcuts_samples) == 0 || s.lightcuts_samples > kLimits.lightcuts_samples.hi)
-    return wrong("lightcuts_samples", "--lightcuts-samples: expected a square number of gather points per pixel "
-                                      "(1, 4, 9, ..., " + std::to_string(kLimits.lightcuts_samples.hi) + "), got " +
-                                      std::to_string(s.lightcuts_samples));
   // Only lightcuts uses both (the sample sweep in the tests sets them on other methods too).
   if (s.method == MethodKind::Lightcuts && s.lightcuts_spacing > 1 && s.lightcuts_samples > 1)
     return wrong("lightcuts_spacing", "--lightcuts-spacing and --lightcuts-samples cannot be combined: "
@@ -112,30 +112,11 @@ Check check_lightcuts(const RenderSettings& s) {
   return std::nullopt;
 }
 
-Check check_caustics(const RenderSettings& s) {
-  if (auto e = integer("caustic_photons", "--caustic-photons", s.caustic_photons, kLimits.caustic_photons,
-                       " photon paths per frame (leave out --caustics to turn caustics off)"))
-    return e;
-  if (auto e = closed("caustic_radius", "--caustic-radius", s.caustic_radius, kLimits.caustic_radius,
-                      "a fraction of the scene diagonal"))
-    return e;
+Check check_vpl_methods_only(const RenderSettings& s) {
   const bool vpl_method = s.method == MethodKind::InstantRadiosity || s.method == MethodKind::Igi;
   if (s.caustics && !vpl_method)
     return wrong("caustics", "--caustics: only the ir and igi methods add caustic photons (pt finds caustics by "
                              "itself), got --method " + std::string(method_name(s.method)));
-  return std::nullopt;
-}
-
-Check check_importance(const RenderSettings& s) {
-  const char* off = " (0 = off)";
-  if (auto e = integer("importance_paths", "--importance", s.importance_paths, kLimits.importance_paths, off)) return e;
-  if (auto e = closed("importance_floor", "--importance-floor", s.importance_floor, kLimits.importance_floor, "a share")) return e;
-  if (s.bidir_vpls != kBidirAuto)
-    if (auto e = integer("bidir_vpls", "--bidir", s.bidir_vpls, kLimits.bidir_vpls, " (0 = off, or auto)")) return e;
-  if (auto e = integer("bidir_camera_paths", "--bidir-camera-paths", s.bidir_camera_paths, kLimits.bidir_camera_paths,
-                       " (0 = --vpl-paths)"))
-    return e;
-  const bool vpl_method = s.method == MethodKind::InstantRadiosity || s.method == MethodKind::Igi;
   if (!vpl_method && s.bidir_vpls > 0) return wrong("bidir_vpls", "--bidir: only for --method ir or igi");
   if (s.bidir_vpls <= 0) return std::nullopt;  // off, or auto (which keeps within these limits)
   if (s.paths_per_set > kMaxBidirPaths)
@@ -152,7 +133,7 @@ Check check_importance(const RenderSettings& s) {
 }  // namespace
 
 std::optional<SettingsError> check_settings(const RenderSettings& s) {
-  for (auto group : {check_paths, check_filters, check_lightcuts, check_caustics, check_importance})
+  for (auto group : {check_bounds, check_samples, check_vpl_methods_only})
     if (auto error = group(s)) return error;
   return std::nullopt;
 }

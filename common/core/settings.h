@@ -17,7 +17,7 @@ std::optional<MethodKind> parse_method(const std::string& name);
 inline constexpr int kDepthSafetyCap = 256;
 inline int depth_limit(int depth) { return depth > 0 ? depth : kDepthSafetyCap; }
 
-// Bounds of the options, shared by the command lines and the wire format.
+// Bounds of the options: the settings' rows (core/settings_table.h) and the code that sizes arrays by them.
 inline constexpr int kMaxDepth = 1024;
 inline constexpr int kMaxInterleave = 16;
 inline constexpr int kMaxPathsPerSet = 1 << 20;
@@ -52,8 +52,11 @@ inline constexpr float kMinCausticRadius = 1e-5f;
 inline constexpr float kMaxCausticRadius = 0.25f;
 }  // namespace photons
 
-// The defaults of anti-aliasing, clamp and compensation: README, "Defaults";
-// their measurements in tests/bench/history/RESULTS-to-2026-12-05.md, "Convergence".
+// A member's initializer is its default (--help, the options reference and
+// the panel read it from here); each member has a row in core/settings_table.h,
+// which says its option, range and widget. The measurements behind the
+// defaults of anti-aliasing, clamp and compensation: tests/bench/history/
+// RESULTS-to-2026-12-05.md, "Convergence".
 struct RenderSettings {
   MethodKind method = MethodKind::Igi;
   // Path lengths, in surface interactions after the camera or the light; 0 = unbounded.
@@ -140,41 +143,11 @@ struct RenderSettings {
   int lightcuts_block = 4;
 };
 
-// The range of every numeric option, as data: check_settings() refuses a value
-// outside it and the window's panel offers exactly it (master/display/
-// settings_panel.cpp), so no range is written twice. Closed ranges, except
-// `lightcuts_error`, whose ends are excluded; counts of sub-samples and gather
-// points are also squares, and some fields must fit each other (check_settings).
-template <class T>
-struct Range {
-  T lo, hi;
-};
-struct SettingsLimits {
-  Range<int> path_depth{0, kMaxDepth}, light_depth{0, kMaxDepth}, specular_depth{0, kMaxDepth};
-  Range<int> interleave{1, kMaxInterleave}, paths_per_set{1, kMaxPathsPerSet}, vpl_draws{0, kMaxVplDraws};
-  Range<int> aa_samples{1, kMaxAntialiasSamples};
-  Range<float> glossy_threshold{0.0f, 1.0f};
-  Range<int> glossy_rays{1, kMaxGlossyRays};
-  Range<float> clamp{0.0f, kMaxClamp};
-  Range<int> compensation_samples{0, kMaxCompensationSamples};
-  Range<float> filter_normal_cos{-1.0f, 1.0f};
-  Range<float> filter_depth_ratio{0.0f, std::numeric_limits<float>::max()};  // any finite ratio
-  Range<int> wavelet_levels{0, kMaxWaveletLevels};
-  Range<int> glass_branches{1, kMaxGlassBranches};
-  Range<float> lightcuts_error{0.0f, 1.0f};  // open: both ends excluded
-  Range<int> lightcuts_max_cut{1, lightcuts::kMaxCut}, lightcuts_spacing{0, lightcuts::kMaxSpacing};
-  Range<int> lightcuts_block{0, lightcuts::kMaxBlock}, lightcuts_samples{1, lightcuts::kMaxSamples};
-  Range<int> caustic_photons{1, photons::kMaxCausticPhotons};
-  Range<float> caustic_radius{photons::kMinCausticRadius, photons::kMaxCausticRadius};
-  Range<int> importance_paths{0, kMaxImportancePaths};
-  Range<float> importance_floor{0.0f, 1.0f};
-  Range<int> bidir_vpls{0, kMaxBidirVpls}, bidir_camera_paths{0, kMaxBidirPaths};
-};
-inline constexpr SettingsLimits kLimits{};
 
 // The one check of RenderSettings, called by the command lines, the window's
 // panel, the methods and the wire decoder: the first rule broken, or nothing
-// when every field is in range and the fields fit together. `field` is the
+// when every field is within its row's bound (core/settings_table.h) and the
+// fields fit together. `field` is the
 // member's name (the wire's "settings.aa_samples"), `message` names
 // igi-render's option ("--aa: expected ..., got 8").
 struct SettingsError {
@@ -185,14 +158,4 @@ std::optional<SettingsError> check_settings(const RenderSettings& settings);
 // check_settings()'s message.
 std::optional<std::string> settings_error(const RenderSettings& settings);
 
-}  // namespace igi
-
-namespace igi {
-// Extra pixels around a tile that the method needs to read: the
-// discontinuity buffer's window, and around it the wavelet filter's footprint.
-inline int tile_border(const RenderSettings& s) {
-  const bool vpl = s.method == MethodKind::Igi || s.method == MethodKind::InstantRadiosity;
-  return (s.method == MethodKind::Igi && s.filter ? s.interleave / 2 : 0) +
-         (vpl ? wavelet_footprint(s.wavelet_levels) : 0);
-}
 }  // namespace igi

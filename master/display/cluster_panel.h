@@ -5,7 +5,7 @@
 // handed out again.
 #include <vector>
 
-#include "master_session.h"
+#include "session/master_session.h"
 
 namespace igi {
 

@@ -1,13 +1,13 @@
 #pragma once
 // The settings panel: the method and its settings, as RenderSettings, and
-// how the window shows the image (exposure in stops, the view transform).
-// Every widget offers its field's range from kLimits
-// (core/settings.h), the range check_settings() accepts, so a VPL count below
-// 1 or a clamp below 0 cannot be entered, and no value is rewritten: one the
-// panel cannot show stays as it was typed on the command line. Settings that
-// fit each field but not each other (anti-aliasing samples above the paths
-// per set...) are shown as an error and not sent. A valid change is what the window sends with the next
-// frame (protocol FrameSetup); no worker reconnects.
+// how the window shows the image (exposure in stops, the view transform). Its
+// widgets are the settings' rows (core/settings_table.h): each offers its
+// row's range, the range check_settings() accepts, so a VPL count below 1 or
+// a clamp below 0 cannot be entered, and no value is rewritten: one the panel
+// cannot show stays as it was typed on the command line. Settings that fit
+// each field but not each other (anti-aliasing samples above the paths per
+// set...) are shown as an error and not sent. A valid change is what the
+// window sends with the next frame (protocol FrameSetup); no worker reconnects.
 #include <optional>
 #include <string>
 #include <utility>
@@ -28,8 +28,9 @@ class SettingsPanel {
  public:
   SettingsPanel(const RenderSettings& settings, const ToneMapping& tone);
   // Draws the widgets in three sections, quality (open), filter and lighting
-  // (closed), inside an ImGui window the caller opened; each widget's tooltip
-  // names its command-line option, in the command line's units.
+  // (closed), inside an ImGui window the caller opened: each row the method
+  // reads, as its row says; each widget's tooltip names its command-line
+  // option, in the command line's units.
   void draw();
   // The working copy, as edited, becomes the committed settings when valid (the
   // widgets call this; so does the test hook). True when the committed set changed.
@@ -46,10 +47,6 @@ class SettingsPanel {
   const std::string& error() const { return error_; }
 
  private:
-  void draw_method(RenderSettings& s);
-  void draw_lightcuts(RenderSettings& s);
-  void draw_filter(RenderSettings& s);
-  void draw_lighting(RenderSettings& s);
   void draw_tone();
   RenderSettings committed_, editing_;
   ToneMapping tone_;

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "display/panel_layout.h"
-#include "master_session.h"
+#include "session/master_session.h"
 
 namespace igi {
 

@@ -19,7 +19,7 @@
 #include "display/panel_layout.h"
 #include "display/settings_panel.h"
 #include "display/tile_overlay.h"
-#include "master_session.h"
+#include "session/master_session.h"
 
 struct GLFWwindow;
 

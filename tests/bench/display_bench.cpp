@@ -116,8 +116,7 @@ int main(int argc, char** argv) {
     }
   }
 
-  igi::WindowPanel panel(window, igi::RenderSettings{}, igi::ToneMapping{},
-                         igi::PanelOptions{true, igi::OverlayMode::Off});
+  igi::WindowPanel panel(window, igi::RenderSettings{}, igi::ToneMapping{}, igi::PanelOptions{});  // shown, no overlay
   igi::FrameRecord record;
   record.seconds = 0.05;
   std::vector<igi::PeerView> peers;

@@ -30,7 +30,7 @@
 #include "methods/vpl_method.h"
 #include "render/accumulator.h"
 #include "render/frame_renderer.h"
-#include "render_options.h"
+#include "options/render_options.h"
 #include "sampling/sobol.h"
 #include "sampling/warp.h"
 #include "scene/camera_rays.h"

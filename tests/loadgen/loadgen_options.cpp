@@ -6,7 +6,7 @@
 #include <random>
 
 #include "cli/option_checks.h"
-#include "liveness_options.h"
+#include "options/liveness_options.h"
 #include "protocol/messages.h"
 
 namespace igi::loadgen {

@@ -53,7 +53,7 @@ class TileCache {
   static bool can_poison(PixelFormat format, protocol::PixelCodec codec);
 
   // The VPL-set hash a correct worker of the built-in Cornell box reports for
-  // this frame (the master computes the same one: master/master_renderer.h);
+  // this frame (the master computes the same one: master/trust/master_renderer.h);
   // thread-safe, computed once per frame setup.
   uint64_t frame_hash(const FrameSetup& frame, const RenderSettings& settings);
 

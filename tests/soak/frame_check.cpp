@@ -7,7 +7,7 @@
 
 #include "image/metrics.h"
 #include "lighting/lights.h"
-#include "frame_plan.h"
+#include "view/frame_plan.h"
 #include "render/offline_render.h"
 #include "render/scene_state.h"
 #include "scene/accel.h"

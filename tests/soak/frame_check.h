@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "image/image.h"
-#include "frame_plan.h"
-#include "render_options.h"
+#include "view/frame_plan.h"
+#include "options/render_options.h"
 
 namespace igi::soak {
 
@@ -27,7 +27,7 @@ class ReferenceRenderer {
  public:
   ReferenceRenderer(const RenderOptions& options, const CameraPath& path);
   ~ReferenceRenderer();
-  // Frame i as igi-master renders it along `path` (plan_frame in master/frame_plan.h).
+  // Frame i as igi-master renders it along `path` (plan_frame in master/view/frame_plan.h).
   Image render(int frame) const;
 
  private:

@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #include "cli/option_checks.h"
-#include "liveness_options.h"
+#include "options/liveness_options.h"
 #include "protocol/messages.h"
 
 namespace igi::soak {

@@ -16,7 +16,7 @@
 #include "hostile_peer.h"
 #include "memory_monitor.h"
 #include "net_namespace.h"
-#include "render_options.h"
+#include "options/render_options.h"
 #include "soak_options.h"
 #include "soak_report.h"
 #include "tcp_relay.h"

@@ -1,5 +1,5 @@
 #pragma once
-// Reads igi-master's --stats file (JSON Lines, master/frame_stats.h) into one
+// Reads igi-master's --stats file (JSON Lines, master/output/frame_stats.h) into one
 // object: the last totals line's fields, and "frames", every frame's line in
 // order. A line that does not parse (a killed master's last, half written) is skipped.
 #include <fstream>

@@ -4,7 +4,7 @@
 # from the image, F12 writes the accumulated image (the PNG at the metered
 # exposure), and each says so on the terminal (and, for a few seconds, in the
 # window). Prints the master's output, then the files written. Run by
-# tests/test_window.cpp (Window.F12WritesTheImageAndSaysSo).
+# tests/master/display/test_window.cpp (Window.F12WritesTheImageAndSaysSo).
 #   f12_test.sh SLOWDOWN IGI_MASTER DIR     (inside xvfb-run)
 set -euo pipefail
 slowdown=$1 master=$2 dir=$3

@@ -1,0 +1,344 @@
+// The window: the session runs on a thread of its own; this thread draws.
+//
+// The display thread owns the window and the camera; it publishes the view
+// (camera and settings, each with a generation bumped by every change) and
+// takes completed frames. The session thread plans frames for the latest
+// view (motion_planner.h: previews within --frame-budget-ms while the camera
+// moves, full frames once it is still), cancels the frames the view has left
+// behind, pumps the session, and hands each finished frame over. The display
+// thread shows every frame of the current settings, even one planned for a
+// camera the user has since moved (so a drag shows frames as they come),
+// carrying the accumulated image into each frame's view (view_history.h);
+// a frame of older settings is dropped. It uploads floats and lets the GPU
+// apply the tone mapping; the session thread only moves frames. The
+// hand-over queue is short: the session adds no frame while the display has
+// frames it has not taken.
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <deque>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <utility>
+
+#include "view/camera_bookmark.h"
+#include "display/interactive_window.h"
+#include "display/window_panel.h"
+#include "view/frame_rate.h"
+#include "image/exposure_check.h"
+#include "view/motion_planner.h"
+#include "run/run_modes.h"
+#include "scene/animation.h"
+#include "output/stats_writer.h"
+#include "render/view_history.h"
+
+namespace igi {
+namespace {
+
+struct Shown {
+  CompletedFrame frame;
+  PlannedFrame planned;
+  std::string level;  // the read-out's name of its level
+  double weight = 1.0;  // what it counts for in the accumulated image
+  size_t workers = 0;  // when it completed (the display thread must not ask the session)
+  std::vector<PeerView> peers;
+};
+
+// What the two threads share, under one mutex.
+class Handover {
+ public:
+  using View = MovingView;
+  void publish(const View& view) {
+    std::lock_guard lock(mutex_);
+    view_ = view;
+  }
+  View view() {
+    std::lock_guard lock(mutex_);
+    return view_;
+  }
+  void deliver(Shown shown) {
+    {
+      std::lock_guard lock(mutex_);
+      frames_.push_back(std::move(shown));
+    }
+    arrived_.notify_one();
+  }
+  size_t waiting() {
+    std::lock_guard lock(mutex_);
+    return frames_.size();
+  }
+  // Waits up to `wait` for a frame (the window keeps polling input meanwhile).
+  std::deque<Shown> take(std::chrono::milliseconds wait) {
+    std::unique_lock lock(mutex_);
+    arrived_.wait_for(lock, wait, [&] { return !frames_.empty() || stop_; });
+    return std::exchange(frames_, {});
+  }
+  void stop(const std::string& error = {}) {
+    {
+      std::lock_guard lock(mutex_);
+      stop_ = true;
+      if (error_.empty()) error_ = error;
+    }
+    arrived_.notify_all();
+  }
+  bool stopped() {
+    std::lock_guard lock(mutex_);
+    return stop_;
+  }
+  std::string error() {
+    std::lock_guard lock(mutex_);
+    return error_;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable arrived_;
+  View view_;
+  std::deque<Shown> frames_;
+  bool stop_ = false;
+  std::string error_;
+};
+
+void session_loop(const MasterOptions& o, const Scene& scene, MasterSession& session, Handover& handover,
+                  double budget_ms) {
+  MotionPlanner planner(o, scene, budget_ms);
+  try {
+    while (!handover.stopped())
+      for (MovedFrame& f : planner.turn(session, handover.view(), handover.waiting() < 2, 5))
+        handover.deliver({std::move(f.frame), f.planned, level_name(f.level), f.weight, session.worker_count(),
+                          session.peer_views()});
+  } catch (const std::exception& e) {
+    handover.stop(e.what());
+  }
+}
+
+std::string waiting_line(double seconds) {
+  char text[96];
+  std::snprintf(text, sizeof text, "waiting for a frame (%.1f s)", seconds);
+  return text;
+}
+
+// "12.3 fps  preview 1/4  38 ms/frame ...": frames a second over the last
+// second, the level of the frame shown, and what waits.
+std::string status_line(const Shown& shown, double accumulated, double fps, bool animated) {
+  const CompletedFrame& f = shown.frame;
+  char text[224];
+  const double s = f.record.seconds;
+  const int n = std::snprintf(text, sizeof text, "%.1f fps  %s  %.0f ms/frame  %.1f Mrays/s  %zu workers  ", fps,
+                              shown.level.c_str(), 1e3 * s, s > 0 ? f.record.rays.total() * 1e-6 / s : 0.0,
+                              shown.workers);
+  if (animated) std::snprintf(text + n, sizeof text - size_t(n), "t = %.2f s", f.setup.pose.time);
+  else std::snprintf(text + n, sizeof text - size_t(n), "%.1f frames accumulated", accumulated);
+  return text;
+}
+
+std::string metered_line(float exposure) {
+  char text[64];
+  std::snprintf(text, sizeof text, "exposure metered: %+.2f EV", std::log2(exposure));
+  return text;
+}
+
+// The exposure metered from the image shown (M, the panel's "auto"), or the
+// camera file or image files named in the panel: a failure is shown there, the window goes on.
+std::string act(const PanelActions& a, WindowPanel& panel, CameraController& controller, float speed,
+                const ViewHistory& history, int& shots) {
+  const PanelOptions& p = panel.options();
+  try {
+    if (a.meter) {
+      if (history.weight() <= 0.0) return "no image to meter yet";
+      panel.settings().set_exposure(metered_exposure(history.resolve()));
+      return metered_line(panel.settings().tone().exposure);
+    }
+    if (a.save_camera) {
+      write_camera_file(p.bookmark, controller.camera());
+      return "camera saved to " + p.bookmark;
+    }
+    if (a.load_camera) {
+      controller = CameraController(read_camera_file(p.bookmark), speed);
+      controller.hold();  // where the bookmark puts it, not where an animation would
+      return "camera loaded from " + p.bookmark;
+    }
+    if (a.save_image) {
+      char name[32];
+      std::snprintf(name, sizeof name, "-%04d", shots++);
+      const Image image = history.resolve();
+      write_image(image, p.shot_prefix + name + ".exr");
+      write_image(image, p.shot_prefix + name + ".png", panel.settings().tone());
+      char frames[64];
+      std::snprintf(frames, sizeof frames, " (%.1f frames accumulated)", history.weight());
+      return "saved " + p.shot_prefix + name + ".exr and .png" + frames;
+    }
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return {};
+}
+
+PanelOptions panel_options(const MasterOptions& o, const InteractiveWindow& window) {
+  PanelOptions p;
+  p.image_width = o.render.width;
+  p.image_height = o.render.height;
+  p.shown = o.panel && panel_opens(float(window.width()), float(window.height()), o.render.width, o.render.height,
+                                   panel_layout(o.render.width).width);
+  p.help = o.help;
+  p.overlay = *parse_overlay(o.overlay);  // checked with the options
+  if (!o.render.camera_file.empty()) p.bookmark = o.render.camera_file;
+  const FrameBudget budget(o.render.width, o.render.height, 0.0);
+  for (const PreviewLevel& level : budget.levels()) p.preview_levels.push_back(level_name(level));
+  return p;
+}
+
+// The exposure on opening (--exposure auto, the window's default): the
+// image is metered after each frame it takes until a full frame has come
+// (frames that arrive together are metered one by one, so the exposure is
+// the first full frame's, as igi-render's of the same image), said once, and
+// then holds while the view changes (M meters again).
+struct OpeningMeter {
+  bool metering;
+  bool quiet;
+  void shown(const Image& image, bool full, SettingsPanel& settings) {
+    if (!metering) return;
+    settings.set_exposure(metered_exposure(image));
+    metering = !full;
+    if (full && !quiet)
+      std::fprintf(stderr, "igi-master: %s (M meters again)\n", metered_line(settings.tone().exposure).c_str());
+  }
+};
+
+// A frame of the current settings: into the history (carried into its view),
+// the opening meter, the status line, the stats file and the panel.
+struct Shower {
+  InteractiveWindow& window;
+  WindowPanel& panel;
+  CameraController& controller;
+  ViewHistory& history;
+  std::optional<StatsWriter>& stats;
+  OpeningMeter& meter;
+  bool animated, camera_animated;
+  int shown_frames = 0;
+  FrameRate rate;
+
+  void show(Shown& shown) {
+    if (animated) history.reset();  // each frame stands at its own time
+    if (camera_animated) controller.follow(shown.frame.setup.camera);  // a first move starts from the view shown
+    ++shown_frames;
+    history.add(shown.frame.pixels->to_image(), shown.frame.surfaces, shown.frame.setup.camera, shown.weight);
+    shown.frame.pixels.reset();  // back to the pool
+    if (meter.metering) meter.shown(history.resolve(), shown.planned.level == 0, panel.settings());  // 0: full
+    const auto now = FrameRate::Clock::now();
+    rate.shown(now);
+    const double fps = rate.fps(now);
+    window.set_status(status_line(shown, history.weight(), fps, animated));
+    FrameRecord& record = shown.frame.record;
+    std::vector<TileSource> sources = std::move(record.tile_sources);  // the overlay's, not the file's
+    if (stats) stats->add(record);
+    record.tile_sources = std::move(sources);
+    panel.frame_shown(record, std::move(shown.peers), fps, shown.level);
+  }
+};
+
+// The window's loop until it closes, is interrupted or the session stops.
+void window_loop(const MasterOptions& o, const Scene& scene, MasterSession& session, std::atomic<bool>& interrupted,
+                 Handover& handover, std::optional<StatsWriter>& stats) {
+  InteractiveWindow window(o.render.width, o.render.height, panel_layout(o.render.width).width, o.panel,
+                           "igi-master: " + o.render.scene);
+  const RenderOptions& r = o.render;
+  OpeningMeter meter{!r.exposure_given || r.exposure.metered, r.quiet};
+  WindowPanel panel(window.handle(), r.settings, {meter.metering ? 1.0f : r.exposure.factor, r.view},
+                    panel_options(o, window));
+  const float speed = 0.25f * scene.bounds().diagonal();
+  const bool animated = scene.animation && scene.animation->animated();
+  const bool camera_animated = animated && scene.camera && scene.animation->camera_node >= 0;
+  CameraController controller(scene_camera(scene, o.render.time), speed);
+  ViewHistory history(o.render.width, o.render.height, o.history_frames);
+  uint64_t camera_generation = 0, settings_generation = 0, seen_camera = controller.generation();
+  glm::vec3 light_offset = controller.light_offset();
+  auto view = [&] {
+    return Handover::View{controller.camera(), panel.settings().settings(), camera_generation, settings_generation,
+                          controller.light_offset(), camera_animated && !controller.placed(), panel.options().preview};
+  };
+  handover.publish(view());
+  const double budget_ms = o.frame_budget_ms >= 0.0 ? o.frame_budget_ms : kWindowFrameBudgetMs;
+  std::thread session_thread([&] { session_loop(o, scene, session, handover, budget_ms); });
+  auto last_draw = std::chrono::steady_clock::now();
+  bool edited = !o.test_panel_settings;  // the test hook edits once, after the first frame shown
+  int shots = 0;
+  Shower shower{window, panel, controller, history, stats, meter, animated, camera_animated, 0, {}};
+  while (window.poll(controller) && !interrupted && !handover.stopped()) {
+    const bool lights_moved = controller.light_offset() != light_offset;
+    if (panel.settings().take_change() || lights_moved) {  // the image starts over
+      light_offset = controller.light_offset();
+      ++settings_generation;
+      history.reset();
+      handover.publish(view());
+    } else if (controller.generation() != seen_camera) {  // the history is carried
+      ++camera_generation;
+      handover.publish(view());
+    } else if (panel.options().preview != handover.view().preview) {
+      handover.publish(view());
+    }
+    seen_camera = controller.generation();
+    bool fresh = false;
+    for (Shown& shown : handover.take(std::chrono::milliseconds(5))) {
+      if (shown.planned.settings_generation != settings_generation) continue;  // rendered with old settings
+      shower.show(shown);
+      fresh = true;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (!fresh && now - last_draw < std::chrono::milliseconds(50)) continue;  // redraw for the panel at 20 Hz
+    last_draw = now;
+    if (fresh) window.upload(history.resolve());
+    if (!fresh && shower.rate.waiting(now) > 1.0) window.set_status(waiting_line(shower.rate.waiting(now)));
+    if (!fresh) panel.set_waiting(shower.rate.waiting(now));
+    window.draw(panel.image_viewport(float(window.width()), float(window.height())), panel.settings().tone());
+    const PanelActions actions = panel.draw(int(history.weight()), window.take_panel_taps());
+    window.set_input_captured(panel.wants_mouse(), panel.wants_keyboard());
+    if (std::string m = act(actions, panel, controller, speed, history, shots); !m.empty()) {
+      std::fprintf(stderr, "igi-master: %s\n", m.c_str());  // on the terminal, and on screen for a few seconds
+      panel.set_message(m);
+    }
+    if (actions.load_camera) seen_camera = ~controller.generation();  // a new controller: a new view
+    const int settled = animated ? shower.shown_frames : int(history.weight());  // an animation never accumulates
+    if (fresh && edited && !o.render.screenshot.empty() && settled >= o.screenshot_after) {
+      window.screenshot(o.render.screenshot);
+      interrupted = true;
+    }
+    if (fresh && !edited) {  // as if the widgets had made this change: it shows from the next view on
+      panel.settings().commit(*o.test_panel_settings);
+      edited = true;
+    }
+    window.present();
+  }
+  handover.stop();
+  session_thread.join();
+}
+
+}  // namespace
+
+int run_interactive(const MasterOptions& o, const Scene& scene, MasterSession& session, LocalWorkers& workers,
+                    std::atomic<bool>& interrupted) {
+  std::optional<StatsWriter> stats;  // the frames the window showed
+  if (!o.stats.empty()) stats.emplace(o.stats);
+  session.set_detailed_stats(true);  // the cluster panel
+  session.record_tile_sources(true);  // the tile overlay
+  Handover handover;
+  const auto wall_start = std::chrono::steady_clock::now();
+  const double cpu_start = process_cpu_seconds();
+  window_loop(o, scene, session, interrupted, handover, stats);
+  session.close("window closed");
+  workers.stop_all();
+  if (stats) {  // the session thread has ended: its counts can be read here
+    // The window's drawing is in the master's CPU time.
+    RunTotals t = run_totals(session, o.io_threads, cpu_start,
+                             std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
+    t.complete = true;
+    t.outcome = "done";
+    stats->write_final(t);
+  }
+  if (const std::string error = handover.error(); !error.empty()) throw std::runtime_error(error);
+  return 0;
+}
+
+}  // namespace igi

@@ -1,0 +1,23 @@
+#pragma once
+// igi-master's two ways to run a session: headless (a number of frames,
+// written to files) and the window. Both keep the session's loop on one
+// thread that does nothing else; files and the display have threads of their own.
+#include <atomic>
+
+#include "cluster/local_workers.h"
+#include "options/master_options.h"
+#include "session/master_session.h"
+#include "scene/scene.h"
+
+namespace igi {
+
+// Returns the exit status: 0 when every frame was written.
+int run_headless(const MasterOptions& options, const Scene& scene, MasterSession& session, LocalWorkers& workers,
+                 const std::atomic<bool>& interrupted);
+// --motion: the motion benchmark's scripted user (motion_run.cpp).
+int run_motion(const MasterOptions& options, const Scene& scene, MasterSession& session, LocalWorkers& workers,
+               const std::atomic<bool>& interrupted);
+int run_interactive(const MasterOptions& options, const Scene& scene, MasterSession& session, LocalWorkers& workers,
+                    std::atomic<bool>& interrupted);
+
+}  // namespace igi

@@ -1,0 +1,81 @@
+#include "view/frame_budget.h"
+
+#include <algorithm>
+
+namespace igi {
+namespace {
+
+double pixels(const PreviewLevel& level) { return 1.0 / (double(level.divisor) * level.divisor); }
+
+}  // namespace
+
+RenderSettings preview_settings(RenderSettings settings, const PreviewLevel& level) {
+  if (level.cheap) {
+    // One sub-sample with the light paths one of the full frame's sub-samples has: 1/S of its shadow rays.
+    settings.paths_per_set = std::max(1, settings.paths_per_set / std::max(1, settings.aa_samples));
+    settings.aa_samples = 1;
+    settings.compensation_samples = 0;
+  }
+  return settings;
+}
+
+double level_weight(const RenderSettings& full, const PreviewLevel& level) {
+  const bool subsampled = full.method != MethodKind::PathTracer && level.cheap;
+  return pixels(level) * (subsampled ? 1.0 / std::max(1, full.aa_samples) : 1.0);
+}
+
+std::string level_name(const PreviewLevel& level) {
+  if (!level.cheap && level.divisor == 1) return "full";
+  return "preview 1/" + std::to_string(level.divisor);
+}
+
+FrameBudget::FrameBudget(int width, int height, double budget_ms) : budget_ms_(budget_ms) {
+  levels_.push_back({1, false});
+  const int long_side = std::max(width, height);
+  for (int d = 1; long_side / d >= kMinLongSide; ++d)
+    if (width % d == 0 && height % d == 0) levels_.push_back({d, true});
+  cost_.assign(levels_.size(), 0.0);
+}
+
+void FrameBudget::pin(std::optional<int> level) {
+  if (level && (*level < 0 || *level >= int(levels_.size()))) level.reset();
+  pinned_ = level;
+}
+
+double FrameBudget::predicted(int level) const {
+  if (cost_[size_t(level)] > 0.0) return cost_[size_t(level)];
+  // The nearest level measured, scaled by pixels (a cheap level is taken to cost what a full one does a pixel).
+  for (int step = 1; step < int(levels_.size()); ++step)
+    for (int other : {level - step, level + step})
+      if (other >= 0 && other < int(levels_.size()) && cost_[size_t(other)] > 0.0)
+        return cost_[size_t(other)] * pixels(levels_[size_t(level)]) / pixels(levels_[size_t(other)]);
+  return 0.0;
+}
+
+int FrameBudget::pick(bool moving) {
+  if (pinned_) return *pinned_;
+  if (!moving || budget_ms_ <= 0.0 || levels_.size() == 1) return 0;
+  const double budget = budget_ms_ * 1e-3;
+  const int coarsest = int(levels_.size()) - 1;
+  if (moving_ == 0) {  // the first move: the finest preview the full frames' cost predicts to fit, else the coarsest
+    moving_ = coarsest;
+    for (int l = 1; l < coarsest; ++l)
+      if (predicted(l) > 0.0 && predicted(l) <= budget) {
+        moving_ = l;
+        break;
+      }
+    return moving_;
+  }
+  const double cost = cost_[size_t(moving_)];
+  if (cost > budget && moving_ < coarsest) ++moving_;
+  else if (cost > 0.0 && cost <= kStepUp * budget && moving_ > 1 && cost_[size_t(moving_ - 1)] <= budget)
+    --moving_;  // room to spare, and the finer level fits or was never tried
+  return moving_;
+}
+
+void FrameBudget::measured(int level, double seconds) {
+  double& c = cost_.at(size_t(level));
+  c = c > 0.0 ? 0.5 * (c + seconds) : seconds;
+}
+
+}  // namespace igi
