@@ -11,10 +11,11 @@
 namespace igi {
 
 // Extra pixels around a tile that the method needs to read: the
-// discontinuity buffer's window, and around it the wavelet filter's footprint.
+// discontinuity buffer's two passes of its window (filter/discontinuity_buffer.h,
+// filter_tent), and around it the wavelet filter's footprint.
 inline int tile_border(const RenderSettings& s) {
   const bool vpl = s.method == MethodKind::Igi || s.method == MethodKind::InstantRadiosity;
-  return (s.method == MethodKind::Igi && s.filter ? s.interleave / 2 : 0) +
+  return (s.method == MethodKind::Igi && s.filter ? 2 * (s.interleave / 2) : 0) +
          (vpl ? wavelet_footprint(s.wavelet_levels) : 0);
 }
 

@@ -145,6 +145,13 @@ TEST(Distributed, CausticsTheSceneChoseMatchOneProcess) {
                                    [](RenderSettings& s) { s.caustics = true; });
 }
 
+// The sun's light paths start where pilots found they reach the view
+// (importance/view_guide.h): every worker builds the same guide from the
+// frame setup, and the master's judge too.
+TEST(Distributed, LightPathsThatFindTheViewMatchOneProcess) {
+  expect_workers_match_one_process("dist-light-guide", "", "sunroom", [](RenderSettings& s) { s.light_guide = true; });
+}
+
 // No --bidir option: in the corridor the view probe turns bidirectional IR
 // on (2 M light paths, 2 M VPLs kept), on the master's judge and on every
 // worker alike: the one-process frame of --vpl-paths 16 --bidir 16.
