@@ -18,6 +18,7 @@ time-to-flip  per scene, the time each setting takes to FLIP 0.1                
 lightcuts     lightcuts against ir over the same VPLs, and against pt           Lightcuts
 caustics      the caustic photon map's cost and gain on the glass scene         (history/)
 motion        the window's session while a scripted user drags or walks         While the camera moves
+stability     the first pass: flicker over seeds, FLIP at one pass, guide on/off  A first pass you can trust
 display       the window's display and panel costs under Xvfb                   (history/)
 scaling       master + workers against the single-process render                The cluster
 master        one master with 8 to 256 simulated workers                        The cluster
