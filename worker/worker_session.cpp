@@ -267,7 +267,7 @@ WorkerSession::LoadResult WorkerSession::find_and_load(const SceneCache& cache, 
     sky.rotation = w.environment_rotation;
   }
   // No --ignore-extension: the master leaves ignored extensions out of the file it sends (scene/gltf_pack.h).
-  return load(scene, {sky, w.light_units, false, {}}, fail);
+  return load(scene, {sky, w.light_units, false}, fail);
 }
 
 WorkerSession::LoadResult WorkerSession::load(const std::string& scene, const SceneOptions& options, bool fail) {

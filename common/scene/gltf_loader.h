@@ -38,7 +38,7 @@ struct GltfOptions {
   bool camera_given = false;  // the command line brings a camera: a file without one needs no notice of the framing one
   // --ignore-extension: read the file as if these extensions were absent
   // (gltf_json.h strip_extensions), each named in a warning with what is lost.
-  std::vector<std::string> ignored_extensions;
+  std::vector<std::string> ignored_extensions{};
 };
 
 struct LoadedScene {

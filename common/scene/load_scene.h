@@ -24,7 +24,7 @@ struct SceneOptions {
   std::optional<SkyChoice> sky;  // replaces the scene's own (--environment)
   LightUnits light_units = LightUnits::Photometric;  // a glTF file's lamps (--light-units)
   bool camera_given = false;  // --camera FILE: a file without a camera gets no notice of the framing one
-  std::vector<std::string> ignored_extensions;  // --ignore-extension (gltf_loader.h GltfOptions)
+  std::vector<std::string> ignored_extensions{};  // --ignore-extension (gltf_loader.h GltfOptions)
 };
 
 // What loading a file said (gltf_loader.h's LoadedScene): features mapped or

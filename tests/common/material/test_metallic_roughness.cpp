@@ -160,7 +160,9 @@ TEST(MetallicRoughness, WhiteFurnace) {
     metal.roughness = dielectric.roughness = roughness;
     for (double cos_o : {1.0, 0.8, 0.5, 0.2, 0.05}) {
       EXPECT_LE(spec_albedo(metal, cos_o).x, 1.002) << "metal, roughness " << roughness << ", cos_o " << cos_o;
-      if (cos_o >= 0.8) EXPECT_LE(spec_albedo(dielectric, cos_o).x, 1.005) << "dielectric " << roughness;
+      if (cos_o >= 0.8) {
+        EXPECT_LE(spec_albedo(dielectric, cos_o).x, 1.005) << "dielectric " << roughness;
+      }
     }
   }
   Spec smooth;
