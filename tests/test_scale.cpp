@@ -189,6 +189,28 @@ TEST(Scale, OfTwoWorkersThatDisagreeTheWrongOneIsQuarantinedWithoutAThird) {
   EXPECT_FALSE(r.workers[1].quarantined);
 }
 
+// A welcomed peer floods results for jobs it was never given, 100 a second,
+// each under 1 KB that would unpack to a 1024 x 1024 float tile with
+// surfaces (12-19 ms of the session thread each, when they were unpacked
+// before the job was looked up). Their headers alone are read: each is
+// counted as a bad message and the peer is quarantined at the third, well
+// within a second of its first; every frame is exact.
+TEST(Scale, APeerThatFloodsResultsForJobsItWasNeverGivenIsQuarantinedWithinASecond) {
+  LoadgenOptions o = options("flood", 4, 20);
+  std::vector<SimBehaviour> b = paced(o);
+  b.push_back(b.back());
+  b.back().flood_per_second = 100;
+  const LoadgenReport r = run_exactly(o, b);
+  const SimOutcome& flooder = r.workers.back();
+  ASSERT_TRUE(flooder.quarantined) << r.master_log;
+  EXPECT_LT(flooder.quarantined_at - flooder.first_flood_at, 1.0);
+  EXPECT_EQ(r.quarantined_workers(), 1);
+  EXPECT_GE(stats(o)["bad_messages"].get<int>(), 3);
+  EXPECT_NE(r.master_log.find("which it was never given"), std::string::npos) << r.master_log;
+  std::printf("flood: %llu sent, quarantined %.3f s after the first\n",
+              static_cast<unsigned long long>(flooder.flooded), flooder.quarantined_at - flooder.first_flood_at);
+}
+
 // Two peers that heartbeat and take jobs but never answer: their jobs are
 // copied to honest workers until each has been overtaken twice, then they are
 // benched (named in the log) and hold nothing a frame waits for: few copies

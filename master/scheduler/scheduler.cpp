@@ -161,6 +161,9 @@ JobAssignment Scheduler::give(const WorkerId& id, uint64_t job_id, TimePoint now
   job.holders.push_back({id, now, serial});
   Worker& w = workers_.at(id);
   w.jobs.push_back(job_id);
+  if (w.given.size() < kGivenRemembered) w.given.push_back(job_id);
+  else w.given[w.given_next] = job_id;
+  w.given_next = (w.given_next + 1) % kGivenRemembered;
   if (int(w.jobs.size()) >= w.credits) hungry_.erase(id);
   issued_.push_back({now, job_id, id, serial});
   trim_issued();
@@ -258,6 +261,11 @@ ResultCheck Scheduler::check_result(const WorkerId& id, uint64_t job_id, uint64_
   if (job.frame_id != frame_id || !same_tile(job.tile, tile)) return ResultCheck::WrongTile;
   if (job.done || referee_.holds(job_id)) return ResultCheck::NotNeeded;
   return ResultCheck::Wanted;
+}
+
+bool Scheduler::was_given(const WorkerId& id, uint64_t job_id) const {
+  auto w = workers_.find(id);
+  return w != workers_.end() && std::find(w->second.given.begin(), w->second.given.end(), job_id) != w->second.given.end();
 }
 
 void Scheduler::drop_result(const WorkerId& id, uint64_t job_id) {

@@ -156,6 +156,9 @@ class Scheduler {
   std::optional<TimePoint> next_straggler_time(TimePoint now);
 
   ResultCheck check_result(const WorkerId& id, uint64_t job_id, uint64_t frame_id, const TileJob& tile) const;
+  // The job was given to the worker lately (it holds it, or held it among
+  // the last kGivenRemembered it was given): a result for any other is not its to send.
+  bool was_given(const WorkerId& id, uint64_t job_id) const;
   // The frame's hash as the caller computed it (master_reference); none: the
   // caller could not, and the frame's workers vote. Results held for it count
   // now, or go back to the pool and quarantine their workers.
@@ -165,8 +168,9 @@ class Scheduler {
   ResultVerdict on_result(const WorkerId& id, uint64_t job_id, uint64_t frame_state_hash, TimePoint now);
   // The result's job is unknown: only the worker's credit comes back.
   void drop_result(const WorkerId& id, uint64_t job_id);
-  // A result of any kind came from the worker: a benched one works again, from one job.
+  // A result of the worker's passed: a benched one works again, from one job.
   void heard_result(const WorkerId& id);
+  bool is_benched(const WorkerId& id) const;
   // Workers benched since the last call (hoarders: see above).
   std::vector<WorkerId> take_benched();
   // The result failed validation: the worker no longer holds the job, which
@@ -240,6 +244,8 @@ class Scheduler {
     TimePoint last_answer{};       // its latest result of any kind
     int overtaken = 0;             // its jobs answered first by copies since its latest result
     bool benched = false;          // overtaken twice: no jobs until it answers
+    std::vector<uint64_t> given;   // the last kGivenRemembered jobs given to it, as a ring
+    size_t given_next = 0;
   };
   struct Issue {
     TimePoint at;
@@ -274,6 +280,8 @@ class Scheduler {
   ResultVerdict record_result(const WorkerId& id, uint64_t job_id, uint64_t hash, TimePoint now);
   std::vector<WorkerId> overtaken_hoarders(const WorkerId& id, uint64_t job_id, TimePoint now);
   void bench(const WorkerId& id);
+
+  static constexpr size_t kGivenRemembered = 256;
 
   SchedulerConfig config_;
   Referee referee_;  // the verdict on each frame's hash

@@ -146,6 +146,8 @@ class MasterSession {
   void use_result(const std::string& identity, Peer& peer, const protocol::TileResultView& view, size_t bytes);
   void on_bad_result(const std::string& identity, uint64_t job_id, const std::string& error);
   void on_bad_message(const std::string& identity, const std::string& error);
+  void on_foreign_result(const std::string& identity, const protocol::TileResultHead& head);
+  void on_stale_result(const std::string& identity, const protocol::TileResultHead& head, std::span<const uint8_t> bytes);
   void count_failures_against_workers(uint64_t job_id);
   void drop_peer(const std::string& identity, const std::string& why);
   void quarantine_peer(const std::string& identity, const std::string& why);
