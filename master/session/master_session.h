@@ -156,6 +156,7 @@ class MasterSession {
   void render_own_jobs();
   void use_own_result(const MasterRenderer::TileAnswer& answer);
   void on_dispute(const HashDispute& dispute);
+  void on_doubt(const HashDoubt& doubt);
 
   SessionSettings settings_;
   SceneSource scene_;
@@ -173,7 +174,7 @@ class MasterSession {
   const Clock::time_point began_ = Clock::now();
   uint64_t accepted_ = 0;
   uint64_t bad_messages_ = 0, declared_dead_ = 0;
-  uint64_t nonfinite_pixels_ = 0, nonfinite_logged_ = 0, failures_logged_ = 0;
+  uint64_t nonfinite_pixels_ = 0, nonfinite_logged_ = 0, failures_logged_ = 0, doubts_logged_ = 0;
   std::optional<uint64_t> stall_reported_;  // the frame whose split was logged
   std::string fatal_;
   std::string user_id_;  // the CURVE key name of the message being handled

@@ -194,8 +194,9 @@ void MasterSession::render_own_jobs() {
     const FrameAssembly::OpenFrame* f = frames_.find(job.frame_id);
     if (!f) continue;
     const std::string what = "job " + std::to_string(job.job_id) + " (frame " + std::to_string(job.frame_id) +
-                             ", tile " + describe(job.tile) + ") failed validation on " +
-                             job_failures_.take_text(job.job_id, "its workers");
+                             ", tile " + describe(job.tile) + ") " +
+                             (job.contested ? "is contested (its frame's VPL sets are in doubt)"
+                                            : "failed validation on " + job_failures_.take_text(job.job_id, "its workers"));
     if (!own_ || own_->follows_workers()) {  // a master whose VPL sets lost to its workers' would render another tile
       if (fatal_.empty())
         fatal_ = what + ", no other worker may take it and the master cannot render it" +
@@ -203,7 +204,7 @@ void MasterSession::render_own_jobs() {
                  ": its frame can never complete";
       return;
     }
-    own_->render_tile(f->setup, f->settings, job.job_id, job.tile, settings_.pixel_format, what);
+    own_->render_tile(f->setup, f->settings, job.job_id, job.tile, settings_.pixel_format, what, !job.contested);
   }
 }
 
@@ -216,6 +217,7 @@ void MasterSession::use_own_result(const MasterRenderer::TileAnswer& answer) {
   if (error.empty()) view = protocol::decode_tile_result(answer.result, error);
   FrameAssembly::OpenFrame* frame = view ? frames_.find(view->fields.frame_id) : nullptr;
   if (view && !frame) return;  // the view moved on meanwhile
+  if (!scheduler_.wants_own_result(answer.job_id)) return;  // the master follows its workers now: theirs, not its own
   if (view) error = frames_.paste(*view);
   if (!error.empty()) {
     if (fatal_.empty()) fatal_ = what + ", and the master could not render it either (" + error + ")";
@@ -227,10 +229,10 @@ void MasterSession::use_own_result(const MasterRenderer::TileAnswer& answer) {
   nonfinite_pixels_ += view->fields.nonfinite_pixels;
 }
 
-// Every worker agrees on a frame's VPL sets and the master's own differ: the
-// master is likelier wrong than they (a maths library 1 ulp off, which no
-// version names, is enough). Authenticated workers are followed; anonymous
-// ones could be two fakes, so the run ends at once, saying why.
+// Every worker present agrees on a frame's VPL sets, from two or more
+// authenticated keys (the referee disputes nothing else), and the master's
+// own differ: the master is likelier wrong than they (a maths library 1 ulp
+// off, which no version names, is enough). It follows them.
 void MasterSession::on_dispute(const HashDispute& d) {
   std::vector<VoterName> workers;
   for (const WorkerId& id : d.workers) {
@@ -238,16 +240,25 @@ void MasterSession::on_dispute(const HashDispute& d) {
     workers.push_back(peer ? VoterName{peer->name, peer->libraries} : VoterName{"a departed worker", ""});
   }
   const std::string what = dispute_report(d, workers, runtime_libraries());
-  if (!socket_.curve()) {
-    if (fatal_.empty())
-      fatal_ = what + ". Without CURVE keys two agreeing workers could be two fakes, so the master cannot follow "
-                      "them: run it where the workers' libraries are, or authenticate the workers (--authorized-keys)";
-    return;
-  }
   std::fprintf(stderr, "igi-master: %s. The workers are authenticated by their CURVE keys: the master follows their "
                        "agreement from now on (votes among them decide each frame)\n", what.c_str());
   if (own_) own_->follow_workers();
   scheduler_.follow_workers();
+}
+
+// No worker confirms the master's hash and the votes cannot outweigh it: the
+// master renders what they contest (take_own_work()), saying so for the
+// first frames and every 100th after.
+void MasterSession::on_doubt(const HashDoubt& d) {
+  if (++doubts_logged_ > kLogFirst && doubts_logged_ % 100 != 0) return;
+  std::vector<std::string> names;
+  for (const auto& [hash, voters] : d.voters)
+    for (const WorkerId& id : voters) {
+      const Peer* peer = peers_.find(id);
+      names.push_back(peer ? peer->name : "a departed worker");
+    }
+  std::fprintf(stderr, "igi-master: %s (%llu frames so far)\n", doubt_report(d, names).c_str(),
+               static_cast<unsigned long long>(doubts_logged_));
 }
 
 }  // namespace igi

@@ -26,6 +26,8 @@ SimWorker::SimWorker(zmq::context_t& context, SimConnection connection, SimBehav
                      Clock::time_point start)
     : context_(context), connection_(std::move(connection)), behaviour_(behaviour), tiles_(tiles), start_(start) {
   lanes_.assign(size_t(std::max(1, behaviour_.threads)), start);
+  if (connection_.curve && !behaviour_.key_file.empty())
+    connection_.curve->own = protocol::read_secret_key_file(behaviour_.key_file);
 }
 
 double SimWorker::since_start(Clock::time_point now) const {

@@ -35,6 +35,7 @@ struct SimBehaviour {
   int truncate_every = 0;      // every n-th answer loses its last bytes (it does not decode)
   std::optional<std::pair<int, int>> poison_pixel;  // the tile holding this pixel always has a NaN
   bool hoard = false;          // takes jobs and heartbeats, never answers
+  std::string key_file;        // its own CURVE secret key file (a run over CURVE); empty: the run's key
   // Once welcomed, this many results a second for jobs never issued, each a
   // decompression bomb (TileCache::bomb(): under 1 KB that unpack to a
   // 1024 x 1024 float tile with surfaces); 0: none.
