@@ -232,8 +232,10 @@ void MasterSession::use_own_result(const MasterRenderer::TileAnswer& answer) {
 // Every worker present agrees on a frame's VPL sets, from two or more
 // authenticated keys (the referee disputes nothing else), and the master's
 // own differ: the master is likelier wrong than they (a maths library 1 ulp
-// off, which no version names, is enough). It follows them.
+// off, which no version names, is enough). It follows them, and says so
+// once (the frames disputed with this one are decided by the same step).
 void MasterSession::on_dispute(const HashDispute& d) {
+  if (own_ && own_->follows_workers()) return;
   std::vector<VoterName> workers;
   for (const WorkerId& id : d.workers) {
     const Peer* peer = peers_.find(id);

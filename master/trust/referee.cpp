@@ -59,8 +59,8 @@ bool Referee::voted(uint64_t frame_id, const WorkerId& id) const { return has_vo
 void Referee::set_reference(uint64_t frame_id, std::optional<uint64_t> hash) {
   auto it = ballots_.find(frame_id);
   if (it == ballots_.end() || it->second.reference) return;
-  if (hash) it->second.callers_hash = hash;
-  else it->second.by_vote = true;
+  if (!hash) it->second.by_vote = true;
+  else if (master_reference_) it->second.callers_hash = hash;  // not once it follows its workers
 }
 
 Vote Referee::vote(uint64_t frame_id, uint64_t job_id, const WorkerId& id, uint64_t hash, bool first) {

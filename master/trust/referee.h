@@ -142,8 +142,8 @@ class Referee {
   void enroll(const WorkerId& id, const std::string& key);
   void leave(const WorkerId& id) { enrolled_.erase(id); }
 
-  // The frame's hash as the caller computed it; none: the caller could not,
-  // and the frame's workers vote. try_decide() next.
+  // The frame's hash as the caller computed it (unused once it follows its
+  // workers); none: the caller could not, and the frame's workers vote. try_decide() next.
   void set_reference(uint64_t frame_id, std::optional<uint64_t> hash);
   // A result's hash; `first`: no other result for its job counts or is held.
   Vote vote(uint64_t frame_id, uint64_t job_id, const WorkerId& id, uint64_t hash, bool first);
