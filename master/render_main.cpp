@@ -1,6 +1,7 @@
 // igi-render: renders one image of a scene with one method, in this process.
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -95,9 +96,12 @@ int run(igi::RenderOptions o) {
     return kInterruptedStatus;
   }
   if (partial) o.output = partial_path(o.output);
-  igi::write_image(r.image, o.output, o.exposure);
-  if (auto advice = igi::exposure_advice(r.image, {o.exposure, !igi::is_float_format(o.output),
-                                                   messages.file_lamps > 0,
+  const igi::ToneMapping tone{igi::exposure_for(r.image, o.exposure), o.view};
+  igi::write_image(r.image, o.output, tone);
+  if (o.exposure.metered && !o.quiet && !igi::is_float_format(o.output))
+    std::fprintf(stderr, "igi-render: exposure metered: %+.2f EV (x %.4g)\n", std::log2(tone.exposure), tone.exposure);
+  if (auto advice = igi::exposure_advice(r.image, {tone.exposure, o.exposure.metered, o.view,
+                                                   !igi::is_float_format(o.output), messages.file_lamps > 0,
                                                    o.light_units == igi::LightUnits::Photometric, framing_camera}))
     std::fprintf(stderr, "igi-render: %s\n", advice->c_str());
   if (partial) {
@@ -112,7 +116,7 @@ int run(igi::RenderOptions o) {
   if (o.show) {
     igi::WindowOptions window;
     window.title = "igi-render: " + o.scene + " (" + igi::method_name(o.settings.method) + ")";
-    window.exposure = o.exposure;
+    window.tone = tone;
     window.screenshot = o.screenshot;
     igi::show_image(r.image, window);
   }

@@ -7,7 +7,7 @@
 // length, count, enum and number before use and never trusts the peer.
 //
 // Conversation:
-//   worker -> master  Hello                  (version, build, SIMD, threads)
+//   worker -> master  Hello                  (version, build, threads, libraries)
 //   master -> worker  Welcome | Refuse       (scene by content hash, settings)
 //   worker -> master  SceneRequest           (only when it has no file with that hash)
 //   master -> worker  SceneData
@@ -48,7 +48,7 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // carries the runtime libraries. 16: Welcome carries the units the scene's lamps are read in.
 // 17: Welcome and TileResult carry the pixel block's codec (raw or zstd). 18: pixels
 // as rgb9e5 (a shared exponent, 4 bytes); the codec packs the surfaces too; lz4.
-inline constexpr uint16_t kVersion = 18;
+inline constexpr uint16_t kVersion = 19;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;
@@ -83,7 +83,8 @@ const char* message_name(MessageType type);
 
 struct Hello {
   std::string build_id;   // must equal the master's: same binary, same floats
-  std::string simd;       // e.g. "avx512", for logs
+  std::string simd;       // unread: workers send "native" (the build id names the compiler and Embree's ISA);
+                          // kept so that the wire stays as it is until a version changes it anyway
   uint32_t threads = 1;
   std::string libraries;  // scene/libraries.h: "glibc 2.36, Embree 3.13.5"; named when VPL sets differ
 };
@@ -174,7 +175,8 @@ struct Heartbeat {};
 
 enum class ByeKind : uint8_t {
   Leaving = 0,      // done: the session ended, or the worker stops
-  Quarantined = 1,  // master -> worker: your VPL sets differ from the quorum's; no more work (exit 5)
+  Quarantined = 1,  // master -> worker: your VPL sets differ from the frame's reference (the master's own,
+                    // or a vote's), or your results keep failing validation; no more work (exit 5)
   Failed = 2,       // worker -> master: cannot go on (e.g. the scene does not load)
 };
 

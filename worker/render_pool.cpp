@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "methods/memory_check.h"
-#include "protocol/tile_render.h"
+#include "protocol/tile_result.h"
 
 #include <sys/eventfd.h>
 #include <unistd.h>
@@ -78,16 +78,18 @@ std::vector<protocol::TileResult> RenderPool::take_results() {
 
 protocol::TileResult RenderPool::render(const protocol::TileJobMsg& job, FrameState& frame) {
   auto start = std::chrono::steady_clock::now();
-  std::call_once(frame.begun, [&] {
-    frame.method = make_method(scene_.context(), frame.settings);
-    frame.method->begin_frame(frame.setup);
+  std::call_once(frame.begun, [&] {  // as every node renders a frame's jobs (render/frame_job.h)
+    frame.job = std::make_unique<FrameJob>(scene_.context(), frame.settings);
+    frame.job->begin(frame.setup);
   });
   // Each render thread keeps its tile's scratch: the master could not know how many this machine has.
   if (std::string error = tile_memory_error(frame.settings, job.tile.w, job.tile.h, int(threads_.size()), memory_bytes_);
       !error.empty())
     throw std::invalid_argument(error);
-  protocol::TileResult r =
-      protocol::render_tile_result(*frame.method, scene_.context().accel, frame.setup, job.job_id, job.tile, format_);
+  RenderedTile tile = frame.job->render(job.tile);
+  protocol::TileResult r = protocol::make_tile_result(job.frame_id, job.job_id, job.tile, std::move(tile.pixels),
+                                                      std::move(tile.surfaces), tile.rays, frame.job->state_hash(),
+                                                      format_);
   r.render_seconds = std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

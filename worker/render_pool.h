@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/method.h"
+#include "render/frame_job.h"
 #include "protocol/messages.h"
 #include "render/scene_state.h"
 
@@ -36,8 +37,9 @@ class RenderPool {
 
   // A frame's setup must be added before its jobs; its method is made for the
   // frame's own settings (they may change between frames). Throws
-  // std::invalid_argument for settings this machine cannot render. Old frames are
-  // forgotten once a newer one is added and they have no queued jobs.
+  // std::invalid_argument for settings this machine cannot render. The four
+  // newest frames are kept (results of older ones may still be in flight); an
+  // older one is forgotten, and its jobs still queued are dropped.
   void add_frame(const FrameSetup& frame, const RenderSettings& settings);
   void add_job(const protocol::TileJobMsg& job);
   // The master left the frame behind: its queued jobs are dropped and it is
@@ -55,7 +57,7 @@ class RenderPool {
   struct FrameState {
     FrameSetup setup;
     RenderSettings settings;
-    std::unique_ptr<Method> method;
+    std::unique_ptr<FrameJob> job;
     std::once_flag begun;  // made and begun (VPLs) by the first job, off the socket thread, at the frame's pose
   };
   void run();

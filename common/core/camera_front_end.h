@@ -19,6 +19,7 @@
 #include "sampling/hash.h"
 #include "scene/accel.h"
 #include "scene/camera_rays.h"
+#include "sampling/pixel_samples.h"
 
 namespace igi {
 
@@ -41,7 +42,7 @@ class CameraFrontEnd {
   }
   // The seed of the specular choices (glass: reflect or refract) of sub-sample k of pixel (x, y).
   uint32_t chain_seed(int x, int y, int k) const {
-    return hash(hash(uint32_t(x), uint32_t(y), frame_.seed), uint32_t(k));
+    return PixelSamples{frame_.seed}.sequence(x, y, uint32_t(k));
   }
   const FrameSetup& frame() const { return frame_; }
 

@@ -36,10 +36,4 @@ struct SceneContext {
 
 std::unique_ptr<Method> make_method(const SceneContext& context, const RenderSettings& settings);
 
-// The per-frame state hash every correct worker reports for this frame: the
-// method made and begun as a worker makes and begins it. The master computes
-// it itself to judge workers (master/trust/master_renderer.h).
-uint64_t expected_frame_state_hash(const SceneContext& context, const FrameSetup& frame,
-                                   const RenderSettings& settings);
-
 }  // namespace igi

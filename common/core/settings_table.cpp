@@ -162,6 +162,12 @@ constexpr std::array kSettings = std::to_array<Setting>({
              "plain cuts only",
      .methods = kLightcuts, .bound = Bound::Closed, .lo = 0, .hi = lightcuts::kMaxBlock,
      .note = " (0 or 1 = a cut per pixel)", .widget = Widget::Slider, .label = "block"},
+    {.field = "light_guide", .wire = "settings.light_guide", .member = &R::light_guide, .option = "--light-guide",
+     .help = "light paths that find the view: a sun's and the sky's paths start where pilot paths found they "
+             "reach what the camera sees (a room lit through its windows), divided by that density; the default",
+     .methods = kVplMethods, .bound = Bound::None, .widget = Widget::Checkbox, .section = Section::Lighting,
+     .label = "paths find the view", .off_option = "--no-light-guide",
+     .off_help = "start every light path where the plain rule does (uniformly over a sun's disc and the sky)"},
 });
 
 }  // namespace

@@ -19,6 +19,7 @@
 #include <glm/vec2.hpp>
 
 #include "sampling/hash.h"
+#include "sampling/pixel_samples.h"
 
 namespace igi {
 
@@ -35,7 +36,7 @@ inline glm::vec2 subpixel_offset(int k, int side, float jitter_x, float jitter_y
 }
 
 inline int subpixel_rotation(int x, int y, int samples) {
-  return samples > 1 ? int(hash(uint32_t(x), uint32_t(y), 0x61617367u /* "aasg" */) % uint32_t(samples)) : 0;
+  return samples > 1 ? int(PixelSamples{0x61617367u /* "aasg" */}.pixel(x, y) % uint32_t(samples)) : 0;
 }
 
 // The VPL group that sub-sample k of pixel (x, y) connects to, and back.

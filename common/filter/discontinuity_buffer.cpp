@@ -372,9 +372,32 @@ float filter_weight_at_pass(uint32_t pass) {
   return std::min(1.0f, std::sqrt(float(kFilterFullPasses) / (float(pass) + 1.0f)));
 }
 
+void filter_tent(const FilterInput& in, const FilterSettings& s, Rect inner, std::span<glm::vec3> out) {
+  check_arguments(in, s, inner, out.size());
+  // The first pass over the inner rect grown by a window's reach (clipped to
+  // the region), then the second over that: the region holds both reaches.
+  const int a = reach_before(s.window), b = reach_after(s.window);
+  const int x0 = std::max(inner.x - a, in.x0), y0 = std::max(inner.y - a, in.y0);
+  const int x1 = std::min(inner.x + inner.w + b, in.x0 + in.width), y1 = std::min(inner.y + inner.h + b, in.y0 + in.height);
+  thread_local FilterInput first;
+  first.x0 = x0, first.y0 = y0, first.width = x1 - x0, first.height = y1 - y0;
+  const size_t n = size_t(first.width) * size_t(first.height);
+  first.value.resize(n);
+  filter_discontinuity(in, s, Rect{x0, y0, first.width, first.height}, first.value);
+  first.depth.resize(n);
+  first.normal.resize(n);
+  for (int y = 0; y < first.height; ++y)
+    for (int x = 0; x < first.width; ++x) {
+      const size_t from = size_t(y + y0 - in.y0) * size_t(in.width) + size_t(x + x0 - in.x0);
+      first.depth[size_t(y) * first.width + x] = in.depth[from];
+      first.normal[size_t(y) * first.width + x] = in.normal[from];
+    }
+  filter_discontinuity(first, s, inner, out);
+}
+
 void filter_handed_over(const FilterInput& in, const FilterSettings& s, Rect inner, float weight, float spike_level,
                         std::span<glm::vec3> out) {
-  if (weight >= 1.0f) return filter_discontinuity(in, s, inner, out);
+  if (weight >= 1.0f) return filter_tent(in, s, inner, out);
   bool any_spike = false;
   for (const glm::vec3& v : in.value) any_spike |= v.x > spike_level || v.y > spike_level || v.z > spike_level;
   // With spikes: one copy of the input, its values the lower part u - h
@@ -391,7 +414,7 @@ void filter_handed_over(const FilterInput& in, const FilterSettings& s, Rect inn
       }
   }
   const FilterInput& lower = any_spike ? split : in;
-  filter_discontinuity(lower, s, inner, out);
+  filter_tent(lower, s, inner, out);
   const int region_x = inner.x - in.x0, region_y = inner.y - in.y0;
   for (int y = 0; y < inner.h; ++y)
     for (int x = 0; x < inner.w; ++x) {
@@ -401,7 +424,7 @@ void filter_handed_over(const FilterInput& in, const FilterSettings& s, Rect inn
   if (!any_spike) return;
   split.value.swap(spikes);
   spikes_out.resize(size_t(inner.w) * inner.h);
-  filter_discontinuity(split, s, inner, spikes_out);
+  filter_tent(split, s, inner, spikes_out);
   for (size_t i = 0; i < spikes_out.size(); ++i) out[i] += spikes_out[i];
 }
 

@@ -79,6 +79,17 @@ void filter_brute_force(const FilterInput& in, const FilterSettings& s, Rect inn
 void filter_discontinuity(const FilterInput& in, const FilterSettings& s, Rect inner, std::span<glm::vec3> out,
                           FilterStats* stats = nullptr);
 
+// The discontinuity buffer twice: F(F(in)), each pass with the window and
+// the same-surface test above. On a surface the kernel is a tent of 2 n - 1
+// pixels, the box convolved with itself, which still weighs every set alike
+// (each box holds each set once), but reconstructs a set's lattice of pixels
+// linearly where one box alone repeated each of its pixels over an n x n
+// square: a VPL close to a wall, seen by one set, showed as a staircase of
+// squares (BreakfastRoom's walls beside its window), and a spike the
+// hand-over keeps filtered as one square. An inner pixel needs twice the
+// window's reach of border (core/tiling.h). Pure and tile-invariant as F is.
+void filter_tent(const FilterInput& in, const FilterSettings& s, Rect inner, std::span<glm::vec3> out);
+
 // A fixed_scale for a frame whose demodulated irradiance is typically
 // `typical_value`: 2^(24 - round(log2(typical))), so a typical value keeps 24
 // bits (float precision) and values up to ~2^24 x typical fit the sums before
@@ -110,9 +121,9 @@ float filter_weight_at_pass(uint32_t pass);
 float filter_spike_level(float typical_value, uint32_t pass);
 
 // The discontinuity buffer at hand-over weight w < 1 and spike level L: with
-// h = max(u - L, 0) per channel and F the filter above,
+// h = max(u - L, 0) per channel and F the tent above,
 //   out = w F(u - h) + (1 - w) (u - h) + F(h).
-// w >= 1 is filter_discontinuity itself. Pure and tile-invariant as it is
+// w >= 1 is filter_tent itself. Pure and tile-invariant as it is
 // (the split is per pixel, L one number for the frame); `in` is not changed.
 void filter_handed_over(const FilterInput& in, const FilterSettings& s, Rect inner, float weight, float spike_level,
                         std::span<glm::vec3> out);

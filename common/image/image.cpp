@@ -33,11 +33,12 @@ float srgb_to_linear(float v) {
   return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
 }
 
-std::vector<unsigned char> to_srgb8(const Image& image, float exposure) {
+std::vector<unsigned char> to_srgb8(const Image& image, const ToneMapping& tone) {
   std::vector<unsigned char> bytes(image.pixels.size() * 3);
-  for (size_t i = 0; i < image.pixels.size(); ++i)
-    for (int c = 0; c < 3; ++c)
-      bytes[3 * i + c] = (unsigned char)std::lround(255.0f * linear_to_srgb(exposure * image.pixels[i][c]));
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    const std::array<uint8_t, 3> pixel = tone_map_srgb8(image.pixels[i], tone);
+    std::copy(pixel.begin(), pixel.end(), bytes.begin() + ptrdiff_t(3 * i));
+  }
   return bytes;
 }
 
@@ -50,7 +51,8 @@ bool is_float_format(const std::string& path) {
 // OpenImageIO picks the format from `path` and writes `file`. EXR headers get
 // no DateTime (OpenImageIO adds the clock's otherwise): equal images give
 // equal files.
-static void write_image_file(const Image& image, const std::string& path, const std::string& file, float exposure) {
+static void write_image_file(const Image& image, const std::string& path, const std::string& file,
+                             const ToneMapping& tone) {
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw std::runtime_error(path + ": cannot write image (" + OIIO::geterror() + ")");
   const bool linear = is_float_format(path);
@@ -61,7 +63,7 @@ static void write_image_file(const Image& image, const std::string& path, const 
   if (linear) {
     ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
   } else {
-    ok = out->write_image(OIIO::TypeDesc::UINT8, to_srgb8(image, exposure).data());
+    ok = out->write_image(OIIO::TypeDesc::UINT8, to_srgb8(image, tone).data());
   }
   if (!ok || !out->close()) throw std::runtime_error(path + ": " + out->geterror());
 }
@@ -103,14 +105,14 @@ std::optional<std::string> image_path_error(const std::string& path) {
 // `path`, never a truncated one (rename is atomic within a file system). A
 // link is followed (its target is replaced); a device or pipe (-o /dev/null)
 // is written in place, as renaming over it would replace the device.
-void write_image(const Image& image, const std::string& path, float exposure) {
+void write_image(const Image& image, const std::string& path, const ToneMapping& tone) {
   std::error_code absent;
   const fs::file_status status = fs::status(path, absent);
-  if (fs::exists(status) && !fs::is_regular_file(status)) return write_image_file(image, path, path, exposure);
+  if (fs::exists(status) && !fs::is_regular_file(status)) return write_image_file(image, path, path, tone);
   const std::string target = replaced_file(path);
   const std::string temporary = temporary_name(target);
   try {
-    write_image_file(image, path, temporary, exposure);
+    write_image_file(image, path, temporary, tone);
   } catch (...) {
     std::remove(temporary.c_str());
     throw;

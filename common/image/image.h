@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include "image/view_transform.h"
+
 namespace igi {
 
 struct Image {
@@ -31,18 +33,19 @@ struct Image {
 // Replaces `path` whole or not at all (written beside it, then renamed), and
 // equal images give byte-identical files (no time stamp in the header).
 // Throws std::runtime_error naming the path on failure; the old file stays.
-void write_image(const Image& image, const std::string& path, float exposure = 1.0f);
+// 8-bit formats show the image through `tone` (image/view_transform.h).
+void write_image(const Image& image, const std::string& path, const ToneMapping& tone = {});
 // Why write_image() could not write `path`, asked before any work: a format
 // no writer has for its extension, or a folder that does not exist. Nothing
 // for a device such as /dev/null. Writes nothing.
 std::optional<std::string> image_path_error(const std::string& path);
 Image read_image(const std::string& path);
 // Whether write_image() writes `path` as linear floats (.exr, .hdr, .pfm,
-// .tif) rather than 8-bit sRGB after exposure.
+// .tif) rather than 8-bit sRGB through a tone mapping.
 bool is_float_format(const std::string& path);
 
-// 8-bit sRGB, three bytes a pixel, row 0 at the top; clamps after `exposure`.
-std::vector<unsigned char> to_srgb8(const Image& image, float exposure = 1.0f);
+// 8-bit sRGB, three bytes a pixel, row 0 at the top, through `tone` (tone_map_srgb8).
+std::vector<unsigned char> to_srgb8(const Image& image, const ToneMapping& tone = {});
 
 float linear_to_srgb(float linear);
 float srgb_to_linear(float encoded);

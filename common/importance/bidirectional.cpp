@@ -80,7 +80,7 @@ class Builder {
  public:
   Builder(const SceneContext& context, const RenderSettings& settings, const FrameSetup& frame,
           const LightPathOptions& light_paths, RayCounts& rays)
-      : context_(context), settings_(settings), frame_(frame), selection_(light_paths.selection), rays_(rays),
+      : context_(context), settings_(settings), frame_(frame), selection_(light_paths.selection), guide_(light_paths.guide), rays_(rays),
         shading_{context.scene, clamp_bound(settings.clamp, context.accel.mean_chord(), frame.sample_begin),
                  settings.glossy_threshold},
         gathering_{context.scene, INFINITY, settings.glossy_threshold},
@@ -100,6 +100,7 @@ class Builder {
     paths.aa_samples = 1;  // one group per set: the candidates
     LightPathOptions options;
     options.selection = selection_;
+    options.guide = guide_;
     options.vertices = &vertices_;
     standard_ = generate_vpls(context_, paths, frame_.seed, options);
     const int sets = standard_.set_count();
@@ -350,6 +351,7 @@ class Builder {
   const RenderSettings& settings_;
   const FrameSetup& frame_;
   const Distribution1D* selection_;
+  const StartGuide* guide_;
   RayCounts& rays_;
   const VplShading shading_;    // camera points as receivers: clamped, as the image will see the VPLs
   const VplShading gathering_;  // reverse VPLs as receivers: unclamped (see gather())

@@ -9,6 +9,7 @@
 #include "importance/bidirectional.h"
 #include "importance/camera_points.h"
 #include "importance/light_importance.h"
+#include "importance/view_guide.h"
 #include "sampling/content_hash.h"
 #include "vpl/vpl_generator.h"
 
@@ -23,6 +24,7 @@ float light_path_reach(const SceneContext& context, const RenderSettings& settin
   one_set.aa_samples = 1;
   LightPathOptions options;
   options.selection = light_paths.selection;
+  options.guide = light_paths.guide;
   std::vector<Vpl> lights = generate_vpls(context, one_set, kProbeSeed, options).vpls;
   for (const Vpl& v : exact_lights(context.scene)) lights.push_back(v);
   const VplShading shading{context.scene, INFINITY};
@@ -67,10 +69,16 @@ VplSets generate_view_vpls(const SceneContext& context, const RenderSettings& se
     selection = estimate_light_importance(context, settings, frame, rays);
     options.selection = &selection->distribution;
   }
+  StartGuide guide;
+  if (settings.light_guide) {
+    guide = build_view_guide(context, settings, frame, rays);
+    if (!guide.empty()) options.guide = &guide;
+  }
   const RenderSettings chosen = choose_bidir(context, settings, frame, options, rays);
   VplSets sets = chosen.bidir_vpls > 0 ? generate_bidirectional(context, chosen, frame, options, rays)
                                        : generate_vpls(context, chosen, frame.seed, options);
   if (selection) sets.hash = combine_content_hashes(sets.hash, selection->hash);
+  if (options.guide) sets.hash = combine_content_hashes(sets.hash, guide.hash());
   return sets;
 }
 

@@ -3,6 +3,8 @@
 //  - neither option: light paths from lights chosen by power (vpl/vpl_generator.h);
 //  - --importance N: light paths from lights chosen by their estimated share
 //    of the image (importance/light_importance.h);
+//  - --light-guide (the default): a sun's and the sky's paths start where
+//    pilots found they reach the view (importance/view_guide.h);
 //  - --bidir K: each set resampled from light-path and camera-path candidates
 //    (importance/bidirectional.h), its light paths chosen either way;
 //  - --bidir auto (the default): 2 M light and camera paths and K = 2 M
@@ -10,7 +12,7 @@
 //    alone (choose_bidir below).
 // A pure function of scene, settings and frame setup (camera, image size,
 // seed): every worker computes the same sets, and their hash covers the light
-// probabilities too.
+// probabilities and the guide too.
 #include "core/frame.h"
 #include "core/method.h"
 #include "core/vpl.h"

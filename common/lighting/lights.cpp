@@ -153,8 +153,11 @@ EmissionSample LightSet::sample_emission(float u_select, glm::vec2 u) const {
 }
 
 EmissionSample LightSet::sample_emission(const Distribution1D& selection, float u_select, glm::vec2 u) const {
-  uint32_t index = selection.sample(u_select);
-  float select = selection.probability(index);
+  const uint32_t index = selection.sample(u_select);
+  return sample_emission_at(index, selection.probability(index), u);
+}
+
+EmissionSample LightSet::sample_emission_at(uint32_t index, float select, glm::vec2 u) const {
   const Light& light = lights_[index];
   EmissionSample e{};
   e.kind = light.kind;

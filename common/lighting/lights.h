@@ -55,6 +55,8 @@ class LightSet {
   const std::vector<Light>& lights() const { return lights_; }
   bool empty() const { return lights_.empty(); }
   float selection_probability(uint32_t light) const { return distribution_.probability(light); }
+  // The lights in proportion to their power: how light paths choose one by default.
+  const Distribution1D& power_distribution() const { return distribution_; }
 
   // Next-event estimation from point p. u_select picks the light; u picks the point.
   LightSample sample(glm::vec3 p, float u_select, glm::vec2 u) const;
@@ -85,6 +87,8 @@ class LightSet {
   // The same with the light chosen by `selection` (one weight per light, e.g.
   // light importance) instead of by power; power is divided by its probability.
   EmissionSample sample_emission(const Distribution1D& selection, float u_select, glm::vec2 u) const;
+  // The same for light `light`, chosen by the caller with probability `select`.
+  EmissionSample sample_emission_at(uint32_t light, float select, glm::vec2 u) const;
   // Emitted power of light `light` (luminance of its flux): the weights of power selection.
   float light_power(uint32_t light) const { return power(lights_[light]); }
 

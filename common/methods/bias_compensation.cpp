@@ -10,6 +10,7 @@
 #include "sampling/sobol.h"
 #include "sampling/warp.h"
 #include "scene/surface.h"
+#include "sampling/pixel_samples.h"
 
 namespace igi {
 
@@ -50,7 +51,7 @@ void BiasCompensation::add(const GBuffer& gbuffer, uint32_t frame_seed, std::vec
         const GSample& g = gbuffer.layers[sample];
         if (!g.valid()) continue;
         const int x = region.x0 + i, y = region.y0 + j;
-        const uint32_t seed = hash(hash(uint32_t(x), uint32_t(y), frame_seed), uint32_t(l / vpls_.groups));
+        const uint32_t seed = PixelSamples{frame_seed}.sequence(x, y, uint32_t(l / vpls_.groups));
         const int set = interleaved_ ? vpls_.set_of_pixel(x, y) : -1;
         const int group = group_of_subsample(x, y, k, vpls_.groups);
         for (int n = 0; n < per_sample; ++n) {

@@ -33,7 +33,7 @@
 // are clamped like the rest (core/vpl.h), so Le(y) over the short hop is
 // exactly the direct light the clamp cut. Point and spot lights are never
 // clamped and have no surface a ray could hit. Measured in the furnace
-// (tests/test_bias_compensation.cpp): with Le(y) one level gives 1.775
+// (tests/common/methods/test_bias_compensation.cpp): with Le(y) one level gives 1.775
 // against its analytic 1.778; without it 1.440.
 //
 // With anti-aliasing (core/subpixel.h) the pixel's n samples are shared
@@ -43,7 +43,7 @@
 // (never clamped, core/direct_lights.h) light y too: their light reflected
 // over the short hop is what the clamp cut from the VPLs their paths left on y.
 //
-// Random numbers: sample_2d(k n / S + i, level - 1, hash(hash(x, y, frame seed), b))
+// Random numbers: sample_2d(k n / S + i, level - 1, PixelSamples{frame seed}.sequence(x, y, b))
 // in GLOBAL pixel coordinates (x, y), sub-sample k, glass branch b of G-buffer
 // layer l = b S + k (core/gbuffer.h), so a pixel's compensation is the
 // same in whatever tile, thread or process renders it. All methods are const

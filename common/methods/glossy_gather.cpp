@@ -7,6 +7,7 @@
 #include "sampling/sobol.h"
 #include "sampling/warp.h"
 #include "scene/surface.h"
+#include "sampling/pixel_samples.h"
 
 namespace igi {
 namespace {
@@ -79,7 +80,7 @@ void trace_glossy_gather(const Accel& accel, const LightSet& lights, const GBuff
         const size_t pixel = size_t(j) * r.width + i;
         const GSample& g = gbuffer.at(l, pixel);
         if (!g.valid() || !is_gathered_glossy(*g.surface.material, settings.glossy_threshold)) continue;
-        const uint32_t seed = hash(hash(uint32_t(r.x0 + i), uint32_t(r.y0 + j), frame_seed), uint32_t(l), 0x676c6f73u);
+        const uint32_t seed = PixelSamples{frame_seed}.sequence(r.x0 + i, r.y0 + j, uint32_t(l), 0x676c6f73u /* "glos" */);
         gather_at(accel, lights, g, uint32_t(size_t(l) * r.pixels() + pixel), seed, settings, out, rays);
       }
 }

@@ -15,11 +15,4 @@ std::unique_ptr<Method> make_method(const SceneContext& context, const RenderSet
   return nullptr;
 }
 
-uint64_t expected_frame_state_hash(const SceneContext& context, const FrameSetup& frame,
-                                   const RenderSettings& settings) {
-  std::unique_ptr<Method> method = make_method(context, settings);
-  method->begin_frame(frame);
-  return method->frame_state_hash();
-}
-
 }  // namespace igi

@@ -5,6 +5,7 @@
 #include <glm/glm.hpp>
 
 #include "core/gbuffer.h"
+#include "core/tiling.h"
 #include "lightcuts/gather_points.h"
 #include "lightcuts/lightcuts_settings.h"
 #include "photons/caustic_settings.h"

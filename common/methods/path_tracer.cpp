@@ -8,6 +8,7 @@
 #include "sampling/sobol.h"
 #include "sampling/warp.h"
 #include "scene/surface.h"
+#include "sampling/pixel_samples.h"
 
 namespace igi {
 namespace {
@@ -26,7 +27,7 @@ void PathTracer::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCo
   const CameraFrontEnd camera(frame_);
   for (int y = job.y; y < job.y + job.h; ++y)
     for (int x = job.x; x < job.x + job.w; ++x) {
-      const uint32_t pixel_seed = hash(uint32_t(x), uint32_t(y), frame_.seed);
+      const uint32_t pixel_seed = PixelSamples{frame_.seed}.pixel(x, y);
       glm::dvec3 sum(0.0);
       for (uint32_t i = 0; i < frame_.sample_count; ++i) {
         const uint32_t index = frame_.sample_begin + i;

@@ -16,6 +16,7 @@
 #include "sampling/hash.h"
 #include "vpl/vpl_generator.h"
 #include "wavelet/wavelet_filter.h"
+#include "sampling/pixel_samples.h"
 
 namespace igi {
 
@@ -230,7 +231,7 @@ void VplMethod::shade_drawn(const GBuffer& gbuffer, const GlossyHits& hits, Scra
   auto stream = [&](size_t id, uint32_t rank) {
     const size_t pixel = id % region.pixels();
     const int x = region.x0 + int(pixel % region.width), y = region.y0 + int(pixel / region.width);
-    return hash(hash(hash(frame_seed, uint32_t(x), uint32_t(y)), uint32_t(id / region.pixels())), rank);
+    return hash(PixelSamples{frame_seed}.drawn(x, y, uint32_t(id / region.pixels())), rank);
   };
   const int k = settings_.vpl_draws;
   for (size_t id = 0; id < camera_points; ++id) {

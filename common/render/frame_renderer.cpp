@@ -19,21 +19,6 @@
 
 namespace igi {
 
-std::vector<TileJob> make_tiles(int width, int height, int tile_w, int tile_h, int border) {
-  std::vector<TileJob> tiles;
-  for (int y = 0; y < height; y += tile_h)
-    for (int x = 0; x < width; x += tile_w)
-      tiles.push_back({x, y, std::min(tile_w, width - x), std::min(tile_h, height - y), border});
-  // Spiral from the centre: order by distance to it, ties by angle (stable).
-  const float cx = 0.5f * width, cy = 0.5f * height;
-  auto key = [&](const TileJob& t) {
-    float dx = t.x + 0.5f * t.w - cx, dy = t.y + 0.5f * t.h - cy;
-    return std::make_pair(std::max(std::abs(dx) / tile_w, std::abs(dy) / tile_h), std::atan2(dy, dx));
-  };
-  std::stable_sort(tiles.begin(), tiles.end(), [&](const TileJob& a, const TileJob& b) { return key(a) < key(b); });
-  return tiles;
-}
-
 int default_thread_count() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 namespace {
@@ -64,8 +49,12 @@ class ProgressReporter {
 
 }  // namespace
 
-Image render_frame(const Method& method, const FrameSetup& frame, int border,
-                   const FrameOptions& options, RayCounts& rays) {
+namespace {
+
+// The frame's tiles on TBB's threads, each rendered by `render_tile(tile, pixels, rays)`.
+template <class RenderTile>
+Image render_tiles(const FrameSetup& frame, int border, const FrameOptions& options, RayCounts& rays,
+                   const RenderTile& render_tile) {
   Image image(frame.width, frame.height);
   const std::vector<TileJob> tiles = make_tiles(frame.width, frame.height, options.tile_size, options.tile_size, border);
   tbb::enumerable_thread_specific<RayCounts> counts;
@@ -80,7 +69,7 @@ Image render_frame(const Method& method, const FrameSetup& frame, int border,
     for (size_t i = range.begin(); i < range.end(); ++i) {
       const TileJob& t = tiles[i];
       pixels.assign(size_t(t.w) * t.h, glm::vec3(0.0f));
-      method.render_tile(t, pixels, local);
+      render_tile(t, std::span<glm::vec3>(pixels), local);
       image.paste(pixels, t.x, t.y, t.w, t.h);
       progress.tile_done();
     }
@@ -99,6 +88,20 @@ Image render_frame(const Method& method, const FrameSetup& frame, int border,
   for (const RayCounts& c : counts) rays += c;
   if (options.progress) options.progress(1.0f);
   return image;
+}
+
+}  // namespace
+
+Image render_frame(const Method& method, const FrameSetup& frame, int border, const FrameOptions& options,
+                   RayCounts& rays) {
+  return render_tiles(frame, border, options, rays, [&](const TileJob& t, std::span<glm::vec3> p, RayCounts& r) {
+    method.render_tile(t, p, r);
+  });
+}
+
+Image render_frame(const FrameJob& job, const FrameOptions& options, RayCounts& rays) {
+  return render_tiles(job.frame(), job.border(), options, rays,
+                      [&](const TileJob& t, std::span<glm::vec3> p, RayCounts& r) { job.render_pixels(t, p, r); });
 }
 
 }  // namespace igi

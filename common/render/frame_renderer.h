@@ -6,13 +6,11 @@
 #include <vector>
 
 #include "core/method.h"
+#include "core/tiling.h"
+#include "render/frame_job.h"
 #include "image/image.h"
 
 namespace igi {
-
-// Tiles of at most tile_w x tile_h covering the image, each with `border`,
-// ordered in a spiral from the centre so the image fills in evenly.
-std::vector<TileJob> make_tiles(int width, int height, int tile_w, int tile_h, int border);
 
 struct FrameOptions {
   int tile_size = 32;
@@ -22,7 +20,9 @@ struct FrameOptions {
   std::function<void(float)> progress;
 };
 
-// begin_frame() must already have been called on `method`.
+// The frame `job` has begun, whole (render/frame_job.h: as a worker renders its tiles).
+Image render_frame(const FrameJob& job, const FrameOptions& options, RayCounts& rays);
+// The same with a Method that has begun `frame` (benchmarks and tests that hold a method).
 Image render_frame(const Method& method, const FrameSetup& frame, int border,
                    const FrameOptions& options, RayCounts& rays);
 

@@ -173,7 +173,7 @@ Scene make_large_moving(int triangles) {
 
 // "rooms-N" takes any N in 1..kMaxRooms; the list names the largest as an example.
 std::vector<std::string> builtin_scene_names() {
-  return {"cornell", "cornell-blob", "cornell-blob-moving", "large-moving", "furnace", "corner", "courtyard", "rooms", "rooms-10", "corridor", "tilted-light", "glossy-medium", "glossy", "glossy-rough", "large", "glass"};
+  return {"cornell", "cornell-blob", "cornell-blob-moving", "large-moving", "furnace", "corner", "courtyard", "sunroom", "rooms", "rooms-10", "corridor", "tilted-light", "glossy-medium", "glossy", "glossy-rough", "large", "glass"};
 }
 
 bool is_builtin_scene(const std::string& name) {
@@ -191,6 +191,7 @@ Scene make_builtin_scene(const std::string& name) {
   if (name == "large-moving") return make_large_moving();
   if (name == "corner") return make_corner_scene();
   if (name == "courtyard") return make_courtyard_scene();
+  if (name == "sunroom") return make_sunroom_scene();
   if (name == "tilted-light") return make_tilted_light_scene();
   if (name == "glossy-medium") return make_glossy_medium_scene();
   if (const int rooms = parse_rooms_name(name)) return make_rooms_scene(rooms);

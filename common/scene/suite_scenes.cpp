@@ -165,6 +165,35 @@ Scene make_courtyard_scene() {
   return s;
 }
 
+Scene make_sunroom_scene() {
+  Scene s;
+  s.name = "sunroom";
+  const uint32_t walls = diffuse(s, "walls", glm::vec3(0.75f));
+  const uint32_t ground = diffuse(s, "ground", {0.45f, 0.42f, 0.38f});
+  // The ground of 16 x 16 m is the room's floor too; the room stands in
+  // its middle, closed but for a window in the wall at z = 0.
+  add_facing_quad(s, {2, 0, 2}, {8, 0, 0}, {0, 0, 8}, {0, 1, 0}, ground);
+  const float x1 = 4.0f, y1 = 2.5f, z1 = 4.0f;
+  add_facing_quad(s, {2, y1, 2}, {2, 0, 0}, {0, 0, 2}, {0, -1, 0}, walls);                 // ceiling
+  add_facing_quad(s, {2, 0.5f * y1, z1}, {2, 0, 0}, {0, 0.5f * y1, 0}, {0, 0, -1}, walls);  // back
+  add_facing_quad(s, {0, 0.5f * y1, 2}, {0, 0.5f * y1, 0}, {0, 0, 2}, {1, 0, 0}, walls);    // left
+  add_facing_quad(s, {x1, 0.5f * y1, 2}, {0, 0.5f * y1, 0}, {0, 0, 2}, {-1, 0, 0}, walls);  // right
+  // The window wall, around an opening x in [1.5, 2.5], y in [1.0, 1.8].
+  const glm::vec3 in(0, 0, 1);
+  add_facing_quad(s, {0.75f, 0.5f * y1, 0}, {0.75f, 0, 0}, {0, 0.5f * y1, 0}, in, walls);
+  add_facing_quad(s, {3.25f, 0.5f * y1, 0}, {0.75f, 0, 0}, {0, 0.5f * y1, 0}, in, walls);
+  add_facing_quad(s, {2.0f, 0.5f, 0}, {0.5f, 0, 0}, {0, 0.5f, 0}, in, walls);
+  add_facing_quad(s, {2.0f, 2.15f, 0}, {0.5f, 0, 0}, {0, 0.35f, 0}, in, walls);
+  PunctualLight sun;
+  sun.type = LightType::Directional;
+  sun.direction = glm::normalize(glm::vec3(0.25f, -0.55f, 0.8f));  // through the window onto the floor
+  sun.intensity = glm::vec3(100.0f, 95.0f, 85.0f);
+  s.lights.push_back(sun);
+  s.camera = look_at({3.5f, 1.7f, 3.6f}, {1.2f, 0.7f, 0.6f}, 60.0f);
+  group_by_material(s);
+  return s;
+}
+
 Scene make_tilted_light_scene() {
   Scene s;
   s.name = "tilted-light";

@@ -29,6 +29,10 @@
 //           no light of its own but a sky (constant 1, 1, 1 unless
 //           --environment names another, or an HDR map): what a glTF file
 //           without lights is, lit the way such files are.
+//   sunroom  a 4 x 2.5 x 4 m room on open ground, closed but for one window
+//           of 1 x 0.8 m, lit by a sun through it: a few percent of the
+//           plain rule's sun paths enter (light paths that find the view,
+//           importance/view_guide.h).
 //   tilted-light  closed 4 x 3 x 4 m room lit by a small one-sided quad
 //           tilted towards a corner: the walls beside it see the light at
 //           grazing angles (area-light sampling far from the normal).
@@ -45,6 +49,7 @@ inline constexpr int kMaxRooms = 10;
 
 Scene make_corner_scene();
 Scene make_courtyard_scene();
+Scene make_sunroom_scene();
 Scene make_tilted_light_scene();
 Scene make_glossy_medium_scene();
 // 1 <= n <= kMaxRooms; throws SceneError otherwise.

@@ -8,12 +8,28 @@
 namespace igi {
 
 LightPathStart start_light_path(const LightSet& lights, const Scene& scene, SampleStream& u,
-                                const Distribution1D* selection) {
+                                const Distribution1D* selection, const StartGuide* guide) {
   const float u_select = u.next_1d();
-  const glm::vec2 u_point = u.next_2d();
-  const glm::vec2 u_dir = u.next_2d();
-  const EmissionSample e = selection ? lights.sample_emission(*selection, u_select, u_point)
-                                     : lights.sample_emission(u_select, u_point);
+  StartNumbers numbers;
+  numbers.point = u.next_2d();
+  numbers.direction = u.next_2d();
+  const Distribution1D& choice = selection ? *selection : lights.power_distribution();
+  const uint32_t light = choice.sample(u_select);
+  float density = 1.0f;
+  if (guide) numbers = guide->warp(light, numbers, density);
+  LightPathStart start = start_light_path_at(lights, scene, light, choice.probability(light), numbers);
+  if (density != 1.0f) {
+    start.flux /= density;
+    start.power /= density;
+    start.irradiance /= density;
+  }
+  return start;
+}
+
+LightPathStart start_light_path_at(const LightSet& lights, const Scene& scene, uint32_t light, float select,
+                                   StartNumbers numbers) {
+  const glm::vec2 u_point = numbers.point, u_dir = numbers.direction;
+  const EmissionSample e = lights.sample_emission_at(light, select, u_point);
   LightPathStart start;
   start.light = e.light;
   switch (e.kind) {

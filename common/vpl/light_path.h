@@ -16,6 +16,7 @@
 #include "sampling/sobol.h"
 #include "scene/accel.h"
 #include "scene/surface.h"
+#include "vpl/start_guide.h"
 
 namespace igi {
 
@@ -41,9 +42,15 @@ struct LightPathStart {
 // Picks a light in proportion to its power (or by `selection`, a
 // distribution over the LightSet's entries: light importance), a point on it
 // and a direction (cosine-distributed for area lights, uniform for point
-// lights and the environment, inside a spot's cone), from the stream's next kStartDims dimensions.
+// lights and the environment, inside a spot's cone), from the stream's next
+// kStartDims dimensions. With a `guide` that holds the chosen light, the
+// point and direction are drawn by its density instead, and the path's power
+// divided by it (vpl/start_guide.h).
 LightPathStart start_light_path(const LightSet& lights, const Scene& scene, SampleStream& u,
-                                const Distribution1D* selection = nullptr);
+                                const Distribution1D* selection = nullptr, const StartGuide* guide = nullptr);
+// The start from light `light`, chosen with probability `select`, at numbers `u`.
+LightPathStart start_light_path_at(const LightSet& lights, const Scene& scene, uint32_t light, float select,
+                                   StartNumbers u);
 
 // How a bounce draws its lobe and roulette numbers from its dimensions after
 // the direction's pair: VPL paths as two single draws, photon paths as one

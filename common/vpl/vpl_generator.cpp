@@ -15,7 +15,7 @@ void trace_light_path(const SceneContext& ctx, const RenderSettings& settings, u
                       uint32_t seed, float inv_paths, std::vector<Vpl>& out, const LightPathOptions& options) {
   SampleStream start_stream(path, seed, 0);
   const size_t first = out.size();
-  const LightPathStart start = start_light_path(ctx.lights, ctx.scene, start_stream, options.selection);
+  const LightPathStart start = start_light_path(ctx.lights, ctx.scene, start_stream, options.selection, options.guide);
   // The vertex the path leaves from: the Area VPL it leaves on the light, or the punctual light.
   LightVertex previous{LightVertex::From::Punctual, start.light};
   // An area light leaves a VPL on itself, the environment a directional one.

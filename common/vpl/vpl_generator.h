@@ -3,6 +3,7 @@
 // bit-identical VPL sets in any process and with any thread count.
 #include "core/method.h"
 #include "core/vpl.h"
+#include "vpl/start_guide.h"
 
 namespace igi {
 
@@ -24,6 +25,7 @@ struct LightVertex {
 // What the light-importance methods change about light paths (common/importance/).
 struct LightPathOptions {
   const Distribution1D* selection = nullptr;  // lights chosen by this instead of by power (flux / its probability)
+  const StartGuide* guide = nullptr;          // where on a light paths start (importance/view_guide.h)
   std::vector<LightVertex>* vertices = nullptr;  // filled with one entry per VPL, in the order of VplSets::vpls
 };
 

@@ -25,7 +25,7 @@ void show_image(const Image& image, const WindowOptions& options) {
   GLFWwindow* window = glfwCreateWindow(image.width, image.height, options.title.c_str(), nullptr, nullptr);
   if (!window) throw std::runtime_error("cannot open a window");
   glfwMakeContextCurrent(window);
-  const std::vector<unsigned char> rgb = to_srgb8(image, options.exposure);
+  const std::vector<unsigned char> rgb = to_srgb8(image, options.tone);
   const double start = glfwGetTime();
   while (!glfwWindowShouldClose(window)) {
     draw_srgb8(rgb, image.width, image.height);

@@ -8,7 +8,7 @@ namespace igi {
 
 struct WindowOptions {
   std::string title = "igi-cluster";
-  float exposure = 1.0f;
+  ToneMapping tone;  // as the image file shows it
   double seconds = 0.0;     // close after this long; 0: when the user closes it (or Esc)
   std::string screenshot;   // when set: save what the window shows as PNG, then close
 };

@@ -11,11 +11,28 @@
 
 namespace igi {
 
-InteractiveWindow::InteractiveWindow(int width, int height, const std::string& title)
-    : title_(title), width_(width), height_(height) {
+namespace {
+
+// The width of the primary monitor's work area (no panels or docks), or of its mode.
+int screen_width() {
+  GLFWmonitor* monitor = glfwGetPrimaryMonitor();
+  if (!monitor) return 0;
+  int x = 0, y = 0, width = 0, height = 0;
+  glfwGetMonitorWorkarea(monitor, &x, &y, &width, &height);
+  if (width > 0) return width;
+  const GLFWvidmode* mode = glfwGetVideoMode(monitor);
+  return mode ? mode->width : 0;
+}
+
+}  // namespace
+
+InteractiveWindow::InteractiveWindow(int image_width, int image_height, float panel_width, bool panel_shown,
+                                     const std::string& title)
+    : title_(title), height_(image_height) {
   if (glfwInit() != GLFW_TRUE) throw std::runtime_error("cannot start GLFW (no display?)");
+  width_ = window_width(image_width, panel_width, panel_shown, screen_width());
   glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
-  window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+  window_ = glfwCreateWindow(width_, height_, title.c_str(), nullptr, nullptr);
   if (!window_) {
     glfwTerminate();
     throw std::runtime_error("cannot open a window");
@@ -95,14 +112,11 @@ bool InteractiveWindow::poll(CameraController& camera) {
 
 std::set<int> InteractiveWindow::take_panel_taps() { return std::exchange(panel_taps_, {}); }
 
-void InteractiveWindow::show(const Image& image, float exposure) {
-  upload(image);
-  draw(exposure);
-}
-
 void InteractiveWindow::upload(const Image& image) { view_->upload(image); }
 
-void InteractiveWindow::draw(float exposure) { view_->draw(width_, height_, exposure); }
+void InteractiveWindow::draw(const Viewport& where, const ToneMapping& tone) {
+  view_->draw(width_, height_, where, tone);
+}
 
 void InteractiveWindow::present() { glfwSwapBuffers(window_); }
 

@@ -5,7 +5,9 @@
 // a key pressed and released between two polls still moves the camera for
 // one poll, a drag turns the camera by every motion the cursor made, and a
 // press that lands on the panel never turns it, wherever the drag goes.
-// The image goes up as floats; the GPU applies exposure and sRGB (image_view.h).
+// The image goes up as floats; the GPU applies the tone mapping (image_view.h).
+// The window is the image's size, and wider by the panel's column when the
+// panel opens at the start and the screen has room for both (panel_layout.h).
 #include <memory>
 #include <set>
 #include <string>
@@ -20,15 +22,17 @@ namespace igi {
 
 class InteractiveWindow {
  public:
-  // Throws std::runtime_error when no window can be opened.
-  InteractiveWindow(int width, int height, const std::string& title);
+  // For an image of image_width x image_height and a panel of panel_width
+  // that opens at the start or not. Throws std::runtime_error when no window can be opened.
+  InteractiveWindow(int image_width, int image_height, float panel_width, bool panel_shown, const std::string& title);
   ~InteractiveWindow();
   // Handles input since the last call; false once the user closed the window.
   bool poll(CameraController& camera);
-  // Draws into the back buffer; present() makes it visible.
-  void show(const Image& image, float exposure);
-  void upload(const Image& image);  // show() in two steps: upload once, draw as often as needed
-  void draw(float exposure);
+  // Draws the last upload into `where` of the back buffer (image_viewport()); present() makes it visible.
+  void upload(const Image& image);
+  void draw(const Viewport& where, const ToneMapping& tone);
+  int width() const { return width_; }
+  int height() const { return height_; }
   // While a panel has the pointer or the keys, they do not move the camera.
   void set_input_captured(bool mouse, bool keyboard) { mouse_captured_ = mouse, keyboard_captured_ = keyboard; }
   GLFWwindow* handle() const { return window_; }
@@ -55,7 +59,7 @@ class InteractiveWindow {
   std::set<int> held_, tapped_;         // keys down now; keys pressed since the last poll
   std::set<int> panel_taps_;            // keys pressed since the panel last took them
   bool dragging_ = false, mouse_captured_ = false, keyboard_captured_ = false;
-  int width_, height_;
+  int width_, height_;  // the window's
   std::unique_ptr<ImageView> view_;
 };
 

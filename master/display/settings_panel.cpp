@@ -11,6 +11,7 @@
 #include <imgui.h>
 
 #include "core/settings_table.h"
+#include "image/exposure_check.h"
 #include "methods/memory_check.h"
 
 namespace igi {
@@ -42,8 +43,12 @@ std::optional<std::string> panel_settings_error(const RenderSettings& s) {
   return std::nullopt;
 }
 
-SettingsPanel::SettingsPanel(const RenderSettings& settings, float exposure)
-    : committed_(settings), editing_(settings), exposure_(exposure) {}
+SettingsPanel::SettingsPanel(const RenderSettings& settings, const ToneMapping& tone)
+    : committed_(settings), editing_(settings), tone_(tone) {}
+
+void SettingsPanel::next_view() {
+  tone_.view = kViewTransforms[(size_t(tone_.view) + 1) % kViewTransforms.size()];
+}
 
 bool SettingsPanel::commit(const RenderSettings& edited) {
   editing_ = edited;
@@ -155,16 +160,30 @@ void SettingsPanel::draw() {
   for (const auto& [section, name] : kSections) {
     if (section != Section::Quality && !any_shown(section, s.method)) continue;
     if (!ImGui::CollapsingHeader(name, section == Section::Quality ? ImGuiTreeNodeFlags_DefaultOpen : 0)) continue;
-    if (section == Section::Quality) {
-      ImGui::SliderFloat("exposure", &exposure_, 1.0f / 64, 64.0f, "%.3g", ImGuiSliderFlags_Logarithmic | kBound);
-      tip("--exposure", "display brightness (not sent: the workers' colours stay linear)");
-    }
+    if (section == Section::Quality) draw_tone();
     for (const Setting& row : settings_table())
       if (row.section == section && shown(row, s))
         std::visit([&](auto member) { widget(row, s, member); }, row.member);
   }
   if (std::memcmp(&s, &editing_, sizeof s) != 0) commit(s);
   if (!error_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "not sent: %s", error_.c_str());
+}
+
+// Exposure in stops, the meter's button and the view: the display's own, not sent.
+void SettingsPanel::draw_tone() {
+  float stops = std::log2(tone_.exposure);
+  if (ImGui::DragFloat("exposure", &stops, 0.02f, -kExposureStops, kExposureStops, "%+.2f EV", kBound))
+    tone_.exposure = std::exp2(stops);
+  tip("--ev, --exposure", "display brightness in stops (+1 doubles it); not sent: the workers' colours stay linear");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("auto")) meter_requested_ = true;
+  tip("--exposure auto, key M", "meter this image: its log-average luminance to middle grey");
+  std::string views;
+  for (ViewTransform v : kViewTransforms) views += std::string(view_name(v)) + '\0';
+  int view = int(tone_.view);
+  ImGui::Combo("view (V)", &view, views.c_str());
+  tip("--view", "standard: clipped at white; neutral: Khronos PBR Neutral; agx: AgX, highlights roll off");
+  tone_.view = ViewTransform(view);
 }
 
 }  // namespace igi

@@ -32,14 +32,15 @@ std::array<uint8_t, 3> worker_colour(uint32_t worker) {
   return palette[worker % kPaletteSize];
 }
 
-void draw_tile_overlay(const std::vector<TileSource>& tiles, OverlayMode mode) {
+void draw_tile_overlay(const std::vector<TileSource>& tiles, OverlayMode mode, const Viewport& where) {
   if (mode == OverlayMode::Off) return;
   ImDrawList* list = ImGui::GetBackgroundDrawList();
   list->Flags &= ~ImDrawListFlags_AntiAliasedLines;  // plain one-pixel outlines: fewer, thinner triangles
   const int alpha = mode == OverlayMode::Solid ? 255 : 90;
   for (const TileSource& t : tiles) {
     const auto c = worker_colour(t.worker);
-    const ImVec2 a(float(t.tile.x), float(t.tile.y)), b(float(t.tile.x + t.tile.w), float(t.tile.y + t.tile.h));
+    auto at = [&](int x, int y) { return ImVec2(where.x + where.scale * float(x), where.y + where.scale * float(y)); };
+    const ImVec2 a = at(t.tile.x, t.tile.y), b = at(t.tile.x + t.tile.w, t.tile.y + t.tile.h);
     list->AddRectFilled(a, b, IM_COL32(c[0], c[1], c[2], alpha));
     if (mode == OverlayMode::Tint) list->AddRect(a, b, IM_COL32(c[0], c[1], c[2], 200));
   }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "display/panel_layout.h"
 #include "session/master_session.h"
 
 namespace igi {
@@ -23,7 +24,8 @@ inline constexpr size_t kPaletteSize = 8;
 // 8-bit sRGB, distinct at a glance and from each other by at least 100 in some channel.
 std::array<uint8_t, 3> worker_colour(uint32_t worker);
 
-// Draws on ImGui's background list (under the panels, over the image); window pixels = image pixels.
-void draw_tile_overlay(const std::vector<TileSource>& tiles, OverlayMode mode);
+// Draws on ImGui's background list (under the panels, over the image), the
+// image at `where` in the window.
+void draw_tile_overlay(const std::vector<TileSource>& tiles, OverlayMode mode, const Viewport& where);
 
 }  // namespace igi

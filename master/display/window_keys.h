@@ -14,6 +14,8 @@ inline constexpr WindowKey kWindowKeys[] = {
     {"W S / A D / Q E", "move forward, back / left, right / down, up"},
     {"R", "the scene's camera again"},
     {"J L / U O / I K", "move the scene's lights along x / y / z"},
+    {"M", "meter the exposure from the image again (auto)"},
+    {"V", "the next view transform: standard, neutral, agx"},
     {"Tab", "the panel and the frame rate on and off"},
     {"F1 or ?", "this help"},
     {"F2", "tile overlay: off, tint (who rendered which tile), solid"},

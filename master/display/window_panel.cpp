@@ -31,23 +31,38 @@ void corner_box(const char* name, ImVec2 pivot, const std::function<void()>& con
   ImGui::End();
 }
 
-// One line of text in a corner of the window, on a dark box, placed from its
-// own size in this frame (an auto-sized window would lag a frame behind).
-void corner_text(const char* text, ImVec2 pivot) {
-  const ImVec2 display = ImGui::GetIO().DisplaySize, size = ImGui::CalcTextSize(text);
-  const float margin = 6.0f, pad = 5.0f;
+// Lines of text on a dark box: pivot (0, 0) puts its top left at `at`,
+// (1, 1) its bottom right; placed from its own size in this frame (an
+// auto-sized window would lag a frame behind).
+void text_box(const char* text, ImVec2 at, ImVec2 pivot) {
+  const ImVec2 size = ImGui::CalcTextSize(text);
+  const float pad = 5.0f;
   const ImVec2 box(size.x + 2 * pad, size.y + 2 * pad);
-  const ImVec2 at(margin + pivot.x * (display.x - 2 * margin - box.x), margin + pivot.y * (display.y - 2 * margin - box.y));
+  const ImVec2 corner(at.x - pivot.x * box.x, at.y - pivot.y * box.y);
   ImDrawList* draw = ImGui::GetForegroundDrawList();
-  draw->AddRectFilled(at, ImVec2(at.x + box.x, at.y + box.y), IM_COL32(0, 0, 0, 150), 4.0f);
-  draw->AddText(ImVec2(at.x + pad, at.y + pad), IM_COL32(255, 255, 255, 255), text);
+  draw->AddRectFilled(corner, ImVec2(corner.x + box.x, corner.y + box.y), IM_COL32(0, 0, 0, 150), 4.0f);
+  draw->AddText(ImVec2(corner.x + pad, corner.y + pad), IM_COL32(255, 255, 255, 255), text);
+}
+
+// A text box in a corner of the window: pivot (0, 0) top left ... (1, 1) bottom right.
+void corner_text(const char* text, ImVec2 pivot) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const float margin = 6.0f;
+  text_box(text, ImVec2(margin + pivot.x * (display.x - 2 * margin), margin + pivot.y * (display.y - 2 * margin)),
+           pivot);
 }
 
 }  // namespace
 
-WindowPanel::WindowPanel(GLFWwindow* window, const RenderSettings& settings, float exposure, PanelOptions options)
-    : gui_(window), settings_(settings, exposure), options_(std::move(options)) {
+WindowPanel::WindowPanel(GLFWwindow* window, const RenderSettings& settings, const ToneMapping& tone,
+                         PanelOptions options)
+    : gui_(window), settings_(settings, tone), options_(std::move(options)) {
   load_panel_fonts();
+}
+
+Viewport WindowPanel::image_viewport(float window_width, float window_height) const {
+  const float panel = options_.shown ? panel_layout(options_.image_width).width : 0.0f;
+  return igi::image_viewport(window_width, window_height, options_.image_width, options_.image_height, panel);
 }
 
 void WindowPanel::set_message(std::string message) {
@@ -76,6 +91,8 @@ PanelActions WindowPanel::read_keys(const std::set<int>& taps) {
   const bool question = taps.count(GLFW_KEY_SLASH | InteractiveWindow::kShifted) > 0;
   if (tapped(GLFW_KEY_F1) || question) options_.help = !options_.help;
   if (tapped(GLFW_KEY_F2)) options_.overlay = next_overlay(options_.overlay);
+  if (tapped(GLFW_KEY_V)) settings_.next_view();
+  a.meter = tapped(GLFW_KEY_M);
   a.save_camera = tapped(GLFW_KEY_F5);
   a.load_camera = tapped(GLFW_KEY_F9);
   a.save_image = tapped(GLFW_KEY_F12);
@@ -109,29 +126,35 @@ PanelActions WindowPanel::draw(int accumulated, const std::set<int>& taps) {
 PanelActions WindowPanel::build(int accumulated, const std::set<int>& taps) {
   gui_.begin_frame();
   PanelActions actions = read_keys(taps);
-  draw_tile_overlay(last_.tile_sources, options_.overlay);
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  draw_tile_overlay(last_.tile_sources, options_.overlay, image_viewport(display.x, display.y));
   if (options_.shown) {
     draw_panel(actions);
-    draw_readout(accumulated);
+    draw_readout(accumulated, panel_layout(options_.image_width).width);
   }
   if (options_.help) draw_help();
   draw_message();
+  actions.meter = actions.meter || settings_.take_meter_request();
   ImGui::EndFrame();
   return actions;
 }
 
-// Top left, a third of the window's width (panel_layout), as tall as its
-// open sections; settings open, the rest closed.
+// A column on the left, the window's height less the read-out's strip, as
+// wide as panel_layout says; the image is beside it, never under it.
+// Settings open, the rest closed; a scroll bar where the open sections are
+// taller than the column.
 void WindowPanel::draw_panel(PanelActions& actions) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  const PanelLayout layout = panel_layout(display.x);
+  const PanelLayout layout = panel_layout(options_.image_width);
   const PanelFont font = panel_font(layout.font_pixels);
   const float width = layout.width;
-  ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Once);
-  ImGui::SetNextWindowCollapsed(layout.start_folded, ImGuiCond_Once);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0), ImVec2(width, 0.95f * display.y));
+  ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(width, std::max(display.y - kReadoutHeight, 0.0f)), ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(1.0f);
   if (font.font) ImGui::PushFont(font.font);
-  ImGui::Begin("igi-master (Tab hides, F1 help)", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::Begin("igi-master (Tab hides, F1 help)", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoSavedSettings);
   ImGui::SetWindowFontScale(font.scale);
   ImGui::PushItemWidth(0.45f * width);  // the rest for labels of 15 characters
   settings_.draw();
@@ -164,18 +187,21 @@ void WindowPanel::draw_preview_choice() {
   options_.preview = choice - 1;
 }
 
-// Bottom right: frame rate over the last second, the level of the frame
-// shown, frame time, frames shown and passes accumulated; or how long the
-// window has waited for a frame.
-void WindowPanel::draw_readout(int accumulated) {
+// At the foot of the panel's column, in two lines: frame rate over the last
+// second, the level of the frame shown, frame time; frames shown and passes
+// accumulated. Or how long the window has waited for a frame.
+void WindowPanel::draw_readout(int accumulated, float width) {
   char text[160] = "waiting for the first frame";
   if (frames_ > 0 && waiting_ > 1.0)
-    std::snprintf(text, sizeof text, "waiting for a frame: %.1f s  (last: %.0f ms, %s)", waiting_,
-                  1e3 * last_.seconds, level_.c_str());
+    std::snprintf(text, sizeof text, "waiting for a frame: %.1f s\nlast: %.0f ms, %s", waiting_, 1e3 * last_.seconds,
+                  level_.c_str());
   else if (frames_ > 0)
-    std::snprintf(text, sizeof text, "%.1f fps  %s  %.0f ms  frame %llu  %d pass%s", fps_, level_.c_str(),
+    std::snprintf(text, sizeof text, "%.1f fps  %s  %.0f ms\nframe %llu  %d pass%s", fps_, level_.c_str(),
                   1e3 * last_.seconds, (unsigned long long)frames_, accumulated, accumulated == 1 ? "" : "es");
-  corner_text(text, ImVec2(1, 1));
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::GetForegroundDrawList()->AddRectFilled(ImVec2(0, display.y - kReadoutHeight), ImVec2(width, display.y),
+                                                IM_COL32(15, 15, 15, 255));
+  text_box(text, ImVec2(4.0f, display.y - 2.0f), ImVec2(0, 1));
 }
 
 void WindowPanel::draw_help() {

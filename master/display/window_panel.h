@@ -1,9 +1,11 @@
 #pragma once
-// Everything the master's window draws over the image, and its keys
-// (display/window_keys.h): the panel top left (Tab: settings, cluster,
-// frame-time graph, bookmarks), frame rate and passes bottom right, the keys'
-// help in the middle (F1 or ?), the tile overlay (F2); F5/F9 save and load the
-// camera, F12 the accumulated image as EXR and PNG (PREFIX-NNNN.exr/.png).
+// Everything the master's window draws besides the image, and its keys
+// (display/window_keys.h): the panel in a column left of the image (Tab:
+// settings, cluster, frame-time graph, bookmarks), frame rate and passes at
+// the column's foot, the keys' help in the middle (F1 or ?), the tile overlay
+// over the image (F2); M meters the exposure, V cycles the view transforms;
+// F5/F9 save and load the camera, F12 the accumulated image as EXR and PNG
+// (PREFIX-NNNN.exr/.png).
 // It draws with Dear ImGui; it never waits on the session: what it shows
 // comes with each frame (FrameRecord, PeerView), copied by the session thread.
 #include <cstdint>
@@ -34,22 +36,26 @@ struct PanelOptions {
   // While the view changes: "budget", then the levels' names (frame_budget.h), full first.
   std::vector<std::string> preview_levels;
   int preview = -1;  // -1: the frame budget picks the level; else the level index every frame takes
+  int image_width = 640, image_height = 480;  // the image the window shows (the panel's width follows it)
 };
 
 // What the user asked for in this frame of the panel.
 struct PanelActions {
   bool save_camera = false, load_camera = false, save_image = false;
+  bool meter = false;  // M or the exposure's "auto": meter the image shown
 };
 
 class WindowPanel {
  public:
-  WindowPanel(GLFWwindow* window, const RenderSettings& settings, float exposure, PanelOptions options);
+  WindowPanel(GLFWwindow* window, const RenderSettings& settings, const ToneMapping& tone, PanelOptions options);
   // A frame the window shows now: its record, the workers when it completed,
   // the frame rate (over the last second) and its level ("full", "preview 1/4").
   void frame_shown(const FrameRecord& record, std::vector<PeerView> peers, double fps, std::string level);
   // No frame came for this long (the read-out says so past a second).
   void set_waiting(double seconds) { waiting_ = seconds; }
-  // Builds the panels and draws them into the back buffer (over the image): build() then render().
+  // Where the image goes in the window now (beside the panel's column while it is shown).
+  Viewport image_viewport(float window_width, float window_height) const;
+  // Builds the panels and draws them into the back buffer (beside and over the image): build() then render().
   // `taps`: the keys pressed since the last frame (InteractiveWindow::take_panel_taps),
   // so that a key tapped between two of the panel's frames still counts.
   PanelActions draw(int accumulated, const std::set<int>& taps = {});
@@ -66,7 +72,7 @@ class WindowPanel {
  private:
   PanelActions read_keys(const std::set<int>& taps);
   void draw_panel(PanelActions& actions);
-  void draw_readout(int accumulated);
+  void draw_readout(int accumulated, float width);
   void draw_preview_choice();
   void draw_help();
   void draw_bookmarks(PanelActions& actions);

@@ -3,7 +3,7 @@
 #include <utility>
 
 #include "protocol/pixels.h"
-#include "render/frame_renderer.h"
+#include "core/tiling.h"
 
 namespace igi {
 

@@ -96,7 +96,7 @@ void add_run_options(CLI::App& app, MasterOptions& o) {
                  "then exit")->check(integer(1, INT_MAX))->group(group)->type_name("N");
   app.add_option_function<std::string>(
          "--panel", [&o](const std::string& v) { o.panel = v == "on"; },
-         "window: the settings panel and the frame rate over the image at start (Tab toggles them) [on]")
+         "window: the settings panel and the frame rate in a column beside the image at start (Tab toggles them) [on]")
       ->check(cli::one_of({"on", "off"}))->group(group)->type_name("on|off");
   app.add_option("--frame-budget-ms", o.frame_budget_ms,
                  "window: while the camera or settings change, render previews (fewer pixels, cheaper settings) "

@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <thread>
@@ -18,7 +19,6 @@ namespace igi {
 namespace {
 
 using cli::integer;
-using cli::non_negative_number;
 using cli::OptionError;
 
 // Every default --help shows is read from the structs, never typed twice.
@@ -47,6 +47,55 @@ void check_memory(const RenderOptions& o) {
     throw OptionError(error);
 }
 
+// "auto", or a number that `number_check` accepts.
+CLI::Validator auto_or(CLI::Validator number_check) {
+  return CLI::Validator(
+      [number_check](std::string& text) -> std::string {
+        std::string copy = text;
+        if (text == "auto" || number_check(copy).empty()) return {};
+        return "expected auto or " + number_check(copy).substr(std::string("expected ").size());
+      },
+      "");
+}
+
+// One exposure, given as a factor (--exposure), in stops (--ev: 2^S), or
+// metered from each image (auto); the two options are one (check_render_options).
+void add_exposure_options(CLI::App& app, RenderOptions& o) {
+  const double most = std::exp2(double(kExposureStops));
+  auto set = [&o](const std::string& text, bool stops) {
+    o.exposure_given = true;
+    o.exposure.metered = text == "auto";
+    if (!o.exposure.metered) o.exposure.factor = stops ? std::exp2(std::stof(text)) : std::stof(text);
+  };
+  const CLI::Validator factor(
+      [most](std::string& text) -> std::string {
+        std::string copy = text;
+        if (cli::number()(copy).empty() && std::stod(text) > 0.0 && std::stod(text) <= most) return {};
+        char bound[32];
+        std::snprintf(bound, sizeof bound, "%g", most);
+        return "expected a factor > 0 and <= " + std::string(bound) + ", got '" + text + "'";
+      },
+      "");
+  app.add_option_function<std::string>(
+         "--exposure", [set](const std::string& k) { set(k, false); },
+         "8-bit outputs (PNG, the window): the image times K before --view; auto: the factor that brings each "
+         "image's log-average luminance (of its lit pixels) to middle grey, as a camera's meter [the window: "
+         "auto, measured once on opening and again on M; image files: 1]")
+      ->check(auto_or(factor))->type_name("K|auto");
+  app.add_option_function<std::string>(
+         "--ev", [set](const std::string& s) { set(s, true); },
+         "--exposure in stops: the image times 2^S (+1 doubles it), S within +-" +
+             std::to_string(int(kExposureStops)) + " [0]")
+      ->check(auto_or(cli::bounded_number(double(kExposureStops))))->type_name("S|auto");
+  app.add_option_function<std::string>(
+         "--view", [&o](const std::string& v) { o.view = *parse_view(v); },
+         "8-bit outputs: the view transform after the exposure: standard (each channel clipped at white), neutral "
+         "(Khronos PBR Neutral: base colours show as themselves, highlights compress towards white), agx (AgX, "
+         "Blender's default view: highlights roll off, white 4 stops past where standard clips)" +
+             shown_default(std::string(view_name(kDefaults.view))))
+      ->check(cli::one_of({"standard", "neutral", "agx"}))->type_name("standard|neutral|agx");
+}
+
 void add_image_options(CLI::App& app, RenderOptions& o) {
   std::string scenes;
   for (const std::string& n : builtin_scene_names()) scenes += " " + n;
@@ -57,8 +106,7 @@ void add_image_options(CLI::App& app, RenderOptions& o) {
       ->check(integer(1, kMaxSamples))->type_name("N");
   cli::add_size_option(app, "--size", o.width, o.height, protocol::kMaxImageSide, "image size" + shown_default(std::to_string(kDefaults.width) + "x" + std::to_string(kDefaults.height)));
   app.add_option("-o,--output", o.output, "output image: .exr/.hdr linear, .png sRGB" + shown_default(kDefaults.output))->type_name("FILE");
-  app.add_option("--exposure", o.exposure, "scale before writing PNG" + shown_default(kDefaults.exposure))
-      ->check(non_negative_number())->type_name("E");
+  add_exposure_options(app, o);
   app.add_option("--threads", o.threads, "render threads, 0 = all" + shown_default(kDefaults.threads))
       ->check(integer(0, cli::kMaxThreads))->type_name("T");
   app.add_option("--tile", o.tile_size, "tile size in pixels" + shown_default(kDefaults.tile_size))
@@ -180,6 +228,8 @@ void check_render_options(const CLI::App& app, const RenderOptions& o) {
     throw OptionError("--environment-scale and --environment-rotation need --environment");
   if (o.environment && o.environment->map.empty() && app.count("--environment-rotation"))
     throw OptionError("--environment-rotation turns a map: a constant sky (--environment R,G,B) has none");
+  if (app.count("--exposure") && app.count("--ev"))
+    throw OptionError("--exposure and --ev set the same exposure (--ev S is --exposure 2^S): give one");
   if (app.count("--max-depth"))
     throw OptionError("--max-depth was split: --path-depth (pt), --light-depth (VPL light paths) and "
                       "--specular-depth (mirrors and glass from the camera)");

@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "core/settings.h"
+#include "image/exposure_check.h"
 #include "scene/load_scene.h"
 
 namespace CLI {
@@ -24,8 +25,13 @@ struct RenderOptions {
   int samples = 1;          // pt: samples per pixel; ir/igi: progressive passes
   uint32_t seed = 1;
   int threads = 0;          // 0: all hardware threads
-  int tile_size = 64;  // the filter border (N / 2 = 3 pixels at 6 x 6 sets) costs 1.20x the tile, 1.41x at 32
-  float exposure = 1.0f;
+  int tile_size = 64;  // the filter border (2 (N / 2) = 6 pixels at 6 x 6 sets) costs 1.41x the tile, 1.89x at 32
+  // --exposure K|auto, --ev S|auto, --view: how 8-bit outputs (PNG, the
+  // windows) show the image. A file is written at `exposure` (1 unless given);
+  // igi-master's window meters unless a fixed exposure was given.
+  ExposureChoice exposure;
+  bool exposure_given = false;
+  ViewTransform view = ViewTransform::Standard;
   std::string output = "render.png";
   std::string export_gltf;  // when set: write the scene as glTF and exit
   std::string camera_file;  // start from this camera (JSON, camera_bookmark.h); igi-master's window: its bookmark file

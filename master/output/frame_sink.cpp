@@ -2,7 +2,8 @@
 
 namespace igi {
 
-FrameSink::FrameSink(int width, int height, float exposure, bool progressive) : exposure_(exposure) {
+FrameSink::FrameSink(int width, int height, ExposureChoice exposure, ViewTransform view, bool progressive)
+    : exposure_(exposure), view_(view) {
   if (progressive) accumulator_.emplace(width, height);
   thread_ = std::thread([this] { run(); });
 }
@@ -39,6 +40,11 @@ std::optional<Image> FrameSink::last_written() const {
   return last_written_;
 }
 
+float FrameSink::last_exposure() const {
+  std::lock_guard lock(mutex_);
+  return last_exposure_;
+}
+
 void FrameSink::consume(const FrameBuffer& pixels, const std::string& path) {
   if (!accumulator_ && path.empty()) return;
   Image image = pixels.to_image();
@@ -47,9 +53,11 @@ void FrameSink::consume(const FrameBuffer& pixels, const std::string& path) {
     if (path.empty()) return;
     image = accumulator_->resolve();
   }
-  write_image(image, path, exposure_);
+  const float exposure = is_float_format(path) ? exposure_.factor : exposure_for(image, exposure_);
+  write_image(image, path, {exposure, view_});
   std::lock_guard lock(mutex_);
   last_written_ = std::move(image);
+  last_exposure_ = exposure;
 }
 
 void FrameSink::run() {

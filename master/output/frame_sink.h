@@ -12,6 +12,7 @@
 #include <string>
 #include <thread>
 
+#include "image/exposure_check.h"
 #include "image/frame_buffer.h"
 #include "image/image.h"
 #include "render/accumulator.h"
@@ -20,8 +21,10 @@ namespace igi {
 
 class FrameSink {
  public:
-  // progressive: each frame joins a running sum and the sum is written.
-  FrameSink(int width, int height, float exposure, bool progressive);
+  // progressive: each frame joins a running sum and the sum is written; an
+  // 8-bit file shows it at `exposure` (metered from each image written, when
+  // asked) through `view`.
+  FrameSink(int width, int height, ExposureChoice exposure, ViewTransform view, bool progressive);
   ~FrameSink() { finish(); }
   // Finishes everything queued, then stops the thread (idempotent).
   void finish();
@@ -30,13 +33,15 @@ class FrameSink {
   size_t backlog() const;  // frames queued and not yet done
   // The first write error, if any (checked by the caller at the end).
   std::string error() const;
-  // The last image written (after finish(): the run's last), if any.
+  // The last image written (after finish(): the run's last), if any, and the exposure it was written at.
   std::optional<Image> last_written() const;
+  float last_exposure() const;
 
  private:
   void run();
   void consume(const FrameBuffer& pixels, const std::string& path);
-  float exposure_;
+  const ExposureChoice exposure_;
+  const ViewTransform view_;
   std::optional<Accumulator> accumulator_;  // progressive only; touched by the sink's thread alone
   mutable std::mutex mutex_;
   std::condition_variable wake_;
@@ -44,6 +49,7 @@ class FrameSink {
   size_t busy_ = 0;
   std::string error_;
   std::optional<Image> last_written_;
+  float last_exposure_ = 1.0f;
   bool stopping_ = false;
   std::thread thread_;
 };

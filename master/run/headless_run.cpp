@@ -1,5 +1,6 @@
 // Headless: frames along the camera path, written by a FrameSink, statistics by a StatsWriter.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -83,7 +84,7 @@ class HeadlessRun {
   HeadlessRun(const MasterOptions& o, const Scene& scene, MasterSession& session)
       : o_(o), scene_(scene), session_(session), replay_(o.progressive ? o.first_frame : 0),
         total_(replay_ + o.frames), first_index_(o.first_frame - replay_), gathered_(o.min_workers == 0),
-        sink_(o.render.width, o.render.height, o.render.exposure, o.progressive) {
+        sink_(o.render.width, o.render.height, o.render.exposure, o.render.view, o.progressive) {
     if (!o.stats.empty()) stats_.emplace(o.stats);
   }
 
@@ -167,12 +168,17 @@ class HeadlessRun {
                  (unsigned long long)session_.nonfinite_pixels());
   }
 
-  // An image all black, nearly black or mostly white: said, with the option that fixes it.
-  void say_if_badly_exposed() const {
+  // An image all black, nearly black or mostly white: said, with the option
+  // that fixes it; or, metered, the exposure of the last image written.
+  void say_how_exposed() const {
     const std::optional<Image> last = sink_.last_written();
     if (!last) return;
+    if (o_.render.exposure.metered && !is_float_format(o_.render.output))
+      std::fprintf(stderr, "igi-master: exposure metered: %+.2f EV (the last image written)\n",
+                   std::log2(sink_.last_exposure()));
     const bool file_lamps = !is_builtin_scene(o_.render.scene) && !scene_.lights.empty();
-    if (auto advice = exposure_advice(*last, {o_.render.exposure, !is_float_format(o_.render.output), file_lamps,
+    if (auto advice = exposure_advice(*last, {sink_.last_exposure(), o_.render.exposure.metered, o_.render.view,
+                                             !is_float_format(o_.render.output), file_lamps,
                                              o_.render.light_units == LightUnits::Photometric,
                                              !scene_.camera}))
       std::fprintf(stderr, "igi-master: %s\n", advice->c_str());
@@ -188,7 +194,7 @@ class HeadlessRun {
     workers.stop_all();
     sink_.finish();  // waits for the last images
     const std::string write_error = sink_.error();
-    if (!o_.render.quiet) say_if_badly_exposed();
+    if (!o_.render.quiet) say_how_exposed();
     if (stats_) stats_->write_final(totals);
     if (!failure.empty()) throw std::runtime_error(failure);
     if (!write_error.empty()) throw std::runtime_error(write_error);

@@ -10,10 +10,11 @@
 // camera the user has since moved (so a drag shows frames as they come),
 // carrying the accumulated image into each frame's view (view_history.h);
 // a frame of older settings is dropped. It uploads floats and lets the GPU
-// apply exposure and sRGB; the session thread only moves frames. The
+// apply the tone mapping; the session thread only moves frames. The
 // hand-over queue is short: the session adds no frame while the display has
 // frames it has not taken.
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <deque>
@@ -26,6 +27,7 @@
 #include "display/interactive_window.h"
 #include "display/window_panel.h"
 #include "view/frame_rate.h"
+#include "image/exposure_check.h"
 #include "view/motion_planner.h"
 #include "run/run_modes.h"
 #include "scene/animation.h"
@@ -132,10 +134,23 @@ std::string status_line(const Shown& shown, double accumulated, double fps, bool
   return text;
 }
 
-// Camera file, or image files, named in the panel: a failure is shown there, the window goes on.
-std::string act(const PanelActions& a, const PanelOptions& p, CameraController& controller, float speed,
-                const ViewHistory& history, float exposure, int& shots) {
+std::string metered_line(float exposure) {
+  char text[64];
+  std::snprintf(text, sizeof text, "exposure metered: %+.2f EV", std::log2(exposure));
+  return text;
+}
+
+// The exposure metered from the image shown (M, the panel's "auto"), or the
+// camera file or image files named in the panel: a failure is shown there, the window goes on.
+std::string act(const PanelActions& a, WindowPanel& panel, CameraController& controller, float speed,
+                const ViewHistory& history, int& shots) {
+  const PanelOptions& p = panel.options();
   try {
+    if (a.meter) {
+      if (history.weight() <= 0.0) return "no image to meter yet";
+      panel.settings().set_exposure(metered_exposure(history.resolve()));
+      return metered_line(panel.settings().tone().exposure);
+    }
     if (a.save_camera) {
       write_camera_file(p.bookmark, controller.camera());
       return "camera saved to " + p.bookmark;
@@ -150,7 +165,7 @@ std::string act(const PanelActions& a, const PanelOptions& p, CameraController& 
       std::snprintf(name, sizeof name, "-%04d", shots++);
       const Image image = history.resolve();
       write_image(image, p.shot_prefix + name + ".exr");
-      write_image(image, p.shot_prefix + name + ".png", exposure);
+      write_image(image, p.shot_prefix + name + ".png", panel.settings().tone());
       char frames[64];
       std::snprintf(frames, sizeof frames, " (%.1f frames accumulated)", history.weight());
       return "saved " + p.shot_prefix + name + ".exr and .png" + frames;
@@ -161,9 +176,12 @@ std::string act(const PanelActions& a, const PanelOptions& p, CameraController& 
   return {};
 }
 
-PanelOptions panel_options(const MasterOptions& o) {
+PanelOptions panel_options(const MasterOptions& o, const InteractiveWindow& window) {
   PanelOptions p;
-  p.shown = o.panel;
+  p.image_width = o.render.width;
+  p.image_height = o.render.height;
+  p.shown = o.panel && panel_opens(float(window.width()), float(window.height()), o.render.width, o.render.height,
+                                   panel_layout(o.render.width).width);
   p.help = o.help;
   p.overlay = *parse_overlay(o.overlay);  // checked with the options
   if (!o.render.camera_file.empty()) p.bookmark = o.render.camera_file;
@@ -172,14 +190,32 @@ PanelOptions panel_options(const MasterOptions& o) {
   return p;
 }
 
+// The exposure on opening (--exposure auto, the window's default): the
+// image is metered after each frame it takes until a full frame has come
+// (frames that arrive together are metered one by one, so the exposure is
+// the first full frame's, as igi-render's of the same image), said once, and
+// then holds while the view changes (M meters again).
+struct OpeningMeter {
+  bool metering;
+  bool quiet;
+  void shown(const Image& image, bool full, SettingsPanel& settings) {
+    if (!metering) return;
+    settings.set_exposure(metered_exposure(image));
+    metering = !full;
+    if (full && !quiet)
+      std::fprintf(stderr, "igi-master: %s (M meters again)\n", metered_line(settings.tone().exposure).c_str());
+  }
+};
+
 // A frame of the current settings: into the history (carried into its view),
-// the status line, the stats file and the panel.
+// the opening meter, the status line, the stats file and the panel.
 struct Shower {
   InteractiveWindow& window;
   WindowPanel& panel;
   CameraController& controller;
   ViewHistory& history;
   std::optional<StatsWriter>& stats;
+  OpeningMeter& meter;
   bool animated, camera_animated;
   int shown_frames = 0;
   FrameRate rate;
@@ -190,6 +226,7 @@ struct Shower {
     ++shown_frames;
     history.add(shown.frame.pixels->to_image(), shown.frame.surfaces, shown.frame.setup.camera, shown.weight);
     shown.frame.pixels.reset();  // back to the pool
+    if (meter.metering) meter.shown(history.resolve(), shown.planned.level == 0, panel.settings());  // 0: full
     const auto now = FrameRate::Clock::now();
     rate.shown(now);
     const double fps = rate.fps(now);
@@ -205,8 +242,12 @@ struct Shower {
 // The window's loop until it closes, is interrupted or the session stops.
 void window_loop(const MasterOptions& o, const Scene& scene, MasterSession& session, std::atomic<bool>& interrupted,
                  Handover& handover, std::optional<StatsWriter>& stats) {
-  InteractiveWindow window(o.render.width, o.render.height, "igi-master: " + o.render.scene);
-  WindowPanel panel(window.handle(), o.render.settings, o.render.exposure, panel_options(o));
+  InteractiveWindow window(o.render.width, o.render.height, panel_layout(o.render.width).width, o.panel,
+                           "igi-master: " + o.render.scene);
+  const RenderOptions& r = o.render;
+  OpeningMeter meter{!r.exposure_given || r.exposure.metered, r.quiet};
+  WindowPanel panel(window.handle(), r.settings, {meter.metering ? 1.0f : r.exposure.factor, r.view},
+                    panel_options(o, window));
   const float speed = 0.25f * scene.bounds().diagonal();
   const bool animated = scene.animation && scene.animation->animated();
   const bool camera_animated = animated && scene.camera && scene.animation->camera_node >= 0;
@@ -224,7 +265,7 @@ void window_loop(const MasterOptions& o, const Scene& scene, MasterSession& sess
   auto last_draw = std::chrono::steady_clock::now();
   bool edited = !o.test_panel_settings;  // the test hook edits once, after the first frame shown
   int shots = 0;
-  Shower shower{window, panel, controller, history, stats, animated, camera_animated, 0, {}};
+  Shower shower{window, panel, controller, history, stats, meter, animated, camera_animated, 0, {}};
   while (window.poll(controller) && !interrupted && !handover.stopped()) {
     const bool lights_moved = controller.light_offset() != light_offset;
     if (panel.settings().take_change() || lights_moved) {  // the image starts over
@@ -251,11 +292,10 @@ void window_loop(const MasterOptions& o, const Scene& scene, MasterSession& sess
     if (fresh) window.upload(history.resolve());
     if (!fresh && shower.rate.waiting(now) > 1.0) window.set_status(waiting_line(shower.rate.waiting(now)));
     if (!fresh) panel.set_waiting(shower.rate.waiting(now));
-    window.draw(panel.settings().exposure());
+    window.draw(panel.image_viewport(float(window.width()), float(window.height())), panel.settings().tone());
     const PanelActions actions = panel.draw(int(history.weight()), window.take_panel_taps());
     window.set_input_captured(panel.wants_mouse(), panel.wants_keyboard());
-    if (std::string m = act(actions, panel.options(), controller, speed, history, panel.settings().exposure(), shots);
-        !m.empty()) {
+    if (std::string m = act(actions, panel, controller, speed, history, shots); !m.empty()) {
       std::fprintf(stderr, "igi-master: %s\n", m.c_str());  // on the terminal, and on screen for a few seconds
       panel.set_message(m);
     }

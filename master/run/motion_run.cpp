@@ -8,8 +8,9 @@
 // second, as a user looks aside and back; walk: goes forward at the window's
 // W speed, a quarter of the scene's diagonal a second), in poses of 1/30 s; then it
 // stands still at the last pose for --still-seconds. Every frame shown is
-// logged in DIR/motion.jsonl (its time, pose, level, cost, and the share of
-// pixels that kept their history); the images of frames at every 10th pose
+// logged in DIR/motion.jsonl (its time, pose, level, cost, the share of
+// pixels that kept their history, and the mean luminance of the frame as
+// rendered, before the history: its flicker); the images of frames at every 10th pose
 // and of the still part go to DIR/shown-NNNN.exr after the run (writing
 // them during it would take the session's time), and each 10th pose's
 // camera to DIR/camera-POSE.json, for references.
@@ -26,6 +27,7 @@
 #include "view/camera_bookmark.h"
 #include "view/motion_planner.h"
 #include "run/run_modes.h"
+#include "sampling/warp.h"
 #include "scene/animation.h"
 #include "render/view_history.h"
 
@@ -101,14 +103,16 @@ int run_motion(const MasterOptions& o, const Scene& scene, MasterSession& sessio
       const int frame_pose = int(f.planned.camera_generation);
       if (legacy && f.planned.camera_generation != view.camera_generation) continue;  // stale: dropped
       // (Legacy frames carry no surfaces: a moved camera starts the history over.)
-      history.add(f.frame.pixels->to_image(), f.frame.surfaces, f.frame.setup.camera, f.weight);
+      Image rendered = f.frame.pixels->to_image();
+      const float mean = luminance(rendered.mean());  // the frame's own brightness: flicker between frames
+      history.add(std::move(rendered), f.frame.surfaces, f.frame.setup.camera, f.weight);
       const double now = std::chrono::duration<double>(Clock::now() - *start).count();
       char line[320];
       std::snprintf(line, sizeof line,
                     "{\"shown\": %d, \"t\": %.4f, \"pose\": %d, \"moving\": %s, \"level\": \"%s\", \"divisor\": %d, "
-                    "\"ms\": %.2f, \"weight\": %.4f, \"carried\": %.4f}\n",
+                    "\"ms\": %.2f, \"weight\": %.4f, \"carried\": %.4f, \"mean\": %.6g}\n",
                     shown, now, frame_pose, frame_pose < last_pose ? "true" : "false", level_name(f.level).c_str(),
-                    f.level.divisor, 1e3 * f.frame.record.seconds, history.weight(), history.carried());
+                    f.level.divisor, 1e3 * f.frame.record.seconds, history.weight(), history.carried(), mean);
       log << line << std::flush;
       if (frame_pose % kReferenceEvery == 0 || frame_pose == last_pose) kept.push_back({shown, history.resolve()});
       ++shown;

@@ -1,7 +1,7 @@
 #pragma once
 // Which tile job goes to which worker, and which results a frame may use:
 // pure bookkeeping, no sockets, no clock of its own (callers pass `now`), so
-// every rule is unit-tested (tests/test_scheduler.cpp).
+// every rule is unit-tested (tests/master/scheduler/test_scheduler.cpp).
 //
 // Rules:
 //  - Pull by credits: a worker holds at most `credits` jobs at once; jobs go

@@ -8,9 +8,9 @@
 #include <sys/eventfd.h>
 #include <unistd.h>
 
-#include "core/method.h"
+#include "render/frame_job.h"
 #include "protocol/codec.h"
-#include "protocol/tile_render.h"
+#include "protocol/tile_result.h"
 #include "render/scene_state.h"
 
 namespace igi {
@@ -62,7 +62,7 @@ std::vector<MasterRenderer::TileAnswer> MasterRenderer::take_tiles() {
 }
 
 // As a worker's render pool does it: the scene posed for the frame, then the
-// frame's method made and begun (render_pool.cpp), then its hash or the tile.
+// frame's job made and begun (render/frame_job.h), then its hash or the tile.
 void MasterRenderer::run(Scene scene) {
   enable_flush_to_zero();  // as on every render thread: the VPLs' floats must be the workers'
   std::unique_ptr<SceneState> state;
@@ -87,13 +87,17 @@ void MasterRenderer::run(Scene scene) {
     if (state) {
       try {
         state->set_pose(request.frame.pose);
-        std::unique_ptr<Method> method = make_method(state->context(), request.settings);
-        method->begin_frame(request.frame);
-        if (request.job_id)
-          tile.result = protocol::encode(protocol::render_tile_result(*method, state->context().accel, request.frame,
-                                                                      *request.job_id, request.tile, request.format));
-        else
-          answer.hash = method->frame_state_hash();
+        FrameJob job(state->context(), request.settings);
+        job.begin(request.frame);
+        if (request.job_id) {
+          RenderedTile t = job.render(request.tile);
+          tile.result = protocol::encode(protocol::make_tile_result(request.frame.frame_id, *request.job_id,
+                                                                    request.tile, std::move(t.pixels),
+                                                                    std::move(t.surfaces), t.rays, job.state_hash(),
+                                                                    request.format));
+        } else {
+          answer.hash = job.state_hash();
+        }
       } catch (const std::exception& e) {
         answer.error = tile.error = e.what();
       }

@@ -6,7 +6,7 @@
 //    among workers, which two fake peers that agree could win;
 //  - a tile job whose results failed validation on every worker that could
 //    take it (the scheduler's take_own_jobs()): the master renders it as a
-//    worker would (protocol/tile_render.h), so no failing worker, nor two,
+//    worker would (render/frame_job.h), so no failing worker, nor two,
 //    can keep a frame from completing.
 //
 // One thread of its own: the scene's BVH is built there (the session thread

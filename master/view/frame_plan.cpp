@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sampling/sobol.h"
+#include "core/passes.h"
 #include "scene/animation.h"
 
 namespace igi {
@@ -66,17 +66,7 @@ FrameSetup plan_frame(const RenderOptions& render, const CameraPath& camera_path
   const bool animated = scene.animation && scene.animation->animated();
   progressive = progressive && !animated;  // each frame of an animation stands at a time of its own
   f.sample_count = pt ? uint32_t(render.samples) : 1;
-  if (progressive) {
-    if (pt) {  // the pass continues the sample sequence: same seed, the next samples
-      f.sample_begin = uint32_t(i * render.samples);
-    } else {   // a new estimate: new VPLs, and the next point of one 2D sample set for the sub-pixel position
-      f.seed += uint32_t(i);
-      f.sample_begin = uint32_t(i);  // the pass: the clamp relaxes with it
-      const glm::vec2 j = sample_2d(uint32_t(i), 0, render.seed);
-      f.jitter_x = j.x;
-      f.jitter_y = j.y;
-    }
-  }
+  if (progressive) f = progressive_pass(f, render.settings.method, uint32_t(i), f.sample_count);  // core/passes.h
   f.pose.light_offset = render.light_offset;
   if (animated)
     f.pose.time = scene_time(render.time, render.time_step, uint64_t(i), render.loop, scene.animation->duration);

@@ -5,8 +5,11 @@ first frame, camera pose, level, cost), shown-NNNN.exr (the image shown, for
 frames at every 10th pose and after the stop) and camera-POSE.json. Prints a
 row per run: frames shown a second while moving, the share of moving frames
 within the budget, the longest gap between frames shown while moving, the
-median FLIP of moving frames at the reference poses, the FLIP of the first
-frame after the stop and the time after the stop to FLIP 0.05 and 0.03.
+median FLIP of moving frames at the reference poses, the flicker between
+consecutive moving frames (the median and the largest change of a frame's
+mean luminance, as rendered, against the one before, over their mean), the
+FLIP of the first frame after the stop and the time after the stop to FLIP
+0.05 and 0.03.
 Draws FLIP against time after the stop, one line per run (OUT.png), and
 writes the rows as JSON beside it (OUT.json).
 
@@ -41,6 +44,9 @@ def analyse(run, args):
     previews = [f for f in moving if f["level"] != "full"]
     within = sum(f["ms"] <= args.budget_ms for f in previews) / len(previews) if previews else 0.0
 
+    steps = [abs(b["mean"] - a["mean"]) / (0.5 * (a["mean"] + b["mean"])) for a, b in zip(moving, moving[1:])
+             if a["mean"] + b["mean"] > 0]
+
     def ref(pose):
         return os.path.join(args.refs, "%s-%d.exr" % (args.ref_prefix, pose))
 
@@ -61,6 +67,8 @@ def analyse(run, args):
         "within": within,
         "gap": max(gaps) if gaps else 0.0,
         "moving_flip": statistics.median(moving_flips) if moving_flips else float("nan"),
+        "flicker": statistics.median(steps) if steps else float("nan"),
+        "flicker_max": max(steps) if steps else float("nan"),
         "first_still": after[0][1] if after else float("nan"),
         "to05": time_to(0.05),
         "to03": time_to(0.03),
@@ -79,12 +87,12 @@ def main():
     p.add_argument("runs", nargs="+")
     args = p.parse_args()
     rows = [analyse(run, args) for run in args.runs]
-    print("%-28s %9s %8s %8s %11s %11s %9s %9s" % ("run", "fps moving", "in budget", "max gap", "FLIP moving",
-                                                    "FLIP 1st still", "to 0.05", "to 0.03"))
+    print("%-28s %9s %8s %8s %11s %13s %11s %9s %9s" % ("run", "fps moving", "in budget", "max gap", "FLIP moving",
+                                                          "flicker (max)", "FLIP 1st still", "to 0.05", "to 0.03"))
     for r in rows:
-        print("%-28s %9.1f %7.0f%% %7.0fms %11.3f %11.3f %8ss %8ss" % (
-            r["run"], r["fps"], 100 * r["within"], 1e3 * r["gap"], r["moving_flip"], r["first_still"], r["to05"],
-            r["to03"]))
+        print("%-28s %9.1f %7.0f%% %7.0fms %11.3f %5.1f%% (%4.1f%%) %11.3f %8ss %8ss" % (
+            r["run"], r["fps"], 100 * r["within"], 1e3 * r["gap"], r["moving_flip"], 100 * r["flicker"],
+            100 * r["flicker_max"], r["first_still"], r["to05"], r["to03"]))
     with open(os.path.splitext(args.chart)[0] + ".json", "w") as out:
         json.dump([{k: v for k, v in r.items() if k != "after"} for r in rows], out, indent=1)
     fig, ax = plt.subplots(figsize=(6, 4))

@@ -2,7 +2,8 @@
 // given size (default 1920x1080): median wall and process-CPU milliseconds of
 //   accumulate  add the frame to the sum and resolve the mean (both versions)
 //   to_srgb8 + drawpixels   before: sRGB on the CPU, 8-bit pixels drawn
-//   upload + shader         after: floats uploaded, exposure and sRGB in a fragment shader
+//   upload + shader         after: floats uploaded, exposure and the view transform (its table) in a
+//                           fragment shader, for each view; table: building a view's table (CPU)
 //   build       the ImGui panel's lists (CPU): settings, cluster table of 8 workers, graph
 //   panel, +overlay   build and draw, without and with the tile overlay (tint)
 //   handover    the session thread's share: a completed frame's record (with its
@@ -84,14 +85,15 @@ int main(int argc, char** argv) {
   const igi::Image pass = test_frame(width, height, 0);
   igi::Accumulator accumulator(width, height);
 
-  Figures accumulate, srgb_cpu, draw_pixels, upload, shader, build, render_plain, render_overlay, handover;
+  Figures accumulate, srgb_cpu, draw_pixels, upload, build, render_plain, render_overlay, handover, table;
+  Figures shaders[igi::kViewTransforms.size()];
   igi::Image resolved;
   time_frames(accumulate, frames, [&](int) {
     accumulator.add(pass, 1.0);
     resolved = accumulator.resolve();
   });
   std::vector<unsigned char> bytes;
-  time_frames(srgb_cpu, frames, [&](int) { bytes = igi::to_srgb8(resolved, 1.0f); });
+  time_frames(srgb_cpu, frames, [&](int) { bytes = igi::to_srgb8(resolved); });
   time_frames(draw_pixels, frames, [&](int) {
     igi::draw_srgb8(bytes, width, height);
     glFinish();
@@ -102,13 +104,19 @@ int main(int argc, char** argv) {
       view.upload(resolved);
       glFinish();
     });
-    time_frames(shader, frames, [&](int) {
-      view.draw(width, height, 1.0f);
-      glFinish();
-    });
+    const igi::Viewport whole{0.0f, 0.0f, float(width), float(height), 1.0f};
+    for (size_t v = 0; v < igi::kViewTransforms.size(); ++v) {
+      const igi::ToneMapping tone{1.0f, igi::kViewTransforms[v]};
+      time_frames(table, 3, [&](int) { (void)igi::view_table(tone.view); });
+      view.draw(width, height, whole, tone);  // builds and uploads the view's table
+      time_frames(shaders[v], frames, [&](int) {
+        view.draw(width, height, whole, tone);
+        glFinish();
+      });
+    }
   }
 
-  igi::WindowPanel panel(window, igi::RenderSettings{}, 1.0f, igi::PanelOptions{true, igi::OverlayMode::Off});
+  igi::WindowPanel panel(window, igi::RenderSettings{}, igi::ToneMapping{}, igi::PanelOptions{});  // shown, no overlay
   igi::FrameRecord record;
   record.seconds = 0.05;
   std::vector<igi::PeerView> peers;
@@ -147,8 +155,11 @@ int main(int argc, char** argv) {
   srgb_cpu.print("to_srgb8");
   draw_pixels.print("drawpixels");
   upload.print("upload");
-  shader.print("shader");
+  for (size_t v = 0; v < igi::kViewTransforms.size(); ++v)
+    shaders[v].print((std::string("shader ") + igi::view_name(igi::kViewTransforms[v])).c_str());
   std::printf("  before = accumulate + to_srgb8 + drawpixels; after = accumulate + upload + shader\n");
+  std::printf("on a change of view (CPU):\n");
+  table.print("table");
   std::printf("panel (every redraw):\n");
   build.print("build");
   render_plain.print("panel");

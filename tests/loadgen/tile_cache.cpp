@@ -3,7 +3,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "core/method.h"
+#include "render/frame_job.h"
 #include "protocol/codec.h"
 #include "protocol/pixels.h"
 #include "sampling/content_hash.h"
@@ -128,7 +128,9 @@ uint64_t TileCache::frame_hash(const FrameSetup& frame, const RenderSettings& se
   if (auto it = hashes_.find(key); it != hashes_.end()) return it->second;
   if (!scene_) scene_ = std::make_unique<SceneState>(load_scene("cornell"));
   scene_->set_pose(frame.pose);
-  const uint64_t hash = expected_frame_state_hash(scene_->context(), frame, settings);
+  FrameJob job(scene_->context(), settings);  // as a worker makes and begins its frames (render/frame_job.h)
+  job.begin(frame);
+  const uint64_t hash = job.state_hash();
   if (hashes_.size() >= 256) hashes_.erase(hashes_.begin());
   hashes_[key] = hash;
   return hash;

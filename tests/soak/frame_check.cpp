@@ -54,7 +54,8 @@ static void write_mismatch(const std::string& dir, int frame, const Image& image
   write_image(image, (out / (std::string(stem) + ".exr")).string());
   write_image(reference, (out / (std::string(stem) + "-reference.exr")).string());
   if (image.width == reference.width && image.height == reference.height)
-    write_image(abs_difference(image, reference), (out / (std::string(stem) + "-diff.png")).string(), 10.0f);
+    write_image(abs_difference(image, reference), (out / (std::string(stem) + "-diff.png")).string(),
+                ToneMapping{10.0f});
 }
 
 // Empty when identical; otherwise what differs first.

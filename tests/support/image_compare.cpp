@@ -26,7 +26,7 @@ void write_failure_images(const std::string& name, const Image& image, const Ima
   write_image(reference, output_path(name + "-reference.exr"));
   write_image(reference, output_path(name + "-reference.png"));
   if (image.width == reference.width && image.height == reference.height)
-    write_image(abs_difference(image, reference), output_path(name + "-diff.png"), 10.0f);
+    write_image(abs_difference(image, reference), output_path(name + "-diff.png"), ToneMapping{10.0f});
 }
 
 ::testing::AssertionResult images_identical(const std::string& name, const Image& image, const Image& reference) {

@@ -2,7 +2,7 @@
 # Drags the mouse in igi-master's window as a user does, under Xvfb, and
 # prints the window's title (its status line) before, during and after the
 # drag: one line each, "before: ...", "drag-1: ..." ... "after: ...".
-# Run by tests/test_window.cpp (Window.ADragShowsPreviewFramesAndTheStopFullOnes).
+# Run by tests/master/display/test_window.cpp (Window.ADragShowsPreviewFramesAndTheStopFullOnes).
 #   drag_test.sh SLOWDOWN IGI_MASTER [EXTRA OPTIONS...]     (inside xvfb-run)
 # SLOWDOWN stretches every wait (5 under the sanitizers, tests/support/sanitizers.h).
 set -euo pipefail

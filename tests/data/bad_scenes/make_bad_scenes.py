@@ -3,7 +3,7 @@
 the files are checked in, this documents how each was made).
 
 Each is a small emissive quad with exactly one thing broken. MANIFEST lists
-"file<TAB>substring the error message must contain"; tests/test_bad_scenes.cpp
+"file<TAB>substring the error message must contain"; tests/common/scene/test_bad_scenes.cpp
 runs igi-render on each and checks the exit status and the message."""
 import base64, copy, json, os, struct
 
@@ -78,7 +78,7 @@ write("wrong-version.glb", glb(base, data, version=1), "version 1, expected 2")
 write("invalid-json.gltf", json.dumps(base)[:-40] + "]]", "parse error")
 gltf("missing-bin.gltf", document(data, uri="missing-bin.bin"), "missing-bin.bin")
 # A URI out of the scene's folder is refused even though the file exists.
-gltf("outside-folder.gltf", document(data, uri="../../test_bad_scenes.cpp"), "outside the scene's folder")
+gltf("outside-folder.gltf", document(data, uri="../../CMakeLists.txt"), "outside the scene's folder")
 
 # Accessors and buffers.
 doc = copy.deepcopy(base)

@@ -1,7 +1,8 @@
 // Trust that a slow worker, two colluding keys or a flood of results cannot
 // break (issue 64), on plain inputs: the scheduler and its referee
 // (master/trust/referee.h) without sockets or clocks, and the header a result
-// is looked up by. The same cases with real processes: Scale.* (test_scale.cpp).
+// is looked up by. The same cases with real processes: tests/system/test_scale.cpp
+// and test_security.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -367,10 +367,55 @@ TEST(FilterHandover, TheFirstPassesAreFilteredInFullAndTheBlurVanishesAfter) {
   EXPECT_NEAR(mean_weight(1024 * k_full) * std::sqrt(1024.0), 2.0, 0.1) << "~ 2 sqrt(K / n)";
 }
 
+// One interleaved set's lattice (every 4th pixel each way, 4 x 4 sets), its
+// values a ramp in x: one box of the window holds one lattice pixel, so it
+// repeats each over a 4 x 4 square (steps of 4 x the ramp's slope every 4
+// pixels: the blocks a first pass showed); the tent, the box twice, rebuilds
+// the ramp linearly (a step of the slope at every pixel) and keeps its mean.
+// Its second pass reads the first's over twice the window's reach: tiles cut
+// as the renderer cuts them agree bit for bit.
+TEST(DiscontinuityBuffer, TheTentRebuildsOneSetsLatticeLinearly) {
+  constexpr int kSets = 4;
+  constexpr float kSlope = 0.01f;
+  const Scene lattice = [](int x, int y) {
+    const bool on = x % kSets == 0 && y % kSets == 0;
+    return Sample{5.0f, kUp, glm::vec3(on ? float(kSets * kSets) * (0.5f + kSlope * float(x)) : 0.0f)};
+  };
+  FilterSettings fs;
+  fs.window = kSets;
+  const FilterInput in = cut(lattice, 0, 0, 48, 40);
+  const Rect inner{8, 8, 32, 24};
+  std::vector<glm::vec3> box(size_t(inner.w) * inner.h), tent(box.size());
+  filter_discontinuity(in, fs, inner, box);
+  filter_tent(in, fs, inner, tent);
+  float box_step = 0.0f, tent_error = 0.0f;
+  for (int y = 0; y < inner.h; ++y)
+    for (int x = 1; x < inner.w; ++x) {
+      const size_t i = size_t(y) * inner.w + x;
+      box_step = std::max(box_step, box[i].x - box[i - 1].x);
+      tent_error = std::max(tent_error, std::abs(tent[i].x - tent[i - 1].x - kSlope));
+      EXPECT_FLOAT_EQ(tent[i].x, tent[size_t(x)].x) << "row " << y;  // flat in y
+    }
+  EXPECT_NEAR(box_step, kSets * kSlope, 1e-4f);
+  EXPECT_LT(tent_error, 1e-4f);
+  // Tiles with the renderer's border (two reaches) give the whole's pixels.
+  const int border = 2 * (kSets / 2);
+  for (const Tile t : {Tile{8, 8, 5, 7}, Tile{13, 8, 27, 24}, Tile{8, 15, 32, 17}}) {
+    const FilterInput region = cut(lattice, t.x - border, t.y - border, t.w + 2 * border, t.h + 2 * border);
+    std::vector<glm::vec3> part(size_t(t.w) * t.h);
+    filter_tent(region, fs, Rect{t.x, t.y, t.w, t.h}, part);
+    for (int y = 0; y < t.h; ++y)
+      for (int x = 0; x < t.w; ++x) {
+        const size_t whole = size_t(t.y - inner.y + y) * inner.w + size_t(t.x - inner.x + x);
+        ASSERT_EQ(0, std::memcmp(&part[size_t(y) * t.w + x], &tent[whole], sizeof(glm::vec3)));
+      }
+  }
+}
+
 // The hand-over on a plane with a depth step, noisy values and one spike:
-// w F(u - h) + (1 - w)(u - h) + F(h), checked against the filter called on
-// the parts; no spikes gives the plain blend; weight 1 is the filter bit for
-// bit; the spike's excess is spread, not dropped; tiles agree bit for bit.
+// w F(u - h) + (1 - w)(u - h) + F(h), F the tent, checked against the tent
+// called on the parts; no spikes gives the plain blend; weight 1 is the tent
+// bit for bit; the spike's excess is spread, not dropped; tiles agree bit for bit.
 TEST(FilterHandover, BlendsTheLowerPartAndKeepsTheSpikesFiltered) {
   const int kSpikeX = 13, kSpikeY = 17;
   const Scene scene = [&](int x, int y) {
@@ -390,13 +435,13 @@ TEST(FilterHandover, BlendsTheLowerPartAndKeepsTheSpikesFiltered) {
   };
   auto filtered = [&](const FilterInput& input) {
     std::vector<glm::vec3> out(n);
-    filter_discontinuity(input, fs, inner, out);
+    filter_tent(input, fs, inner, out);
     return out;
   };
   auto at = [&](const FilterInput& input, size_t i) {
     return input.value[size_t(inner.y + int(i) / inner.w) * input.width + size_t(inner.x + int(i) % inner.w)];
   };
-  // Weight 1: the filter itself.
+  // Weight 1: the tent itself.
   const std::vector<glm::vec3> full = filtered(in), one = run(in, 1.0f, 2.0f);
   EXPECT_EQ(0, std::memcmp(full.data(), one.data(), n * sizeof(glm::vec3)));
   // A level above every value: the plain blend.
@@ -424,7 +469,7 @@ TEST(FilterHandover, BlendsTheLowerPartAndKeepsTheSpikesFiltered) {
   EXPECT_NEAR(out_sum, in_sum, 0.01 * in_sum) << "spread, not dropped";
   EXPECT_EQ(in.value[size_t(kSpikeY) * in.width + kSpikeX].x, 40.0f) << "the input is left as it was";
   // Tiles: the same pixels from a region cut elsewhere.
-  const FilterInput other = cut(scene, 5, 8, 30, 20);
+  const FilterInput other = cut(scene, 2, 5, 36, 26);  // the tent's border: two reaches of the window
   const Rect part{8, 11, 24, 14};
   std::vector<glm::vec3> tile(size_t(part.w) * part.h);
   filter_handed_over(other, fs, part, 0.25f, 2.0f, tile);

@@ -14,6 +14,13 @@ Roll proven(std::initializer_list<const char*> workers, bool all_answered = fals
   return roll;
 }
 
+// A decision was made, for `reference`, and `losers` lost.
+void expect_decision(const std::optional<Decision>& d, uint64_t reference, const std::vector<WorkerId>& losers) {
+  ASSERT_TRUE(d);
+  EXPECT_EQ(d->reference, reference);
+  EXPECT_EQ(d->losers, losers);
+}
+
 TEST(Referee, TheCallersHashDecidesOnceAWorkerAgreesAndTheOthersLose) {
   Referee r(true);
   r.open(0);
@@ -71,10 +78,8 @@ TEST(Referee, ALoneDissenterAgainstTheCallerIsADoubtNotAVerdict) {
   r.set_reference(0, 7);
   r.vote(0, 1, "a", 9, true);
   std::optional<Decision> d = r.try_decide(0, proven({"a"}));
-  ASSERT_TRUE(d);
-  EXPECT_EQ(d->reference, 7u);
+  expect_decision(d, 7u, {});  // no one is quarantined on one voice
   EXPECT_TRUE(d->doubt);
-  EXPECT_TRUE(d->losers.empty()) << "no one is quarantined on one voice";
   EXPECT_EQ(d->held, (std::vector<std::pair<uint64_t, bool>>{{1, false}}));
   EXPECT_TRUE(r.take_disputes().empty());
   const std::vector<HashDoubt> doubts = r.take_doubts();
@@ -95,10 +100,7 @@ TEST(Referee, AVoteNeedsTwoAndAStrictMajorityOfThePossibleVoters) {
   r.vote(0, 3, "c", 6, true);
   EXPECT_FALSE(r.try_decide(0, four));
   r.vote(0, 4, "d", 5, true);
-  std::optional<Decision> d = r.try_decide(0, four);
-  ASSERT_TRUE(d);
-  EXPECT_EQ(d->reference, 5u);
-  EXPECT_EQ(d->losers, std::vector<WorkerId>{"c"});
+  expect_decision(r.try_decide(0, four), 5u, {"c"});
 }
 
 TEST(Referee, VotersThatLeftStillCountAmongThePossibleOnes) {

@@ -71,7 +71,7 @@ TEST(WindowPanel, EveryWidgetsRangeIsTheRangeTheSettingsCheckAccepts) {
 
 TEST(WindowPanel, CommitSendsValidChangesOnceAndHoldsBackSetsThatDoNotFit) {
   RenderSettings start;
-  SettingsPanel panel(start, 1.0f);
+  SettingsPanel panel(start, ToneMapping{});
   EXPECT_FALSE(panel.commit(start)) << "no change";
   EXPECT_FALSE(panel.take_change());
   RenderSettings pt_caustics = start;
@@ -110,12 +110,26 @@ TEST(WindowPanel, PickingAMethodDropsWhatItRefuses) {
     EXPECT_EQ(picked.method, m);
     EXPECT_EQ(picked.bidir_vpls, kBidirAuto) << "back to the default, which " << method_name(m) << " ignores";
     EXPECT_FALSE(panel_settings_error(picked)) << *panel_settings_error(picked);
-    SettingsPanel panel(glass, 1.0f);
+    SettingsPanel panel(glass, ToneMapping{});
     EXPECT_TRUE(panel.commit(picked)) << method_name(m);
   }
   const RenderSettings ir = with_method(glass, MethodKind::InstantRadiosity);
   EXPECT_TRUE(ir.caustics);
   EXPECT_EQ(ir.bidir_vpls, 8);
+}
+
+// The window's V and the panel's combo go through the views in order, back to the first; the exposure is the
+// meter's when it says so. Neither is sent: the settings stay as they were.
+TEST(WindowPanel, TheViewsCycleAndTheExposureIsTheDisplaysOwn) {
+  SettingsPanel panel(RenderSettings{}, ToneMapping{2.0f, ViewTransform::Standard});
+  for (ViewTransform want : {ViewTransform::Neutral, ViewTransform::Agx, ViewTransform::Standard}) {
+    panel.next_view();
+    EXPECT_EQ(panel.tone().view, want);
+  }
+  panel.set_exposure(8.0f);
+  EXPECT_EQ(panel.tone().exposure, 8.0f);
+  EXPECT_FALSE(panel.take_change()) << "the display's own: nothing to send";
+  EXPECT_FALSE(panel.take_meter_request());
 }
 
 // The widgets themselves, in an ImGui context with no window: every method's page draws.
@@ -134,7 +148,7 @@ TEST(WindowPanel, EveryMethodsPageDrawsHeadless) {
     s.path_depth = 500;
     s.paths_per_set = 1 << 18;
     ASSERT_FALSE(check_settings(s));
-    SettingsPanel panel(s, 2.0f);
+    SettingsPanel panel(s, ToneMapping{2.0f});
     for (int frame = 0; frame < 2; ++frame) {  // ImGui sizes a new window in its first frame and draws it in the second
       ImGui::NewFrame();
       ImGui::Begin("panel");
@@ -170,9 +184,8 @@ TEST(WindowPanel, WorkerLoadIsTilesPerSecondAndTheShareOfItsThreadsBusy) {
   EXPECT_EQ(worker_load(PeerView{"worker-4", 4, 4, 0.0, 0.0}, f).tiles_per_second, 0.0) << "no tiles in this frame";
 }
 
-// A third of the window at most, and from 640 pixels up every column of the
-// cluster table inside it, in the font size the layout picks. At 320x240 it
-// opens folded to its title bar (opened, the table's right columns are cut).
+// A third of the image's width, 220 to 420 pixels, and every column of the
+// cluster table inside it, in the font size the layout picks.
 TEST(WindowPanel, TheClusterTableFitsThePanelAtEverySize) {
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
@@ -191,9 +204,8 @@ TEST(WindowPanel, TheClusterTableFitsThePanelAtEverySize) {
   for (const glm::vec2 size : {glm::vec2(640, 480), glm::vec2(680, 510), glm::vec2(720, 540), glm::vec2(800, 600),
                                glm::vec2(1024, 768), glm::vec2(1920, 1080), glm::vec2(320, 240)}) {
     io.DisplaySize = ImVec2(size.x, size.y);
-    const PanelLayout layout = panel_layout(size.x);
-    EXPECT_LE(layout.width, size.x / 3.0f);
-    EXPECT_EQ(layout.start_folded, size.x < 480.0f);
+    const PanelLayout layout = panel_layout(int(size.x));
+    EXPECT_EQ(layout.width, std::clamp(size.x / 3.0f, 220.0f, 420.0f));
     const PanelFont font = panel_font(layout.font_pixels);
     // The table's needs in a window of any width, and the room the panel gives it.
     auto measure = [&](const char* name, float width, float& room) {  // the table's need; the window's room
@@ -218,9 +230,43 @@ TEST(WindowPanel, TheClusterTableFitsThePanelAtEverySize) {
     std::printf("%.0fx%.0f: panel %.0f px, %.0f-pixel text, table %.1f of %.1f px\n", size.x, size.y, layout.width,
                 layout.font_pixels, table, room);
     EXPECT_GT(table, 0.0f);
-    if (size.x >= 640.0f) EXPECT_LE(table, room) << size.x << "x" << size.y << ": the table's last columns are cut off";
+    EXPECT_LE(table, room) << size.x << "x" << size.y << ": the table's last columns are cut off";
   }
   ImGui::DestroyContext();
+}
+
+// The image beside the panel, never under it: whole, its aspect kept, at its
+// own size where the window has room (the window is widened by the panel's
+// column where the screen allows), smaller where it has not.
+TEST(WindowPanel, TheImageShowsWholeBesideThePanel) {
+  const float panel = panel_layout(640).width;
+  EXPECT_EQ(panel, 220.0f);
+  EXPECT_EQ(window_width(640, panel, true, 1920), 860) << "room on the screen: wider by the panel";
+  EXPECT_EQ(window_width(640, panel, true, 640), 640) << "no room: the image's width";
+  EXPECT_EQ(window_width(640, panel, false, 1920), 640) << "--panel off";
+  const Viewport wide = image_viewport(860, 480, 640, 480, panel);
+  EXPECT_EQ(wide.x, 220.0f);
+  EXPECT_EQ(wide.y, 0.0f);
+  EXPECT_EQ(wide.width, 640.0f);
+  EXPECT_EQ(wide.height, 480.0f);
+  EXPECT_EQ(wide.scale, 1.0f);
+  const Viewport narrow = image_viewport(640, 480, 640, 480, panel);  // 420 pixels beside the panel
+  EXPECT_GE(narrow.x, panel);
+  EXPECT_LE(narrow.x + narrow.width, 640.0f);
+  EXPECT_NEAR(narrow.width / narrow.height, 640.0f / 480.0f, 0.01f) << "the aspect kept";
+  EXPECT_EQ(narrow.width, 420.0f);
+  const Viewport hidden = image_viewport(860, 480, 640, 480, 0.0f);  // Tab: centred at its own size
+  EXPECT_EQ(hidden.x, 110.0f);
+  EXPECT_EQ(hidden.width, 640.0f);
+  const float big = panel_layout(1920).width;
+  EXPECT_EQ(big, 420.0f);
+  const Viewport hd = image_viewport(float(window_width(1920, big, true, 1920)), 1080, 1920, 1080, big);
+  EXPECT_EQ(hd.x, 420.0f);
+  EXPECT_EQ(hd.width, 1500.0f);
+  EXPECT_NEAR(hd.height, 1500.0f * 1080.0f / 1920.0f, 0.5f);
+  EXPECT_TRUE(panel_opens(640, 480, 640, 480, panel));
+  EXPECT_TRUE(panel_opens(380, 120, 160, 120, panel)) << "a small image in a window widened for the panel";
+  EXPECT_FALSE(panel_opens(160, 120, 160, 120, panel)) << "no room beside a small image";
 }
 
 TEST(CameraBookmark, RoundTripsAndNamesTheBadField) {

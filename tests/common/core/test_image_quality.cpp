@@ -255,7 +255,7 @@ int count_specks(const Image& image, const std::vector<bool>& judged) {
 }
 
 // A VPL seen in a sharp lobe is a highlight of its own, and more VPLs give
-// more of them. Gathered, what is left is the reflection of the walls' own
+// more (each dimmer). Gathered, what is left is the reflection of the walls' own
 // blotches (VPLs close to a crease, where even the clamped 1/r^2 is large)
 // seen at grazing angles, which the VPL budget sets, not the floor. Pooled
 // over three seeds.
@@ -284,7 +284,11 @@ TEST(Glossy, SharpFloorShowsNoVplSpecks) {
   std::printf("[glossy] speck pixels on %d floor pixels away from the light's reflection (3 seeds): VPLs %d (M=64: %d), "
               "gathered %d\n", floor, vpls, more_vpls, gathered);
   EXPECT_GT(vpls, 30) << "VPLs in a sharp lobe must show as specks, or this test proves nothing";
-  EXPECT_GT(more_vpls, vpls / 2) << "more VPLs do not remove them";
+  // Four times the VPLs left about as many specks under the box filter (57
+  // and 68); the tent (filter_tent) spreads each over 11 x 11 pixels, so at
+  // M = 64 most fall under the 5x-the-median mark (36 -> 11): what remains
+  // is gathering's gain at equal VPLs, which the tent does not change.
+  EXPECT_LT(more_vpls, vpls) << "more VPLs, each a dimmer speck, under the tent";
   EXPECT_LE(2 * gathered, vpls);
 }
 

@@ -74,11 +74,43 @@ void expect_workers_match_one_process(const std::string& name, const std::string
   EXPECT_TRUE(test::images_identical(name, read_image(out), p.render(s, kWidth, kHeight, 1, 1)));
 }
 
+// The red channel's mean as a PNG at exposure 1 shows it (clipped at white).
+float tonemapped_mean(const Image& image) {
+  double sum = 0.0;
+  for (const glm::vec3& p : image.pixels) sum += std::min(p.x, 1.0f);
+  return float(sum / double(image.pixels.size()));
+}
+
 TEST(Distributed, TwoWorkersMatchTheSingleProcessRenderBitForBit) {
   const std::string out = test::output_path("dist-two.exr");
   auto r = test::run(master("--workers 2 --frames 1 -o " + out));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(test::images_identical("dist-two", read_image(out), single_process()));
+}
+
+// --exposure auto meters the final image, never a tile: one process with
+// tiles of 16 or 64 pixels and a master of two workers (floats on the wire)
+// write the same PNG, byte for byte, at the same exposure.
+TEST(Distributed, AutoExposureIsTheSameWholeTiledAndDistributed) {
+  const std::string render = std::string(IGI_RENDER_BINARY) + " --scene cornell --method igi --vpl-paths 8 --size " +
+                             std::to_string(kWidth) + "x" + std::to_string(kHeight) + " --exposure auto";
+  const std::string tiled = test::output_path("auto-tiled.png"), whole = test::output_path("auto-whole.png"),
+                    distributed = test::output_path("auto-distributed.png");
+  const test::RunResult a = test::run(render + " --tile 16 -o " + tiled + " 2>&1");
+  const test::RunResult b = test::run(render + " --tile 160 --threads 1 -o " + whole + " 2>&1");
+  const test::RunResult c = test::run(master("--workers 2 --frames 1 --pixels float --exposure auto -o " + distributed));
+  ASSERT_EQ(a.exit_code + b.exit_code + c.exit_code, 0) << a.output << b.output << c.output;
+  auto said = [](const std::string& output) {  // "exposure metered: +1.78 EV (x 3.437)"
+    const size_t at = output.find("exposure metered: ");
+    return at == std::string::npos ? std::string() : output.substr(at, output.find('\n', at) - at);
+  };
+  ASSERT_FALSE(said(a.output).empty()) << a.output;
+  EXPECT_EQ(said(a.output), said(b.output));
+  EXPECT_EQ(said(c.output).substr(0, 27), said(a.output).substr(0, 27)) << c.output;  // "... +1.78 EV"
+  const Image first = read_image(tiled);
+  EXPECT_TRUE(test::images_identical("auto-whole", read_image(whole), first));
+  EXPECT_TRUE(test::images_identical("auto-distributed", read_image(distributed), first));
+  EXPECT_GT(first.mean().x, 1.5f * tonemapped_mean(single_process())) << "metered, not at exposure 1";
 }
 
 // Anti-aliasing by VPL groups, the glossy gather and its light samples
@@ -111,6 +143,13 @@ TEST(Distributed, AntialiasingGlossyGatherAndExactLightsMatchOneProcess) {
 TEST(Distributed, CausticsTheSceneChoseMatchOneProcess) {
   expect_workers_match_one_process("dist-caustics-default", "", "glass",
                                    [](RenderSettings& s) { s.caustics = true; });
+}
+
+// The sun's light paths start where pilots found they reach the view
+// (importance/view_guide.h): every worker builds the same guide from the
+// frame setup, and the master's judge too.
+TEST(Distributed, LightPathsThatFindTheViewMatchOneProcess) {
+  expect_workers_match_one_process("dist-light-guide", "", "sunroom", [](RenderSettings& s) { s.light_guide = true; });
 }
 
 // No --bidir option: in the corridor the view probe turns bidirectional IR

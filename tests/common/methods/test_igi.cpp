@@ -86,6 +86,7 @@ std::vector<TileCase> tile_cases() {
           {"igi_bidir_by_view", "corridor", bidir_by_view},
           {"ir_importance_bidir", "rooms-3", ir_both},
           {"igi_aa_sky", "courtyard", all},
+          {"igi_aa_sun_guided", "sunroom", all},  // light paths that find the view: the guide is the frame's
           {"lightcuts_sky", "courtyard", vpl_settings(MethodKind::Lightcuts, 4, 0.05f)},
           {"igi_draws_aa_glossy_compensation", "glossy", draws},
           {"igi_aa_ggx_floor_compensation", "glossy-medium", all},  // compensation drawn from a GGX lobe, two levels

@@ -52,7 +52,7 @@ TEST(LightUnits, AnExportedSceneRendersAsTheOriginalAndRadiometricIs683TimesBrig
   const test::RunResult png = test::run(render("--scene " + gltf + " --light-units radiometric -o " +
                                                (dir / "watts.png").string()));
   ASSERT_EQ(png.exit_code, 0) << png.output;
-  for (const char* said : {"mostly white", "--exposure ", "--light-units photometric"})
+  for (const char* said : {"mostly white", "--ev ", "--light-units photometric"})
     EXPECT_NE(png.output.find(said), std::string::npos) << said << " missing in: " << png.output;
 }
 
@@ -106,7 +106,7 @@ TEST(ExposureAdvice, AWhiteImageGetsTheExposureThatShowsIt) {
   EXPECT_NEAR(f.suggested_exposure, 0.9f / 50.0f, 1e-6f);
   const std::optional<std::string> said = exposure_advice(image, {.file_lamps = true, .photometric = false});
   ASSERT_TRUE(said);
-  EXPECT_NE(said->find("--exposure 0.018"), std::string::npos) << *said;
+  EXPECT_NE(said->find("--ev -5.8 (or --exposure auto)"), std::string::npos) << *said;  // 0.018 = 2^-5.8
   EXPECT_NE(said->find("--light-units photometric"), std::string::npos) << *said;
   EXPECT_FALSE(exposure_advice(image, {.clips = false})) << "an EXR keeps every value";
   EXPECT_FALSE(exposure_advice(image, {.exposure = 0.018f})) << "the suggestion, taken, is not said again";
@@ -120,9 +120,22 @@ TEST(ExposureAdvice, ANearlyBlackImageGetsTheExposureAndAnExposedOneNothing) {
   const std::optional<std::string> said = exposure_advice(dim, {.file_lamps = true});
   ASSERT_TRUE(said);
   EXPECT_NE(said->find("nearly black"), std::string::npos) << *said;
-  EXPECT_NE(said->find("--exposure 900"), std::string::npos) << *said;
+  EXPECT_NE(said->find("--ev 9.8"), std::string::npos) << *said;  // 900 = 2^9.8
   EXPECT_NE(said->find("--light-units radiometric"), std::string::npos) << *said;
   EXPECT_FALSE(exposure_advice(uniform(glm::vec3(0.4f)), {}));
+  EXPECT_FALSE(exposure_advice(dim, {.exposure = 180.0f, .metered = true})) << "--exposure auto chose it";
+  EXPECT_TRUE(exposure_advice(uniform(glm::vec3(0.0f)), {.metered = true})) << "black, whatever the exposure";
+}
+
+// Under a view that rolls highlights off, an image is white only where it
+// shows white: 4 x white clips flat in the standard view, not in agx's.
+TEST(ExposureAdvice, WhiteIsWhatTheViewShowsWhite) {
+  const Image bright = uniform(glm::vec3(4.0f));
+  EXPECT_EQ(exposure_figures(bright, 1.0f, ViewTransform::Standard).clipped, 1.0f);
+  EXPECT_EQ(exposure_figures(bright, 1.0f, ViewTransform::Agx).clipped, 0.0f);
+  EXPECT_EQ(exposure_figures(bright, 64.0f, ViewTransform::Agx).clipped, 1.0f);
+  EXPECT_FALSE(exposure_advice(bright, {.view = ViewTransform::Agx}));
+  EXPECT_TRUE(exposure_advice(bright, {.view = ViewTransform::Standard}));
 }
 
 }  // namespace

@@ -1,0 +1,26 @@
+#pragma once
+// How a frame is cut into tile jobs, for every renderer alike: the master's
+// frames, igi-render's, the tests'. A tile's pixels do not depend on the cut
+// (tiles read `border` extra pixels where a method's filter needs them), so
+// whole, tiled and distributed renders are equal bit for bit.
+#include <vector>
+
+#include "core/frame.h"
+#include "core/settings.h"
+
+namespace igi {
+
+// Extra pixels around a tile that the method needs to read: the
+// discontinuity buffer's two passes of its window (filter/discontinuity_buffer.h,
+// filter_tent), and around it the wavelet filter's footprint.
+inline int tile_border(const RenderSettings& s) {
+  const bool vpl = s.method == MethodKind::Igi || s.method == MethodKind::InstantRadiosity;
+  return (s.method == MethodKind::Igi && s.filter ? 2 * (s.interleave / 2) : 0) +
+         (vpl ? wavelet_footprint(s.wavelet_levels) : 0);
+}
+
+// Tiles of at most tile_w x tile_h covering the image, each with `border`,
+// ordered in a spiral from the centre so the image fills in evenly.
+std::vector<TileJob> make_tiles(int width, int height, int tile_w, int tile_h, int border);
+
+}  // namespace igi
