@@ -107,6 +107,7 @@ class MasterSession {
   uint64_t nonfinite_pixels() const { return nonfinite_pixels_; }
   uint64_t own_tiles() const { return own_tiles_; }  // jobs the master rendered itself (no worker's result passed)
   uint64_t benched() const { return scheduler_.stats().benched; }  // hoarders given no jobs until they answer
+  uint64_t doubted() const { return scheduler_.stats().doubted; }  // frames decided in doubt
   // The master's VPL sets lost to its authenticated workers', which agreed: votes decide from then on.
   bool follows_workers() const { return own_ && own_->follows_workers(); }
   // The master's own VPL-set hashes: frames computed and the time its thread spent on them.

@@ -391,6 +391,7 @@ TEST(Security, AMasterWithAnotherMathsLibraryAndAnonymousWorkersRendersItselfSay
   const nlohmann::json s = test::read_stats(stats);
   EXPECT_EQ(s["outcome"], "done");
   EXPECT_EQ(s["own_tiles"].get<int>(), 3 * 12) << "every tile of the three frames: 64 x 48 in tiles of 16";
+  EXPECT_EQ(s["doubted"].get<int>(), 3);
   EXPECT_FALSE(s["master_follows_workers"].get<bool>());
 }
 

@@ -53,6 +53,18 @@ void answer_all(Scheduler& s, uint64_t hash, TimePoint when) {
 
 std::set<WorkerId> sorted(std::vector<WorkerId> ids) { return {ids.begin(), ids.end()}; }
 
+// Workers c1 and c2 (their keys as given; empty: anonymous) join at once and
+// answer every job of frame 0 with a made-up hash by 10 ms.
+Scheduler two_against_the_caller(const std::string& key1, const std::string& key2) {
+  Scheduler s = judging();
+  s.add_worker("c1", 0, key1, at(0));
+  s.add_worker("c2", 0, key2, at(0));
+  s.add_frame(0, tiles(4));
+  s.set_reference(0, kCallers);
+  answer_all(s, kMadeUp, at(10));
+  return s;
+}
+
 // Case 1: the master's maths library differs from its workers'. One worker
 // answers the whole frame alone; it is neither quarantined nor believed
 // while another may still join. One that starts 1.4 s late (within the
@@ -126,12 +138,7 @@ TEST(Trust, ALoneDissenterThatNoOneJoinsIsADoubtAndTheMasterRendersTheFrame) {
 // returned anything (it joined 0.5 s later). They are not "all the workers":
 // the honest one is asked, agrees with the master, and the colluders lose.
 TEST(Trust, TwoColludingKeysThatAnswerFirstLoseToTheHonestWorkerThatAnswersLater) {
-  Scheduler s = judging();
-  s.add_worker("c1", 0, "key-c1", at(0));
-  s.add_worker("c2", 0, "key-c2", at(0));
-  s.add_frame(0, tiles(4));
-  s.set_reference(0, kCallers);
-  answer_all(s, kMadeUp, at(10));
+  Scheduler s = two_against_the_caller("key-c1", "key-c2");
   s.add_worker("h", 0, "key-h", at(500));
   const std::vector<JobAssignment> copy = s.assign(at(100000));  // long past the wait
   EXPECT_TRUE(s.take_disputes().empty()) << "every worker present is awaited: h has not voted";
@@ -149,12 +156,7 @@ TEST(Trust, TwoColludingKeysThatAnswerFirstLoseToTheHonestWorkerThatAnswersLater
 // Case 2 with one stolen key on two connections: one voter, which cannot
 // outweigh the master even when no one else comes. A doubt, not a dispute.
 TEST(Trust, OneKeyOnTwoConnectionsIsOneVoter) {
-  Scheduler s = judging();
-  s.add_worker("c1", 0, "stolen", at(0));
-  s.add_worker("c2", 0, "stolen", at(0));
-  s.add_frame(0, tiles(4));
-  s.set_reference(0, kCallers);
-  answer_all(s, kMadeUp, at(10));
+  Scheduler s = two_against_the_caller("stolen", "stolen");
   s.assign(at(3000));
   EXPECT_TRUE(s.take_disputes().empty());
   const std::vector<HashDoubt> doubts = s.take_doubts();
@@ -191,27 +193,17 @@ TEST(Trust, TwoKeysAreNotEveryWorkerWhileAWorkerTheyBenchedHasNotVoted) {
 // never followed (nor do they end the run), and lose to any worker that
 // agrees with the master, however late it answers.
 TEST(Trust, AnonymousPeersThatAgreeAreNeverFollowedAndLoseToAWorkerThatAgreesWithTheMaster) {
-  Scheduler alone = judging();
-  alone.add_worker("f1", 0, "", at(0));
-  alone.add_worker("f2", 0, "", at(0));
-  alone.add_frame(0, tiles(4));
-  alone.set_reference(0, kCallers);
-  answer_all(alone, kMadeUp, at(10));
+  Scheduler alone = two_against_the_caller("", "");
   alone.assign(at(3000));
   EXPECT_TRUE(alone.take_disputes().empty());
   const std::vector<HashDoubt> doubts = alone.take_doubts();
   ASSERT_EQ(doubts.size(), 1u);
   EXPECT_TRUE(doubts[0].anonymous);
 
-  Scheduler s = judging();
-  s.add_worker("f1", 0, "", at(0));
-  s.add_worker("f2", 0, "", at(0));
-  s.add_frame(0, tiles(4));
-  s.set_reference(0, kCallers);
-  answer_all(s, kMadeUp, at(10));
+  Scheduler s = two_against_the_caller("", "");
   s.add_worker("local", 0, "", at(300));  // a local worker, still loading its scene when they answered
   answer(s, s.assign(at(300)), kCallers, at(2000));
-  EXPECT_EQ(sorted(s.take_quarantined()), (std::set<WorkerId>{"f1", "f2"}));
+  EXPECT_EQ(sorted(s.take_quarantined()), (std::set<WorkerId>{"c1", "c2"}));
   answer_all(s, kCallers, at(2100));
   EXPECT_EQ(s.take_completed_frames(), std::vector<uint64_t>{0});
 }
