@@ -644,13 +644,21 @@ bool is_tile_result(std::span<const uint8_t> bytes) {
   return bytes.size() >= kHeaderBytes && bytes[6] == static_cast<uint8_t>(MessageType::TileResult);
 }
 
-std::optional<uint64_t> tile_result_job_id(std::span<const uint8_t> bytes) {
+std::optional<TileResultHead> tile_result_head(std::span<const uint8_t> bytes, std::string& error) {
   Reader r(bytes);
   std::optional<MessageType> type = read_header(r);
-  if (type != MessageType::TileResult) return std::nullopt;
-  r.u64("frame_id");
-  const uint64_t job_id = r.u64("job_id");
-  return r.ok() ? std::optional<uint64_t>(job_id) : std::nullopt;
+  if (type && *type != MessageType::TileResult)
+    r.fail(std::string(message_name(*type)) + " where a TileResult was expected");
+  TileResultHead head;
+  if (r.ok()) {
+    r.begin(message_name(MessageType::TileResult));
+    head.frame_id = r.u64("frame_id");
+    head.job_id = r.u64("job_id");
+    read(r, head.tile);
+  }
+  if (r.ok()) return head;
+  error = r.error();
+  return std::nullopt;
 }
 
 std::optional<TileResultView> decode_tile_result(std::span<const uint8_t> bytes, std::string& error) {

@@ -56,10 +56,16 @@ struct TileResultView {
 
 // The header's type byte says TileResult (nothing else is checked).
 bool is_tile_result(std::span<const uint8_t> bytes);
-// The job id of a TileResult whose header (magic, version, type, flags) is
-// valid and whose job id is there, whatever follows: so that a result that
-// fails to decode still sends its job to another worker.
-std::optional<uint64_t> tile_result_job_id(std::span<const uint8_t> bytes);
+// What a TileResult is looked up by (its frame, job and rectangle), read from
+// its header alone, whatever follows: nothing is unpacked, so the master
+// finds the job before a result costs it more than these bytes, and a result
+// that then fails to decode still sends its job to another worker. nullopt,
+// with `error` set, when the header or these fields do not decode.
+struct TileResultHead {
+  uint64_t frame_id = 0, job_id = 0;
+  TileJob tile;
+};
+std::optional<TileResultHead> tile_result_head(std::span<const uint8_t> bytes, std::string& error);
 // Checks everything decode() checks except that the pixels are finite, which
 // copy_tile_pixels() checks as it copies them; so a message passes both
 // exactly when decode() accepts it, with the same error text otherwise.

@@ -23,6 +23,7 @@ display       the window's display and panel costs under Xvfb                   
 scaling       master + workers against the single-process render                The cluster
 master        one master with 8 to 256 simulated workers                        The cluster
 network       (root) master and workers over a shaped 1 and 10 Gbit/s link      The cluster, "Over a shaped link"
+trust         a slow worker, colluding keys, fakes, a flood (real processes)    The cluster, "Trust"
 LIST
   exit 0
 fi

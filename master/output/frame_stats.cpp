@@ -25,6 +25,7 @@ nlohmann::ordered_json totals_json(const RunTotals& t, uint64_t tiles) {
           {"failed_handshakes", t.failed_handshakes}, {"nonfinite_pixels", t.nonfinite_pixels},
           {"declared_dead", t.declared_dead}, {"master_unlistened_seconds", t.unlistened_seconds},
           {"quarantined", t.quarantined}, {"own_tiles", t.own_tiles}, {"benched", t.benched},
+          {"doubted", t.doubted},
           {"master_follows_workers", t.follows_workers}, {"pixel_format", t.pixel_format},
           {"pixel_codec", t.pixel_codec},
           {"io_threads", t.io_threads},
@@ -53,6 +54,7 @@ RunTotals run_totals(const MasterSession& session, int io_threads, double cpu_st
   t.own_tiles = session.own_tiles();
   t.follows_workers = session.follows_workers();
   t.benched = session.benched();
+  t.doubted = session.doubted();
   t.hash_frames = session.reference_frames();
   t.hash_seconds = session.reference_seconds();
   rusage usage{};

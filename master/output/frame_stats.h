@@ -28,6 +28,7 @@ struct RunTotals {
   std::vector<std::string> quarantined;  // "worker-N: why"
   uint64_t own_tiles = 0;          // jobs no worker's result passed for, rendered by the master
   uint64_t benched = 0;            // hoarders given no more jobs until they answered
+  uint64_t doubted = 0;            // frames in doubt: the master rendered what its workers contested
   bool follows_workers = false;    // the master's VPL sets lost to its authenticated workers' (CURVE)
   double master_cpu_seconds = 0.0;   // process CPU (every thread) during the session loop
   double session_cpu_seconds = 0.0;  // the session thread's own CPU

@@ -33,7 +33,8 @@ void Scheduler::hand_failed_jobs_to_caller() {
       continue;
     }
     Job& job = it->second;
-    const bool too_many = int(job.counted_failers.size()) >= config_.max_failed_workers;
+    // A caller that follows its workers would render another tile than theirs: only when none may take it.
+    const bool too_many = config_.caller_renders && int(job.counted_failers.size()) >= config_.max_failed_workers;
     const bool nobody_else = std::none_of(workers_.begin(), workers_.end(), [&](const auto& w) {
       return !w.second.benched && !job.failed_on.count(w.first);
     }) && !workers_.empty();
@@ -41,25 +42,49 @@ void Scheduler::hand_failed_jobs_to_caller() {
       ++f;
       continue;
     }
-    job.queued = false;  // its entry in unassigned_ is skipped from now on
-    job.own = true;
-    ++stats_.own_jobs;
-    own_jobs_.push_back(JobAssignment{WorkerId{}, *f, job.frame_id, job.tile, false});
+    make_own(*f, false);
     f = failing_.erase(f);
   }
 }
 
 std::vector<JobAssignment> Scheduler::take_own_jobs() { return std::exchange(own_jobs_, {}); }
 
+bool Scheduler::wants_own_result(uint64_t job_id) const {
+  auto it = jobs_.find(job_id);
+  return it != jobs_.end() && it->second.own;
+}
+
 bool Scheduler::on_own_result(uint64_t job_id) {
   auto it = jobs_.find(job_id);
   if (it == jobs_.end() || !it->second.own) return false;
   Job& job = it->second;
   job.own = false;
+  job.by_caller = !job.done;
   Frame& frame = frames_.at(job.frame_id);
   if (!job.done) complete(frame, job);
   if (!referee_.decided(job.frame_id)) try_decide(frame);  // the last job in: a lone voter may decide now
   return true;
+}
+
+// The caller follows its workers now: what it rendered of a frame not yet
+// decided would be its own maths library's tile. Those jobs go to workers
+// (one that has not failed them), or, failed by every one, back to it.
+void Scheduler::return_callers_jobs() {
+  for (auto& [frame_id, frame] : frames_) {
+    if (referee_.decided(frame_id)) continue;
+    for (uint64_t job_id : frame.jobs) {
+      Job& job = jobs_.at(job_id);
+      if (!job.own && !job.by_caller) continue;
+      if (job.by_caller) {
+        job.done = false;
+        --frame.done;
+      }
+      job.own = job.by_caller = false;
+      requeue(job_id);
+      failing_.insert(job_id);
+    }
+  }
+  hand_failed_jobs_to_caller();
 }
 
 std::vector<WorkerId> Scheduler::failed_on(uint64_t job_id) const {

@@ -214,6 +214,11 @@ void Scheduler::heard_result(const WorkerId& id) {
   if (it->second.jobs.empty()) hungry_.insert(id);
 }
 
+bool Scheduler::is_benched(const WorkerId& id) const {
+  auto it = workers_.find(id);
+  return it != workers_.end() && it->second.benched;
+}
+
 std::vector<WorkerId> Scheduler::take_benched() { return std::exchange(newly_benched_, {}); }
 
 }  // namespace igi

@@ -15,15 +15,22 @@ bool same_tile(const TileJob& a, const TileJob& b) {
 
 double seconds_between(TimePoint from, TimePoint to) { return std::chrono::duration<double>(to - from).count(); }
 
+SchedulerClock::duration wait_duration(double seconds) {
+  return std::chrono::duration_cast<SchedulerClock::duration>(std::chrono::duration<double>(seconds));
+}
+
 }  // namespace
 
 // ---- Workers.
 
-void Scheduler::add_worker(const WorkerId& id, int credits) {
+void Scheduler::add_worker(const WorkerId& id, int credits, const std::string& key, TimePoint now) {
   Worker& w = workers_[id];
   w.max_credits = credits > 0 ? credits : config_.credits;
   w.credits = config_.first_credits > 0 ? std::min(config_.first_credits, w.max_credits) : w.max_credits;
   if (int(w.jobs.size()) < w.credits) hungry_.insert(id);
+  referee_.enroll(id, key);
+  last_join_ = std::max(last_join_, now);
+  settle_pending_ = true;
 }
 
 void Scheduler::remove_worker(const WorkerId& id) {
@@ -32,6 +39,7 @@ void Scheduler::remove_worker(const WorkerId& id) {
   const std::vector<uint64_t> held = std::move(it->second.jobs);
   workers_.erase(it);
   hungry_.erase(id);
+  referee_.leave(id);
   // Newest first: each goes to the front, so the oldest ends up leading.
   for (auto j = held.rbegin(); j != held.rend(); ++j) {
     auto job = jobs_.find(*j);
@@ -161,6 +169,9 @@ JobAssignment Scheduler::give(const WorkerId& id, uint64_t job_id, TimePoint now
   job.holders.push_back({id, now, serial});
   Worker& w = workers_.at(id);
   w.jobs.push_back(job_id);
+  if (w.given.size() < kGivenRemembered) w.given.push_back(job_id);
+  else w.given[w.given_next] = job_id;
+  w.given_next = (w.given_next + 1) % kGivenRemembered;
   if (int(w.jobs.size()) >= w.credits) hungry_.erase(id);
   issued_.push_back({now, job_id, id, serial});
   trim_issued();
@@ -236,6 +247,8 @@ void Scheduler::force_copy(const WorkerId& holder, uint64_t job_id, TimePoint no
 
 std::vector<JobAssignment> Scheduler::assign(TimePoint now) {
   std::vector<JobAssignment> out;
+  latest_ = std::max(latest_, now);
+  decide_settled(now);
   reclaim_lost(now);
   hand_failed_jobs_to_caller();
   if (hungry_.empty()) return out;
@@ -260,6 +273,11 @@ ResultCheck Scheduler::check_result(const WorkerId& id, uint64_t job_id, uint64_
   return ResultCheck::Wanted;
 }
 
+bool Scheduler::was_given(const WorkerId& id, uint64_t job_id) const {
+  auto w = workers_.find(id);
+  return w != workers_.end() && std::find(w->second.given.begin(), w->second.given.end(), job_id) != w->second.given.end();
+}
+
 void Scheduler::drop_result(const WorkerId& id, uint64_t job_id) {
   auto w = workers_.find(id);
   if (w != workers_.end()) take_back(w->second, id, job_id);
@@ -268,6 +286,7 @@ void Scheduler::drop_result(const WorkerId& id, uint64_t job_id) {
 }
 
 ResultVerdict Scheduler::on_result(const WorkerId& id, uint64_t job_id, uint64_t hash, TimePoint now) {
+  latest_ = std::max(latest_, now);
   if (auto w = workers_.find(id); w != workers_.end()) {
     w->second.last_answer = now;
     w->second.overtaken = 0;
@@ -307,6 +326,9 @@ ResultVerdict Scheduler::record_result(const WorkerId& id, uint64_t job_id, uint
     case Vote::Late:
       ++stats_.late_dropped;
       return ResultVerdict::Late;
+    case Vote::Contested:
+      make_own(job_id, true);
+      return ResultVerdict::Contested;
     case Vote::Counts:
       complete(frame, job);
       return ResultVerdict::Accepted;
@@ -335,7 +357,9 @@ std::vector<HashDispute> Scheduler::take_disputes() { return referee_.take_dispu
 
 void Scheduler::follow_workers() {
   config_.master_reference = false;
+  config_.caller_renders = false;
   referee_.follow_workers();
+  return_callers_jobs();
   for (auto& [frame_id, frame] : frames_) {
     if (referee_.decided(frame_id)) continue;
     if (std::optional<Decision> d = referee_.stop_judging(frame_id)) apply(*d);
@@ -343,36 +367,66 @@ void Scheduler::follow_workers() {
   }
 }
 
-// What the referee needs to know of the frame's possible voters.
+// What the referee needs to know of the frame's possible voters: every
+// worker that takes jobs is awaited (verification copies bring its vote).
 Roll Scheduler::roll(const Frame& frame) const {
   Roll roll;
   roll.all_answered = frame.done + referee_.held_count(frame.id) == frame.jobs.size();
-  std::set<WorkerId> rendering;
-  if (!roll.all_answered)
-    for (uint64_t job_id : frame.jobs)
-      for (const Holder& h : jobs_.at(job_id).holders) rendering.insert(h.worker);
+  roll.settled = latest_ >= last_join_ + wait_duration(config_.vote_wait_seconds);
   for (const auto& [id, worker] : workers_) {
+    roll.present.insert(id);
     if (worker.benched) continue;
     roll.active.insert(id);
-    if (worker.answered > 0 || rendering.count(id)) roll.awaited.insert(id);
+    roll.awaited.insert(id);
   }
   return roll;
+}
+
+// A join restarts the wait; once it has passed, frames that waited for it are judged.
+void Scheduler::decide_settled(TimePoint now) {
+  if (!settle_pending_ || now < last_join_ + wait_duration(config_.vote_wait_seconds)) return;
+  settle_pending_ = false;
+  for (auto& [frame_id, frame] : frames_)
+    if (!referee_.decided(frame_id)) try_decide(frame);
+}
+
+std::optional<TimePoint> Scheduler::next_verdict_time() const {
+  const bool undecided = std::any_of(frames_.begin(), frames_.end(), [&](const auto& f) {
+    return !referee_.decided(f.first) && referee_.held_count(f.first) > 0;
+  });
+  if (!settle_pending_ || !undecided) return std::nullopt;
+  return last_join_ + wait_duration(config_.vote_wait_seconds);
 }
 
 void Scheduler::try_decide(Frame& frame) {
   if (std::optional<Decision> d = referee_.try_decide(frame.id, roll(frame))) apply(*d);
 }
 
-// Held results that agree count, the others go back to the pool, and the losers are quarantined.
+// Held results that agree count, the others go back to the pool, and the
+// losers are quarantined. In doubt, every job the caller's hash has no result
+// for is the caller's: its workers would only answer it with theirs again.
 void Scheduler::apply(const Decision& d) {
   Frame& frame = frames_.at(d.frame_id);
   for (const auto& [job_id, agrees] : d.held) {
     auto it = jobs_.find(job_id);
     if (it == jobs_.end()) continue;
     if (agrees) complete(frame, it->second);
-    else requeue(job_id);
+    else if (!d.doubt) requeue(job_id);
+  }
+  if (d.doubt) {
+    ++stats_.doubted;
+    for (uint64_t job_id : frame.jobs) make_own(job_id, true);
   }
   for (const WorkerId& v : d.losers) quarantine(v);
+}
+
+void Scheduler::make_own(uint64_t job_id, bool contested) {
+  Job& job = jobs_.at(job_id);
+  if (job.done || job.own) return;
+  job.queued = false;  // its entry in unassigned_ is skipped from now on
+  job.own = true;
+  ++stats_.own_jobs;
+  own_jobs_.push_back(JobAssignment{WorkerId{}, job_id, job.frame_id, job.tile, false, contested});
 }
 
 void Scheduler::quarantine(const WorkerId& id) {

@@ -27,7 +27,8 @@
 //  - A result that fails validation (it does not decode, non-finite pixels,
 //    a rectangle that is not its job's) releases the job to the pool, and the
 //    job never goes back to a worker that failed it. When every worker
-//    present has failed it, or `max_failed_workers` workers have, the caller
+//    present has failed it, or `max_failed_workers` workers have (only while
+//    the caller renders as workers do: not once it follows them), the caller
 //    renders it itself (take_own_jobs(), then on_own_result()): no one
 //    worker, nor two, can keep a frame from completing. With
 //    `failures_need_standing` only workers that have returned a result count
@@ -51,7 +52,11 @@
 // job counts as lost, its worker's credit back so it can be the one), held
 // results that agree count, the others go back to the pool, and losers are
 // quarantined: removed, their jobs reissued, their unconfirmed results
-// elsewhere dropped.
+// elsewhere dropped. A frame decided in doubt is the caller's to finish:
+// every job of it that no result with its hash answered goes to
+// take_own_jobs() (`contested`). A verdict against the caller's hash waits
+// `vote_wait_seconds` after the latest join (the Roll's `settled`), so that a
+// worker that starts late still votes.
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -80,6 +85,8 @@ struct SchedulerConfig {
   bool failures_need_standing = false; // only failures from workers that have returned a result count
   bool master_reference = false;       // frames' hashes come from set_reference(), not from votes
   int first_credits = 0;               // a new worker's credits until it answers (0: all of them at once)
+  double vote_wait_seconds = 0.0;      // a verdict against the caller's hash waits this long after the latest join
+  bool caller_renders = true;          // the caller renders a job as workers would (not once it follows them)
 };
 
 struct JobAssignment {
@@ -88,6 +95,7 @@ struct JobAssignment {
   uint64_t frame_id;
   TileJob tile;
   bool duplicate;  // another copy is out or answered (a straggler or a verification copy)
+  bool contested = false;  // the caller's (take_own_jobs): its frame was decided in doubt, not a failed job
 };
 
 // What to do with a result's pixels, before they are read.
@@ -103,6 +111,7 @@ enum class ResultVerdict {
   Held,      // kept until the frame's reference hash is decided
   Late,      // another copy answered first; dropped (its hash was checked)
   Rejected,  // its hash differs from the frame's reference: its worker is quarantined
+  Contested, // its frame was decided in doubt and its hash differs: the caller renders the job, nobody is quarantined
   Unknown,   // no such job
 };
 
@@ -114,9 +123,10 @@ struct SchedulerStats {
   uint64_t late_dropped = 0;  // results that arrived after another copy answered
   uint64_t held = 0;          // results held until their frame's hash was decided
   uint64_t failed_results = 0;  // results that failed validation
-  uint64_t own_jobs = 0;        // jobs no worker could render, given to the caller (take_own_jobs)
+  uint64_t own_jobs = 0;        // jobs given to the caller (take_own_jobs): no worker could render them, or contested
   uint64_t quarantined = 0;   // workers quarantined for a hash that lost
   uint64_t benched = 0;       // times a worker was benched for holding jobs it did not answer
+  uint64_t doubted = 0;       // frames decided in doubt: the caller rendered what their workers' hash contested
 };
 
 
@@ -126,7 +136,9 @@ class Scheduler {
   Scheduler(int credits, int frames_in_flight) : Scheduler(SchedulerConfig{credits, frames_in_flight}) {}
 
   // credits: jobs this worker may hold; 0 means the configured default.
-  void add_worker(const WorkerId& id, int credits = 0);
+  // key: its CURVE key's name (empty: anonymous), by which it votes; `now`:
+  // when it joined (a verdict against the caller's hash waits for late joiners).
+  void add_worker(const WorkerId& id, int credits = 0, const std::string& key = {}, TimePoint now = {});
   // Forgets the worker (dead, left, or reconnected); its outstanding jobs go
   // back to the pool. Its held results and votes stay: they were correct or not
   // whether it lives or not.
@@ -154,8 +166,13 @@ class Scheduler {
   // assign() could not act on it); a caller sleeping in poll() wakes then to
   // call assign() again.
   std::optional<TimePoint> next_straggler_time(TimePoint now);
+  // When a frame waiting for late joiners may be decided (nullopt: none waits).
+  std::optional<TimePoint> next_verdict_time() const;
 
   ResultCheck check_result(const WorkerId& id, uint64_t job_id, uint64_t frame_id, const TileJob& tile) const;
+  // The job was given to the worker lately (it holds it, or held it among
+  // the last kGivenRemembered it was given): a result for any other is not its to send.
+  bool was_given(const WorkerId& id, uint64_t job_id) const;
   // The frame's hash as the caller computed it (master_reference); none: the
   // caller could not, and the frame's workers vote. Results held for it count
   // now, or go back to the pool and quarantine their workers.
@@ -165,8 +182,9 @@ class Scheduler {
   ResultVerdict on_result(const WorkerId& id, uint64_t job_id, uint64_t frame_state_hash, TimePoint now);
   // The result's job is unknown: only the worker's credit comes back.
   void drop_result(const WorkerId& id, uint64_t job_id);
-  // A result of any kind came from the worker: a benched one works again, from one job.
+  // A result of the worker's passed: a benched one works again, from one job.
   void heard_result(const WorkerId& id);
+  bool is_benched(const WorkerId& id) const;
   // Workers benched since the last call (hoarders: see above).
   std::vector<WorkerId> take_benched();
   // The result failed validation: the worker no longer holds the job, which
@@ -176,8 +194,11 @@ class Scheduler {
   // each itself and hands the result in with on_own_result(). `worker` is empty.
   std::vector<JobAssignment> take_own_jobs();
   // The caller's own result for a job from take_own_jobs(): it counts, whatever
-  // its frame's hash (the caller is the judge). False when the job is gone (its frame was cancelled).
+  // its frame's hash (the caller is the judge). False when the job is gone
+  // (its frame was cancelled) or no longer the caller's (it follows its
+  // workers now): then its pixels are not to be used (wants_own_result()).
   bool on_own_result(uint64_t job_id);
+  bool wants_own_result(uint64_t job_id) const;
   // The workers whose results for the job failed validation, in no order.
   std::vector<WorkerId> failed_on(uint64_t job_id) const;
 
@@ -191,8 +212,14 @@ class Scheduler {
   std::optional<HashSplit> stalled_split() const;
   // Frames disputed since the last call: the workers agree, the caller's hash differs.
   std::vector<HashDispute> take_disputes();
+  // Frames decided in doubt since the last call (their contested jobs are in take_own_jobs()).
+  std::vector<HashDoubt> take_doubts() { return referee_.take_doubts(); }
+  uint32_t standing(const WorkerId& id) const { return referee_.standing(id); }
   // The caller gives up its own hashes: disputed frames take their workers'
-  // hash, and this frame and every later one are decided by vote.
+  // hash, and this frame and every later one are decided by vote; a failed
+  // job goes to the caller only when no worker present may take it, and the
+  // jobs of undecided frames it rendered or is rendering go back to workers
+  // (its tiles would be its own maths library's).
   void follow_workers();
 
   int outstanding(const WorkerId& id) const;
@@ -224,6 +251,7 @@ class Scheduler {
     std::set<WorkerId> failed_on;    // every worker that failed it: it never goes back to them
     std::set<WorkerId> counted_failers;  // those whose failures count (failures_need_standing)
     bool own = false;                // the caller renders it (take_own_jobs)
+    bool by_caller = false;          // done by the caller's own result (on_own_result)
   };
   struct Frame {
     uint64_t id = 0;
@@ -240,6 +268,8 @@ class Scheduler {
     TimePoint last_answer{};       // its latest result of any kind
     int overtaken = 0;             // its jobs answered first by copies since its latest result
     bool benched = false;          // overtaken twice: no jobs until it answers
+    std::vector<uint64_t> given;   // the last kGivenRemembered jobs given to it, as a ring
+    size_t given_next = 0;
   };
   struct Issue {
     TimePoint at;
@@ -256,6 +286,7 @@ class Scheduler {
   std::optional<size_t> next_unassigned_for(const WorkerId& id);  // index in unassigned_
   bool may_take(const Job& job, const WorkerId& id) const;
   void hand_failed_jobs_to_caller();
+  void return_callers_jobs();  // follow_workers(): the caller's tiles of undecided frames
   bool is_outstanding(const Issue& issue) const;
   void trim_issued();
   bool straggler_eligible(const Issue& issue, TimePoint now) const;
@@ -267,6 +298,8 @@ class Scheduler {
   void requeue(uint64_t job_id);  // back to the front of the pool, unless out, held, done or queued
   bool release_holder(Job& job, const WorkerId& id, TimePoint now, bool sample);
   void complete(Frame& frame, Job& job);
+  void make_own(uint64_t job_id, bool contested);  // the caller renders it (take_own_jobs)
+  void decide_settled(TimePoint now);  // frames that waited for late joiners
   Roll roll(const Frame& frame) const;
   void try_decide(Frame& frame);
   void apply(const Decision& decision);
@@ -275,8 +308,13 @@ class Scheduler {
   std::vector<WorkerId> overtaken_hoarders(const WorkerId& id, uint64_t job_id, TimePoint now);
   void bench(const WorkerId& id);
 
+  static constexpr size_t kGivenRemembered = 256;
+
   SchedulerConfig config_;
   Referee referee_;  // the verdict on each frame's hash
+  TimePoint latest_{};     // the latest `now` a caller passed
+  TimePoint last_join_{};  // when the latest worker joined
+  bool settle_pending_ = false;  // a join since decide_settled() last ran
   int forced_duplicates_ = 0;
   uint64_t next_job_id_ = 1;
   uint64_t next_serial_ = 0;  // of copies given

@@ -22,12 +22,15 @@ double thread_cpu_seconds() {
 
 // Two jobs for a newcomer until it answers, then one more per result up to
 // its threads' worth: a peer that claims 32 threads and never answers holds two.
+// A verdict against the master's own hash waits two timeouts after the latest
+// join: a worker that starts as late as a timeout still joins and votes.
 SchedulerConfig scheduler_config(const SessionSettings& settings) {
   SchedulerConfig c;
   c.credits = settings.credits;
   c.frames_in_flight = 2;
   c.first_credits = 2;
   c.failures_need_standing = true;
+  c.vote_wait_seconds = 2e-3 * settings.timeout_ms;
   return c;
 }
 
@@ -109,6 +112,7 @@ std::vector<CompletedFrame> MasterSession::pump(int timeout_ms) {
     if (!done.empty() || Clock::now() >= end) break;
     Clock::time_point until = std::min(end, peers_.next_sweep());
     if (auto late = scheduler_.next_straggler_time(Clock::now())) until = std::min(until, *late);
+    if (auto verdict = scheduler_.next_verdict_time()) until = std::min(until, std::max(*verdict, Clock::now()));
     socket_.wait(until, own_ ? own_->fd() : -1);
     socket_.serve_security();
     socket_.receive(kBatch, [this](const std::string& identity, zmq::message_t& payload, size_t parts) {
@@ -126,6 +130,7 @@ void MasterSession::step(Clock::time_point now, std::vector<CompletedFrame>& don
   dispatch(scheduler_.assign(now));
   render_own_jobs();
   for (const HashDispute& d : scheduler_.take_disputes()) on_dispute(d);
+  for (const HashDoubt& d : scheduler_.take_doubts()) on_doubt(d);
   for (const WorkerId& id : scheduler_.take_benched()) {
     const Peer* peer = peers_.find(id);
     if (!peer) continue;
@@ -301,7 +306,7 @@ void MasterSession::on_hello(const std::string& identity, const protocol::Hello&
   // Enough jobs to keep every thread busy while results travel.
   const int wanted = std::max<int>(settings_.credits, 2 * int(std::min<uint32_t>(hello.threads, 32)));
   peer.credits = uint32_t(std::min<int>(wanted, protocol::kMaxCredits));  // --credits is within it already
-  scheduler_.add_worker(identity, int(peer.credits));
+  scheduler_.add_worker(identity, int(peer.credits), user_id_, Clock::now());
   const bool other_libraries = !hello.libraries.empty() && hello.libraries != runtime_libraries();
   peers_.log_join_or_leave(peer.name + " joined (" + std::to_string(hello.threads) + " threads" +
                            (other_libraries ? "; it runs " + hello.libraries + ", the master " +

@@ -107,6 +107,7 @@ class MasterSession {
   uint64_t nonfinite_pixels() const { return nonfinite_pixels_; }
   uint64_t own_tiles() const { return own_tiles_; }  // jobs the master rendered itself (no worker's result passed)
   uint64_t benched() const { return scheduler_.stats().benched; }  // hoarders given no jobs until they answer
+  uint64_t doubted() const { return scheduler_.stats().doubted; }  // frames decided in doubt
   // The master's VPL sets lost to its authenticated workers', which agreed: votes decide from then on.
   bool follows_workers() const { return own_ && own_->follows_workers(); }
   // The master's own VPL-set hashes: frames computed and the time its thread spent on them.
@@ -146,6 +147,8 @@ class MasterSession {
   void use_result(const std::string& identity, Peer& peer, const protocol::TileResultView& view, size_t bytes);
   void on_bad_result(const std::string& identity, uint64_t job_id, const std::string& error);
   void on_bad_message(const std::string& identity, const std::string& error);
+  void on_foreign_result(const std::string& identity, const protocol::TileResultHead& head);
+  void on_stale_result(const std::string& identity, const protocol::TileResultHead& head, std::span<const uint8_t> bytes);
   void count_failures_against_workers(uint64_t job_id);
   void drop_peer(const std::string& identity, const std::string& why);
   void quarantine_peer(const std::string& identity, const std::string& why);
@@ -154,6 +157,7 @@ class MasterSession {
   void render_own_jobs();
   void use_own_result(const MasterRenderer::TileAnswer& answer);
   void on_dispute(const HashDispute& dispute);
+  void on_doubt(const HashDoubt& doubt);
 
   SessionSettings settings_;
   SceneSource scene_;
@@ -171,7 +175,7 @@ class MasterSession {
   const Clock::time_point began_ = Clock::now();
   uint64_t accepted_ = 0;
   uint64_t bad_messages_ = 0, declared_dead_ = 0;
-  uint64_t nonfinite_pixels_ = 0, nonfinite_logged_ = 0, failures_logged_ = 0;
+  uint64_t nonfinite_pixels_ = 0, nonfinite_logged_ = 0, failures_logged_ = 0, doubts_logged_ = 0;
   std::optional<uint64_t> stall_reported_;  // the frame whose split was logged
   std::string fatal_;
   std::string user_id_;  // the CURVE key name of the message being handled

@@ -22,33 +22,64 @@ std::string describe(const TileJob& t) {
 
 }  // namespace
 
+// The job is looked up from the result's header before anything is
+// unpacked: a result costs no more than its bytes until it is known to be
+// for a job its peer holds, and then at most that job's tile.
 void MasterSession::on_result(const std::string& identity, std::span<const uint8_t> bytes) {
   Peer* peer = peers_.find(identity);
   if (!peer) return on_bad_message(identity, "message from a peer that never said hello");
   Peers::heard(*peer, Clock::now());
-  scheduler_.heard_result(identity);  // a benched worker works again
   std::string error;
-  std::optional<protocol::TileResultView> view = protocol::decode_tile_result(bytes, error);
-  if (!view) {
-    const std::optional<uint64_t> job_id = protocol::tile_result_job_id(bytes);
-    if (job_id && scheduler_.holds(identity, *job_id)) return on_bad_result(identity, *job_id, error);
-    return on_bad_message(identity, error);
-  }
-  const protocol::TileResult& r = view->fields;
-  if (settings_.detailed_stats) Peers::note_round_trip(*peer, r.job_id);
-  switch (scheduler_.check_result(identity, r.job_id, r.frame_id, r.tile)) {
+  const std::optional<protocol::TileResultHead> head = protocol::tile_result_head(bytes, error);
+  if (!head) return on_bad_message(identity, error);
+  const ResultCheck check = scheduler_.check_result(identity, head->job_id, head->frame_id, head->tile);
+  switch (check) {
     case ResultCheck::Unknown:
-      return scheduler_.drop_result(identity, r.job_id);  // from before a reconnect, or a frame long done
+      if (!scheduler_.was_given(identity, head->job_id)) return on_foreign_result(identity, *head);
+      return on_stale_result(identity, *head, bytes);  // from before a reconnect, or a frame long done
     case ResultCheck::WrongTile:
-      return on_bad_result(identity, r.job_id,
-                           "frame " + std::to_string(r.frame_id) + ", tile " + describe(r.tile) +
-                               " is not what job " + std::to_string(r.job_id) + " asked for");
+      return on_bad_result(identity, head->job_id,
+                           "frame " + std::to_string(head->frame_id) + ", tile " + describe(head->tile) +
+                               " is not what job " + std::to_string(head->job_id) + " asked for");
     case ResultCheck::NotNeeded:
-      scheduler_.on_result(identity, r.job_id, r.frame_state_hash, Clock::now());  // its hash still votes
-      return;
     case ResultCheck::Wanted:
-      return use_result(identity, *peer, *view, bytes.size());
+      break;
   }
+  std::optional<protocol::TileResultView> view = protocol::decode_tile_result(bytes, error);
+  if (!view) return on_bad_result(identity, head->job_id, error);
+  if (settings_.detailed_stats) Peers::note_round_trip(*peer, head->job_id);
+  if (check == ResultCheck::NotNeeded) {  // another copy answered first: its hash still votes
+    if (scheduler_.on_result(identity, head->job_id, view->fields.frame_state_hash, Clock::now()) !=
+        ResultVerdict::Rejected)
+      scheduler_.heard_result(identity);
+    return;
+  }
+  use_result(identity, *peer, *view, bytes.size());
+}
+
+// A result for a job the peer was never given: no worker sends one. It cost
+// a header's reading; three such (or failures) and the peer is quarantined.
+void MasterSession::on_foreign_result(const std::string& identity, const protocol::TileResultHead& head) {
+  ++bad_messages_;
+  Peer* peer = peers_.find(identity);
+  if (bad_messages_ <= 100 || bad_messages_ % 1000 == 0)
+    log("dropped a bad message (" + std::to_string(bad_messages_) + " so far): " + peer->name +
+        " sent a result for job " + std::to_string(head.job_id) + " (frame " + std::to_string(head.frame_id) +
+        "), which it was never given");
+  if (++peer->failed_results >= kMaxFailedResults)
+    quarantine_peer(identity, std::to_string(peer->failed_results) +
+                                  " of its messages were results for jobs it was never given, or failed validation");
+}
+
+// A result for a job the peer was given but holds no more (its frame is
+// done or cancelled, or the job went to another): its credit comes back.
+// A benched worker works again once such a result of its own passes.
+void MasterSession::on_stale_result(const std::string& identity, const protocol::TileResultHead& head,
+                                    std::span<const uint8_t> bytes) {
+  scheduler_.drop_result(identity, head.job_id);
+  if (!scheduler_.is_benched(identity) || head.tile.w > settings_.tile_size || head.tile.h > settings_.tile_size) return;
+  std::string error;
+  if (protocol::decode_tile_result(bytes, error)) scheduler_.heard_result(identity);
 }
 
 // The job's first result: its pixels go straight into the frame, then the
@@ -59,6 +90,7 @@ void MasterSession::use_result(const std::string& identity, Peer& peer, const pr
   if (std::string error = frames_.paste(view); !error.empty()) return on_bad_result(identity, r.job_id, error);
   const ResultVerdict verdict = scheduler_.on_result(identity, r.job_id, r.frame_state_hash, Clock::now());
   if (verdict == ResultVerdict::Accepted || verdict == ResultVerdict::Held) count_failures_against_workers(r.job_id);
+  if (verdict != ResultVerdict::Rejected) scheduler_.heard_result(identity);  // it passed: a benched worker works again
   FrameAssembly::OpenFrame& frame = *frames_.find(r.frame_id);  // the scheduler knew the job, so its frame is open
   FrameAssembly::count(frame, r);
   if (r.nonfinite_pixels > 0) {
@@ -162,8 +194,9 @@ void MasterSession::render_own_jobs() {
     const FrameAssembly::OpenFrame* f = frames_.find(job.frame_id);
     if (!f) continue;
     const std::string what = "job " + std::to_string(job.job_id) + " (frame " + std::to_string(job.frame_id) +
-                             ", tile " + describe(job.tile) + ") failed validation on " +
-                             job_failures_.take_text(job.job_id, "its workers");
+                             ", tile " + describe(job.tile) + ") " +
+                             (job.contested ? "is contested (its frame's VPL sets are in doubt)"
+                                            : "failed validation on " + job_failures_.take_text(job.job_id, "its workers"));
     if (!own_ || own_->follows_workers()) {  // a master whose VPL sets lost to its workers' would render another tile
       if (fatal_.empty())
         fatal_ = what + ", no other worker may take it and the master cannot render it" +
@@ -171,7 +204,7 @@ void MasterSession::render_own_jobs() {
                  ": its frame can never complete";
       return;
     }
-    own_->render_tile(f->setup, f->settings, job.job_id, job.tile, settings_.pixel_format, what);
+    own_->render_tile(f->setup, f->settings, job.job_id, job.tile, settings_.pixel_format, what, !job.contested);
   }
 }
 
@@ -184,6 +217,7 @@ void MasterSession::use_own_result(const MasterRenderer::TileAnswer& answer) {
   if (error.empty()) view = protocol::decode_tile_result(answer.result, error);
   FrameAssembly::OpenFrame* frame = view ? frames_.find(view->fields.frame_id) : nullptr;
   if (view && !frame) return;  // the view moved on meanwhile
+  if (!scheduler_.wants_own_result(answer.job_id)) return;  // the master follows its workers now: theirs, not its own
   if (view) error = frames_.paste(*view);
   if (!error.empty()) {
     if (fatal_.empty()) fatal_ = what + ", and the master could not render it either (" + error + ")";
@@ -195,27 +229,38 @@ void MasterSession::use_own_result(const MasterRenderer::TileAnswer& answer) {
   nonfinite_pixels_ += view->fields.nonfinite_pixels;
 }
 
-// Every worker agrees on a frame's VPL sets and the master's own differ: the
-// master is likelier wrong than they (a maths library 1 ulp off, which no
-// version names, is enough). Authenticated workers are followed; anonymous
-// ones could be two fakes, so the run ends at once, saying why.
+// Every worker present agrees on a frame's VPL sets, from two or more
+// authenticated keys (the referee disputes nothing else), and the master's
+// own differ: the master is likelier wrong than they (a maths library 1 ulp
+// off, which no version names, is enough). It follows them, and says so
+// once (the frames disputed with this one are decided by the same step).
 void MasterSession::on_dispute(const HashDispute& d) {
+  if (own_ && own_->follows_workers()) return;
   std::vector<VoterName> workers;
   for (const WorkerId& id : d.workers) {
     const Peer* peer = peers_.find(id);
     workers.push_back(peer ? VoterName{peer->name, peer->libraries} : VoterName{"a departed worker", ""});
   }
   const std::string what = dispute_report(d, workers, runtime_libraries());
-  if (!socket_.curve()) {
-    if (fatal_.empty())
-      fatal_ = what + ". Without CURVE keys two agreeing workers could be two fakes, so the master cannot follow "
-                      "them: run it where the workers' libraries are, or authenticate the workers (--authorized-keys)";
-    return;
-  }
   std::fprintf(stderr, "igi-master: %s. The workers are authenticated by their CURVE keys: the master follows their "
                        "agreement from now on (votes among them decide each frame)\n", what.c_str());
   if (own_) own_->follow_workers();
   scheduler_.follow_workers();
+}
+
+// No worker confirms the master's hash and the votes cannot outweigh it: the
+// master renders what they contest (take_own_work()), saying so for the
+// first frames and every 100th after.
+void MasterSession::on_doubt(const HashDoubt& d) {
+  if (++doubts_logged_ > kLogFirst && doubts_logged_ % 100 != 0) return;
+  std::vector<std::string> names;
+  for (const auto& [hash, voters] : d.voters)
+    for (const WorkerId& id : voters) {
+      const Peer* peer = peers_.find(id);
+      names.push_back(peer ? peer->name : "a departed worker");
+    }
+  std::fprintf(stderr, "igi-master: %s (%llu frames so far)\n", doubt_report(d, names).c_str(),
+               static_cast<unsigned long long>(doubts_logged_));
 }
 
 }  // namespace igi

@@ -50,8 +50,8 @@ std::vector<OwnRenders::Hash> OwnRenders::take_hashes() {
 }
 
 void OwnRenders::render_tile(const FrameSetup& frame, const RenderSettings& settings, uint64_t job_id,
-                             const TileJob& tile, PixelFormat format, const std::string& what) {
-  if (++tiles_logged_ <= kLogFirst || tiles_logged_ % 100 == 0)  // always said, never a flood
+                             const TileJob& tile, PixelFormat format, const std::string& what, bool say) {
+  if (say && (++tiles_logged_ <= kLogFirst || tiles_logged_ % 100 == 0))  // always said, never a flood
     std::fprintf(stderr, "igi-master: %s: the master renders it itself (%llu so far)\n", what.c_str(),
                  static_cast<unsigned long long>(tiles_logged_));
   what_[job_id] = what;

@@ -4,7 +4,8 @@
 //  - each frame's VPL-set hash, the reference its workers are judged by: for
 //    a frame as it is added, or ahead for a frame to come (expect(), at most
 //    kMaxExpected), so that its workers' results need not wait for it;
-//  - the tiles no worker's result passed validation for (render_tile()).
+//  - the tiles no worker's result passed validation for, and those of a
+//    frame in doubt that its workers contest (render_tile()).
 // Once the master follows its workers (its hashes lost to authenticated
 // workers that agreed: trust/referee.h), it computes neither any more.
 #include <cstdint>
@@ -42,9 +43,11 @@ class OwnRenders {
   };
   std::vector<Hash> take_hashes();
 
-  // A job no worker's result passed: `what` says so in the log, and is kept for take_what().
+  // A job no worker's result passed, or one its workers contest: `what` says
+  // so in the log (when `say`: a contested frame is said once for all its
+  // tiles), and is kept for take_what().
   void render_tile(const FrameSetup& frame, const RenderSettings& settings, uint64_t job_id, const TileJob& tile,
-                   PixelFormat format, const std::string& what);
+                   PixelFormat format, const std::string& what, bool say = true);
   std::vector<MasterRenderer::TileAnswer> take_tiles() { return renderer_.take_tiles(); }
   std::string take_what(uint64_t job_id);
 

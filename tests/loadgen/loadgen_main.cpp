@@ -47,9 +47,18 @@ int main(int argc, char** argv) {
       std::printf("  tiles copied (stragglers): %ld, reissued: %ld, verification copies: %ld\n", r.duplicated,
                   r.reissued, r.verified);
     int status = r.exit_code == 0 && r.frames_done == c.run.frames ? 0 : 1;
+    if (c.flood > 0) {
+      const igi::loadgen::SimOutcome& f = r.workers.back();
+      if (f.quarantined_at < 0 || f.quarantined_at - f.first_flood_at > 1.0) status = 1;
+      std::printf("  flood: %llu results for jobs never issued, from %.2f s; the flooder %s\n",
+                  static_cast<unsigned long long>(f.flooded), f.first_flood_at,
+                  f.quarantined_at < 0 ? "was not quarantined"
+                                       : ("was quarantined " + std::to_string(f.quarantined_at - f.first_flood_at) +
+                                          " s after its first").c_str());
+    }
     if (status != 0) std::printf("master log (end):\n%s\n", r.master_log.c_str());
     // Exactly the diverging workers are quarantined: no correct one, none that diverges left in.
-    for (size_t i = 0; i < r.workers.size(); ++i) {
+    for (size_t i = 0; i < size_t(c.run.workers); ++i) {
       const bool diverging = int(i) < c.diverging;
       if (r.workers[i].quarantined != diverging && r.workers[i].welcomed) {
         std::printf("  FAIL: worker %zu (%s) was%s quarantined\n", i, diverging ? "diverging" : "correct",

@@ -68,6 +68,9 @@ void add_fault_and_check_options(CLI::App& app, CommandLine& c) {
       ->check(integer(0, INT_MAX))->type_name("N");
   app.add_option("--wrong-tile-every", c.wrong_tile_every, "worker 0 claims another tile's rectangle in every N-th "
                  "answer")->check(integer(0, INT_MAX))->type_name("N");
+  app.add_option("--flood", c.flood, "one more worker, which also sends N results a second for jobs never issued, "
+                 "each under 1 KB that unpacks to a 1024 x 1024 float tile with surfaces")
+      ->check(integer(0, 100000))->type_name("N");
 }
 
 void add_output_options(CLI::App& app, CommandLine& c) {
@@ -126,6 +129,10 @@ std::vector<SimBehaviour> behaviours(const CommandLine& c) {
   for (int i = 0; i < std::min(c.hoarders, o.workers); ++i) all[all.size() - 1 - size_t(i)].hoard = true;
   all[0].nan_every = c.nan_every;
   all[0].wrong_tile_every = c.wrong_tile_every;
+  if (c.flood > 0) {
+    all.push_back(base);
+    all.back().flood_per_second = c.flood;
+  }
   if (c.churn_seed == 0) return all;
   std::mt19937_64 rng(c.churn_seed);
   const double length = o.fps > 0 ? o.frames / o.fps : 10.0;

@@ -16,6 +16,7 @@ struct CommandLine {
   int hoarders = 0;          // workers that take jobs and never answer (the last N)
   int nan_every = 0;         // worker 0 sends a NaN tile every n-th answer
   int wrong_tile_every = 0;  // worker 0 claims a wrong rectangle every n-th answer
+  int flood = 0;             // one more worker, which sends this many results a second for jobs never issued
   int check_every = 0;       // with --write-frames: check every n-th frame pixel by pixel
   std::string csv;           // append a row of figures
   std::string label;

@@ -172,7 +172,9 @@ LoadgenReport run_loadgen(const LoadgenOptions& o, const std::vector<SimBehaviou
   const std::string log = (fs::path(o.dir) / "master.log").string();
   fs::remove(log);
   // A fixed mmap threshold, as in the soak test: glibc's sliding one keeps freed large buffers on the heap.
-  soak::Child master(master_command(o, endpoint), log, {"MALLOC_MMAP_THRESHOLD_=131072"});
+  std::vector<std::string> environment{"MALLOC_MMAP_THRESHOLD_=131072"};
+  environment.insert(environment.end(), o.master_env.begin(), o.master_env.end());
+  soak::Child master(master_command(o, endpoint), log, environment);
   const std::string stat = "/proc/" + std::to_string(master.pid()) + "/stat";
   const std::string main_stat = "/proc/" + std::to_string(master.pid()) + "/task/" + std::to_string(master.pid()) + "/stat";
 

@@ -42,6 +42,7 @@ struct LoadgenOptions {
   bool write_frames = false;         // the master writes EXR frames into dir (float pixels) for checking
   bool stats = false;                // the master writes stats.json (JSON Lines, grows with frames)
   std::vector<std::string> master_args;  // more, e.g. {"--credits", "4"}
+  std::vector<std::string> master_env;   // NAME=VALUE for the master's environment (LD_PRELOAD=...)
   double deadline_seconds = 120.0;
   bool sample_memory = true;
 };

@@ -26,6 +26,8 @@ SimWorker::SimWorker(zmq::context_t& context, SimConnection connection, SimBehav
                      Clock::time_point start)
     : context_(context), connection_(std::move(connection)), behaviour_(behaviour), tiles_(tiles), start_(start) {
   lanes_.assign(size_t(std::max(1, behaviour_.threads)), start);
+  if (connection_.curve && !behaviour_.key_file.empty())
+    connection_.curve->own = protocol::read_secret_key_file(behaviour_.key_file);
 }
 
 double SimWorker::since_start(Clock::time_point now) const {
@@ -85,6 +87,7 @@ void SimWorker::handle(const protocol::Message& m, Clock::time_point now) {
     take_job(*j, now);
   } else if (auto* bye = std::get_if<protocol::Bye>(&m)) {
     outcome_.last_bye = bye->reason;
+    if (bye->kind == protocol::ByeKind::Quarantined) outcome_.quarantined_at = since_start(now);
     (bye->kind == protocol::ByeKind::Quarantined ? outcome_.quarantined : outcome_.said_bye) = true;
     disconnect();
     finished_ = true;
@@ -123,6 +126,21 @@ void SimWorker::send_answer(const Due& due) {
   if (socket_->send(message, zmq::send_flags::dontwait)) ++outcome_.answers;
 }
 
+// Results for job ids far above any the master issues, for its newest frame.
+Clock::time_point SimWorker::flood(Clock::time_point now) {
+  const auto period = seconds(1.0 / behaviour_.flood_per_second);
+  if (!next_flood_) next_flood_ = now;
+  const uint64_t frame_id = frames_.empty() ? 0 : frames_.rbegin()->first;
+  const std::vector<uint8_t>& bomb = tiles_.bomb();
+  for (; *next_flood_ <= now && socket_; *next_flood_ += period) {
+    zmq::message_t m = TileCache::answer(bomb, frame_id, (uint64_t(1) << 40) + outcome_.flooded, 0,
+                                         TileJob{0, 0, TileCache::kBombSide, TileCache::kBombSide, 0});
+    if (!socket_->send(m, zmq::send_flags::dontwait)) continue;
+    if (outcome_.flooded++ == 0) outcome_.first_flood_at = since_start(now);
+  }
+  return *next_flood_;
+}
+
 Clock::time_point SimWorker::tick(Clock::time_point now) {
   Clock::time_point next = now + kIdleTick;
   if (finished_) return next;
@@ -151,6 +169,7 @@ Clock::time_point SimWorker::tick(Clock::time_point now) {
   while (sent < due_.size() && due_[sent].at <= now) send_answer(due_[sent++]);
   due_.erase(due_.begin(), due_.begin() + long(sent));
   if (!due_.empty()) next = std::min(next, due_.front().at);
+  if (behaviour_.flood_per_second > 0 && welcome_) next = std::min(next, flood(now));
   const auto heartbeat = std::chrono::milliseconds(welcome_ ? welcome_->heartbeat_ms : 250);
   if (now - last_sent_ >= heartbeat) send(protocol::Heartbeat{}, now);
   return std::min(next, last_sent_ + heartbeat);

@@ -35,6 +35,11 @@ struct SimBehaviour {
   int truncate_every = 0;      // every n-th answer loses its last bytes (it does not decode)
   std::optional<std::pair<int, int>> poison_pixel;  // the tile holding this pixel always has a NaN
   bool hoard = false;          // takes jobs and heartbeats, never answers
+  std::string key_file;        // its own CURVE secret key file (a run over CURVE); empty: the run's key
+  // Once welcomed, this many results a second for jobs never issued, each a
+  // decompression bomb (TileCache::bomb(): under 1 KB that unpack to a
+  // 1024 x 1024 float tile with surfaces); 0: none.
+  double flood_per_second = 0.0;
 };
 
 // Where a simulated worker connects, and with which CURVE keys (none: plain).
@@ -51,6 +56,9 @@ struct SimOutcome {
   int connections = 0;         // Hellos sent (reconnects after stalls, replacements)
   uint64_t answers = 0;
   std::string last_bye;
+  uint64_t flooded = 0;          // flood messages sent
+  double first_flood_at = -1.0;  // seconds after the start
+  double quarantined_at = -1.0;  // seconds after the start: when the master's Bye (Quarantined) came
 };
 
 class SimWorker {
@@ -78,6 +86,7 @@ class SimWorker {
   void handle(const protocol::Message& m, Clock::time_point now);
   void take_job(const protocol::TileJobMsg& job, Clock::time_point now);
   void send_answer(const Due& due);
+  Clock::time_point flood(Clock::time_point now);  // sends what is due; returns when the next is
   void send(const protocol::Message& m, Clock::time_point now);
 
   zmq::context_t& context_;
@@ -93,6 +102,7 @@ class SimWorker {
   Clock::time_point last_sent_, last_heard_;
   bool dead_ = false, finished_ = false;
   std::optional<Clock::time_point> rejoin_at_;
+  std::optional<Clock::time_point> next_flood_;
   uint64_t answers_ = 0;
   SimOutcome outcome_;
 };

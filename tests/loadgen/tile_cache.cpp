@@ -84,6 +84,19 @@ const std::vector<uint8_t>& TileCache::encoded(const TileJob& t, PixelFormat for
   return *tiles_.emplace(key, std::move(bytes)).first->second;
 }
 
+const std::vector<uint8_t>& TileCache::bomb() {
+  std::lock_guard lock(mutex_);
+  if (!bomb_.empty()) return bomb_;
+  protocol::TileResult r;
+  r.tile = {0, 0, kBombSide, kBombSide, 0};
+  r.pixel_format = PixelFormat::Float32;
+  r.pixel_codec = protocol::PixelCodec::Zstd;
+  r.pixels.assign(size_t(kBombSide) * kBombSide, glm::vec3(0.0f));
+  r.surfaces.assign(size_t(kBombSide) * kBombSide, PixelSurface{});
+  bomb_ = protocol::encode(r);
+  return bomb_;
+}
+
 zmq::message_t TileCache::answer(const std::vector<uint8_t>& encoded, uint64_t frame_id, uint64_t job_id,
                                  uint64_t frame_state_hash, const TileJob& claimed) {
   zmq::message_t m(encoded.data(), encoded.size());

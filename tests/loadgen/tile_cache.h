@@ -52,6 +52,12 @@ class TileCache {
   static void poison(zmq::message_t& answer, PixelFormat format);
   static bool can_poison(PixelFormat format, protocol::PixelCodec codec);
 
+  // A decompression bomb: an encoded TileResult of kBombSide x kBombSide
+  // black float pixels and surfaces packed by zstd (under 1 KB; thread-safe,
+  // made once). answer() gives it a frame, job and hash.
+  static constexpr int kBombSide = 1024;
+  const std::vector<uint8_t>& bomb();
+
   // The VPL-set hash a correct worker of the built-in Cornell box reports for
   // this frame (the master computes the same one: master/trust/master_renderer.h);
   // thread-safe, computed once per frame setup.
@@ -62,6 +68,7 @@ class TileCache {
   std::optional<Image> picture_;
   std::mutex mutex_;
   std::map<Key, std::unique_ptr<std::vector<uint8_t>>> tiles_;
+  std::vector<uint8_t> bomb_;  // under mutex_
   std::mutex hash_mutex_;
   std::unique_ptr<SceneState> scene_;    // the Cornell box, built on first use
   std::map<uint64_t, uint64_t> hashes_;  // content hash of (setup, settings) -> frame hash

@@ -10,6 +10,7 @@
 
 #include "image/image.h"
 #include "loadgen_run.h"
+#include "protocol/curve.h"
 #include "support/image_compare.h"
 #include "support/sanitizers.h"
 #include "support/stats_file.h"
@@ -68,6 +69,24 @@ LoadgenReport run_exactly(const LoadgenOptions& o, const std::vector<SimBehaviou
   EXPECT_EQ(r.exit_code, 0) << r.master_log;
   EXPECT_TRUE(frames_exact(o)) << "no hole, no bad tile, no tile in the wrong place";
   return r;
+}
+
+// Over CURVE on loopback, each worker with an authorised key of its own
+// (w0, w1, ...): a worker votes with its key.
+LoadgenOptions over_curve(LoadgenOptions o, std::vector<SimBehaviour>& b) {
+  const std::filesystem::path keys = std::filesystem::path(o.dir) / "keys";
+  std::filesystem::create_directories(keys / "workers");
+  protocol::write_key_files((keys / "master").string(), protocol::make_curve_keypair());
+  for (size_t i = 0; i < b.size(); ++i) {
+    const std::string name = (keys / "workers" / std::string("w").append(std::to_string(i))).string();
+    protocol::write_key_files(name, protocol::make_curve_keypair());
+    b[i].key_file = name + ".key";
+  }
+  o.worker_key = b[0].key_file;
+  o.master_public_key = (keys / "master.pub").string();
+  o.master_args.insert(o.master_args.end(), {"--key", (keys / "master.key").string(), "--authorized-keys",
+                                             (keys / "workers").string(), "--curve"});
+  return o;
 }
 
 TEST(Scale, SixtyFourWorkersRenderEveryFrameExactlyAndNoTileTwice) {
@@ -163,18 +182,62 @@ TEST(Scale, AWrongFirstHashQuarantinesOnlyTheDivergingWorker) {
 }
 
 // The sybil pair: two peers that report the same made-up VPL-set hash and
-// answer first. The master judges by its own hash, so they are quarantined
-// and the honest workers' frames are written (a vote would have gone to them).
+// answer every job at once, before the honest workers have joined (0.3 s
+// later, as local workers still loading their scene). Without CURVE two that
+// agree could be two fakes: the verdict waits for every worker present, the
+// honest ones agree with the master, the two are quarantined and every frame
+// is written (a vote would have gone to them; a dispute ended the run in 0.3 s).
 TEST(Scale, TwoFakesThatAgreeAndAnswerFirstAreQuarantinedNotBelieved) {
-  LoadgenOptions o = options("sybil", 4, 15);
+  LoadgenOptions o = options("sybil", 4, 30);
   std::vector<SimBehaviour> b = paced(o);
   for (int i : {0, 1}) {
     b[size_t(i)].hash_offset = 7;    // the same made-up VPL sets...
     b[size_t(i)].tile_seconds = 0;   // ...and always first
   }
+  b[2].join_at = b[3].join_at = 0.6;
   const LoadgenReport r = run_exactly(o, b);
+  EXPECT_EQ(r.frames_done, 30);
   for (size_t i = 0; i < r.workers.size(); ++i) EXPECT_EQ(r.workers[i].quarantined, i < 2) << i;
   EXPECT_NE(r.workers[0].last_bye.find("differs from the master's own"), std::string::npos) << r.workers[0].last_bye;
+}
+
+// Two peers with authorised keys of their own (or two stolen ones) agree on a
+// made-up hash and answer every job at once, before the honest worker, which
+// joins 0.3 s later, has returned anything. They are not every worker
+// present: the verdict waits for the honest one, which agrees with the
+// master, and the two are quarantined; no frame is written wrong (the master
+// followed them and wrote 20 of 20 wrong before, quarantining the honest one).
+TEST(Scale, TwoColludingKeysThatAnswerFirstAreQuarantinedNotTheHonestWorker) {
+  LoadgenOptions o = options("colluders", 3, 20);
+  std::vector<SimBehaviour> b = paced(o);
+  for (int i : {0, 1}) {
+    b[size_t(i)].hash_offset = 7;
+    b[size_t(i)].tile_seconds = 0;
+  }
+  b[2].join_at = 0.6;
+  o = over_curve(o, b);
+  const LoadgenReport r = run_exactly(o, b);
+  for (size_t i = 0; i < r.workers.size(); ++i) EXPECT_EQ(r.workers[i].quarantined, i < 2) << i;
+  EXPECT_EQ(r.master_log.find("follows their agreement"), std::string::npos) << r.master_log;
+}
+
+// A master whose maths library differs (1 ulp off, preloaded) follows its
+// three authenticated workers, two of which spoil the same tile of every
+// frame. A job both failed goes to the third, not to the master, whose tile
+// would be its own maths library's (the run ended at frame 3 of 30 before).
+TEST(Scale, AFollowingMastersJobThatTwoWorkersFailedGoesToTheThird) {
+#ifdef IGI_TEST_SANITIZED
+  GTEST_SKIP() << "a sanitizer's runtime must come first among preloaded libraries";
+#endif
+  LoadgenOptions o = all_join_first(options("follow-failed", 3, 30));
+  o.master_env = {"LD_PRELOAD=" + std::string(IGI_OFF_BY_ONE_LIBM)};
+  std::vector<SimBehaviour> b = paced(o);
+  b[0].poison_pixel = b[1].poison_pixel = std::pair{70, 50};
+  o = over_curve(o, b);
+  const LoadgenReport r = run_exactly(o, b);
+  EXPECT_EQ(r.frames_done, 30);
+  EXPECT_NE(r.master_log.find("the master follows their agreement"), std::string::npos) << r.master_log;
+  EXPECT_FALSE(r.workers[2].quarantined);
 }
 
 // One against one: a vote could not tell which is right and would wait for a
@@ -187,6 +250,28 @@ TEST(Scale, OfTwoWorkersThatDisagreeTheWrongOneIsQuarantinedWithoutAThird) {
   EXPECT_EQ(r.master_log.find("its workers disagree on the VPL sets"), std::string::npos) << r.master_log;
   EXPECT_TRUE(r.workers[0].quarantined);
   EXPECT_FALSE(r.workers[1].quarantined);
+}
+
+// A welcomed peer floods results for jobs it was never given, 100 a second,
+// each under 1 KB that would unpack to a 1024 x 1024 float tile with
+// surfaces (12-19 ms of the session thread each, when they were unpacked
+// before the job was looked up). Their headers alone are read: each is
+// counted as a bad message and the peer is quarantined at the third, well
+// within a second of its first; every frame is exact.
+TEST(Scale, APeerThatFloodsResultsForJobsItWasNeverGivenIsQuarantinedWithinASecond) {
+  LoadgenOptions o = options("flood", 4, 20);
+  std::vector<SimBehaviour> b = paced(o);
+  b.push_back(b.back());
+  b.back().flood_per_second = 100;
+  const LoadgenReport r = run_exactly(o, b);
+  const SimOutcome& flooder = r.workers.back();
+  ASSERT_TRUE(flooder.quarantined) << r.master_log;
+  EXPECT_LT(flooder.quarantined_at - flooder.first_flood_at, 1.0);
+  EXPECT_EQ(r.quarantined_workers(), 1);
+  EXPECT_GE(stats(o)["bad_messages"].get<int>(), 3);
+  EXPECT_NE(r.master_log.find("which it was never given"), std::string::npos) << r.master_log;
+  std::printf("flood: %llu sent, quarantined %.3f s after the first\n",
+              static_cast<unsigned long long>(flooder.flooded), flooder.quarantined_at - flooder.first_flood_at);
 }
 
 // Two peers that heartbeat and take jobs but never answer: their jobs are

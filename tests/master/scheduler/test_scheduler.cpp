@@ -370,8 +370,8 @@ TEST(Scheduler, TwoWorkersThatAgreeAgainstTheCallerDisputeTheFrame) {
   config.credits = 1;
   config.master_reference = true;
   Scheduler s(config);
-  s.add_worker("a");
-  s.add_worker("b");
+  s.add_worker("a", 0, "key-a");  // two independent authenticated keys
+  s.add_worker("b", 0, "key-b");
   s.add_frame(0, tiles(3));
   const auto first = s.assign(at(0));
   ASSERT_EQ(first.size(), 2u);

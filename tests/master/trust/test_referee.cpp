@@ -44,6 +44,8 @@ TEST(Referee, TheCallersHashDecidesOnceAWorkerAgreesAndTheOthersLose) {
 
 TEST(Referee, TwoWorkersWhoAgreeAgainstTheCallerAreADisputeNotAVerdict) {
   Referee r(true);
+  r.enroll("a", "key-a");  // two independent authenticated keys
+  r.enroll("b", "key-b");
   r.open(0);
   r.set_reference(0, 7);
   const Roll roll = proven({"a", "b"});
@@ -66,12 +68,26 @@ TEST(Referee, TwoWorkersWhoAgreeAgainstTheCallerAreADisputeNotAVerdict) {
   EXPECT_TRUE(r.wants_votes(1)) << "frames opened after follow_workers() are decided by vote";
 }
 
-TEST(Referee, ALoneDissenterAgainstTheCallerLosesWhenNoOneElseIsAwaited) {
+// One voice against another: the referee cannot tell which is wrong (the
+// caller's maths library, or the worker), so nobody loses and the caller
+// renders what the worker contests.
+TEST(Referee, ALoneDissenterAgainstTheCallerIsADoubtNotAVerdict) {
   Referee r(true);
+  r.enroll("a", "key-a");
   r.open(0);
   r.set_reference(0, 7);
   r.vote(0, 1, "a", 9, true);
-  expect_decision(r.try_decide(0, proven({"a"})), 7u, {"a"});
+  std::optional<Decision> d = r.try_decide(0, proven({"a"}));
+  expect_decision(d, 7u, {});  // no one is quarantined on one voice
+  EXPECT_TRUE(d->doubt);
+  EXPECT_EQ(d->held, (std::vector<std::pair<uint64_t, bool>>{{1, false}}));
+  EXPECT_TRUE(r.take_disputes().empty());
+  const std::vector<HashDoubt> doubts = r.take_doubts();
+  ASSERT_EQ(doubts.size(), 1u);
+  EXPECT_EQ(doubts[0].voters.at(9), std::vector<WorkerId>{"a"});
+  EXPECT_EQ(r.vote(0, 2, "a", 9, true), Vote::Contested) << "its later results are the caller's to render";
+  EXPECT_EQ(r.vote(0, 3, "a", 7, true), Vote::Counts);
+  EXPECT_EQ(r.standing("a"), 0u) << "a doubt confirms no one";
 }
 
 TEST(Referee, AVoteNeedsTwoAndAStrictMajorityOfThePossibleVoters) {
