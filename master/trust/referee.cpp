@@ -149,8 +149,9 @@ std::optional<Decision> Referee::judge(uint64_t frame_id, Ballot& ballot, const 
     const auto& [hash, voters] = *ballot.votes.begin();
     const std::set<std::string> keys = keys_of(ballot, voters);
     const bool independent = keys.size() >= 2 && std::none_of(keys.begin(), keys.end(), anonymous);
+    const auto& of_hash = voters;  // a structured binding cannot be captured before C++20 (clang 14)
     const bool everyone = std::all_of(roll.present.begin(), roll.present.end(),
-                                      [&](const WorkerId& id) { return voters.count(id) > 0; });
+                                      [&](const WorkerId& id) { return of_hash.count(id) > 0; });
     if (independent && everyone) {
       ballot.disputed = true;
       disputes_.push_back(HashDispute{frame_id, callers, hash, {voters.begin(), voters.end()}});
@@ -245,7 +246,8 @@ bool Referee::may_stall() const {
 std::optional<HashSplit> Referee::stalled_split(const std::vector<WorkerId>& present) const {
   for (const auto& [frame_id, ballot] : ballots_) {
     if (ballot.reference || !ballot.by_vote || ballot.votes.size() < 2) continue;
-    if (!std::all_of(present.begin(), present.end(), [&](const WorkerId& id) { return has_voted(ballot, id); }))
+    const Ballot& voted = ballot;  // captured below: a structured binding cannot be (clang 14)
+    if (!std::all_of(present.begin(), present.end(), [&](const WorkerId& id) { return has_voted(voted, id); }))
       continue;
     HashSplit split;
     split.frame_id = frame_id;
