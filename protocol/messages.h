@@ -48,7 +48,8 @@ inline constexpr uint32_t kMagic = 0x31494749;  // "IGI1" read little-endian
 // carries the runtime libraries. 16: Welcome carries the units the scene's lamps are read in.
 // 17: Welcome and TileResult carry the pixel block's codec (raw or zstd). 18: pixels
 // as rgb9e5 (a shared exponent, 4 bytes); the codec packs the surfaces too; lz4.
-inline constexpr uint16_t kVersion = 19;
+// 19: settings carry light_guide. 20: settings carry light_divisor (sharp previews).
+inline constexpr uint16_t kVersion = 20;
 
 // Size limits, checked before anything is allocated.
 inline constexpr size_t kMaxString = 4096;

@@ -134,14 +134,20 @@ namespace {
 void trace_block(const Accel& accel, const CameraFrontEnd& camera, int image_width, int image_height, int bx, int by,
                  int k, int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log) {
   const Region& region = out.region;
+  const int step = region.step;
+  const int lattice_width = lattice_extent(image_width, step), lattice_height = lattice_extent(image_height, step);
+  auto image_x = [&](int x) { return lattice_to_image(x, step, image_width); };
+  auto image_y = [&](int y) { return lattice_to_image(y, step, image_height); };
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   alignas(64) int valid[16];
   alignas(64) RTCRayHit16 packet;
   for (int i = 0; i < 16; ++i) {
-    const int x = bx + (i & 3), y = by + (i >> 2);  // image coordinates
-    valid[i] = x < image_width && y < image_height ? -1 : 0;
-    Ray ray = camera.pixel_ray(x, y, k);
+    const int x = bx + (i & 3), y = by + (i >> 2);  // image (lattice) coordinates
+    valid[i] = x < lattice_width && y < lattice_height ? -1 : 0;
+    // A lane outside the image traces (masked off) where the lattice would go on.
+    Ray ray = valid[i] ? camera.pixel_ray(image_x(x), image_y(y), k)
+                       : camera.pixel_ray(x * step + step / 2, y * step + step / 2, k);
     ray.tfar = INFINITY;
     set_rtc_lane(packet.ray, i, ray);
     packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
@@ -170,7 +176,7 @@ void trace_block(const Accel& accel, const CameraFrontEnd& camera, int image_wid
             {packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]}, 0.0f, 1e30f, kCameraRayMask};
     Hit hit{packet.ray.tfar[i], accel.triangle_index(packet.hit.instID[0][i], packet.hit.geomID[i], packet.hit.primID[i]),
             {packet.hit.u[i], packet.hit.v[i]}};
-    const uint32_t seed = camera.chain_seed(region.x0 + x, region.y0 + y, k);
+    const uint32_t seed = camera.chain_seed(image_x(region.x0 + x), image_y(region.y0 + y), k);
     // Branch 0 into its layer; further branches on the stack, then into
     // layers of their own, which the region gets when a pixel first needs one.
     const size_t pixel = size_t(y) * region.width + x;
@@ -190,7 +196,7 @@ void trace_block(const Accel& accel, const CameraFrontEnd& camera, int image_wid
 
 void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& region, int samples,
                    int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log) {
-  out.region = region;
+  out.region = region;  // with its step
   out.samples = samples;
   out.branches = 1;
   // Room for every branch (kept between tiles). Branch 0's layers are not

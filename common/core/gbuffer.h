@@ -1,6 +1,7 @@
 #pragma once
 // First non-specular surface seen through each sub-sample of each pixel of a
 // tile region: the input to VPL shading and to the discontinuity buffer.
+#include <algorithm>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -23,8 +24,16 @@ struct GSample {
   bool valid() const { return has_surface; }
 };
 
+// A lattice over the image, one pixel in `step` x `step`: lattice pixel
+// (x, y) stands for image pixel (x step + step / 2, y step + step / 2),
+// clipped to the image (step 1: the image itself). Light shaded on it is
+// upsampled to every pixel (methods/light_upsample.h).
+inline int lattice_extent(int image_extent, int step) { return (image_extent + step - 1) / step; }
+inline int lattice_to_image(int c, int step, int image_extent) { return std::min(c * step + step / 2, image_extent - 1); }
+
 struct Region {
-  int x0 = 0, y0 = 0, width = 0, height = 0;  // image coordinates
+  int x0 = 0, y0 = 0, width = 0, height = 0;  // image coordinates (with a step, lattice coordinates)
+  int step = 1;                               // > 1: the region is a piece of that lattice
   size_t pixels() const { return size_t(width) * size_t(height); }
   size_t index(int x, int y) const { return size_t(y - y0) * size_t(width) + size_t(x - x0); }  // image coordinates
 };
@@ -60,7 +69,9 @@ struct GBuffer {
 // Primary rays in 16-wide packets (4x4 pixels of one sub-sample position),
 // then mirrors and glass followed one ray at a time, each sub-sample into
 // `glass_branches` layers (follow_specular_tree). Camera rays skip the back
-// of single-sided faces (scene/accel.h).
+// of single-sided faces (scene/accel.h). A region with a step traces its
+// lattice's pixels, 4 x 4 of the lattice to a packet: a lattice pixel's
+// sample is its image pixel's ray (the packet's other rays differ).
 void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& region, int samples,
                    int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log = nullptr);
 

@@ -31,6 +31,7 @@ inline constexpr int kMaxBidirPaths = 4096;          // bidirectional: light and
 inline constexpr int kMaxBidirVpls = 1 << 16;        // bidirectional: VPLs kept per set
 inline constexpr int kBidirAuto = -1;               // bidirectional: chosen by the view
 inline constexpr int kMaxWaveletLevels = 5;
+inline constexpr int kMaxLightDivisor = 16;
 // Above this the clamp distance (core/clamp.h) would exceed several rooms:
 // nothing is left unclamped, and the image is a blur of VPL light.
 inline constexpr float kMaxClamp = 4.0f;
@@ -149,6 +150,10 @@ struct RenderSettings {
   // swung with the seed (BreakfastRoom: 0.27 to 1.57 of pt); where most
   // paths reach the view the paths stay the plain rule's, bit for bit.
   bool light_guide = true;
+  // Light at one pixel in D x D: camera rays at every pixel, light shaded on
+  // a lattice and upsampled along the pixels' surfaces
+  // (methods/light_upsample.h); the window's previews while the camera moves. 1 = off.
+  int light_divisor = 1;
 };
 
 

@@ -168,6 +168,13 @@ constexpr std::array kSettings = std::to_array<Setting>({
      .methods = kVplMethods, .bound = Bound::None, .widget = Widget::Checkbox, .section = Section::Lighting,
      .label = "paths find the view", .off_option = "--no-light-guide",
      .off_help = "start every light path where the plain rule does (uniformly over a sun's disc and the sky)"},
+    {.field = "light_divisor", .wire = "settings.light_divisor", .member = &R::light_divisor,
+     .option = "--light-divisor", .value = "D",
+     .help = "shade light at one pixel in D x D and upsample it to every pixel along the pixels' own surfaces: "
+             "camera rays, textures and edges at full resolution, light at 1/D^2 of its cost (the window's "
+             "previews while the camera moves); 1 = every pixel",
+     .methods = kVplMethods, .bound = Bound::Closed, .lo = 1, .hi = kMaxLightDivisor,
+     .what = "pixels a side of a light sample"},
 });
 
 }  // namespace

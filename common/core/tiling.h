@@ -12,12 +12,18 @@ namespace igi {
 
 // Extra pixels around a tile that the method needs to read: the
 // discontinuity buffer's two passes of its window (filter/discontinuity_buffer.h,
-// filter_tent), and around it the wavelet filter's footprint.
-inline int tile_border(const RenderSettings& s) {
+// filter_tent), and around it the wavelet filter's footprint. With light on
+// a lattice (--light-divisor) that border is the lattice's, which the method
+// finds itself (methods/light_upsample.h): the tile needs none.
+inline int light_border(const RenderSettings& s) {
   const bool vpl = s.method == MethodKind::Igi || s.method == MethodKind::InstantRadiosity;
   return (s.method == MethodKind::Igi && s.filter ? 2 * (s.interleave / 2) : 0) +
          (vpl ? wavelet_footprint(s.wavelet_levels) : 0);
 }
+inline bool lattice_light(const RenderSettings& s) {
+  return s.light_divisor > 1 && (s.method == MethodKind::Igi || s.method == MethodKind::InstantRadiosity);
+}
+inline int tile_border(const RenderSettings& s) { return lattice_light(s) ? 0 : light_border(s); }
 
 // Tiles of at most tile_w x tile_h covering the image, each with `border`,
 // ordered in a spiral from the centre so the image fills in evenly.

@@ -1,5 +1,7 @@
 #include "methods/vpl_method.h"
 
+#include "methods/light_upsample.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -8,10 +10,12 @@
 #include "core/clamp.h"
 #include "core/direct_lights.h"
 #include "core/subpixel.h"
+#include "core/tiling.h"
 #include "core/vpl_contribution.h"
 #include "filter/discontinuity_buffer.h"
 #include "importance/view_vpls.h"
 #include "methods/bias_compensation.h"
+#include "methods/light_upsample.h"
 #include "sampling/content_hash.h"
 #include "sampling/hash.h"
 #include "vpl/vpl_generator.h"
@@ -70,7 +74,9 @@ class PartTimer {
 // l mod S, glass branch l div S) of region pixel p (P pixels), then L P + h
 // for gather hit h (L = S B layers).
 struct VplMethod::Scratch {
-  GBuffer gbuffer;
+  GBuffer gbuffer;  // the region's (with --light-divisor, the lattice's)
+  GBuffer pixels;   // with --light-divisor: the tile's own pixels
+  std::vector<glm::vec3> lattice_light;  // with --light-divisor: demodulated light per lattice sample
   GlossyHits hits;
   std::vector<std::vector<uint32_t>> hits_by_group;  // per (set, group): gather hits
   PixelBatch batch;
@@ -431,12 +437,22 @@ void VplMethod::resolve(const GBuffer& gbuffer, const Rect& core, const TileJob&
 
 void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const {
   thread_local Scratch scratch;
+  if (lattice_light(settings_)) return render_lattice_tile(job, out, scratch, rays);
   GBuffer& gbuffer = scratch.gbuffer;
   {
     PartTimer timer(parts_, FramePart::Camera, rays);
     build_gbuffer(context_.accel, frame_, tile_region(job, frame_.width, frame_.height), settings_.aa_samples,
                   settings_.glass_branches, depth_limit(settings_.specular_depth), gbuffer, rays, log_);
   }
+  const Rect core = light(gbuffer, job, scratch, rays);
+  PartTimer timer(parts_, FramePart::Filter, rays);
+  resolve(gbuffer, core, job, scratch, out);
+}
+
+// The light of the job's pixels (region coordinates: the image's, or a
+// lattice's) into scratch.filtered over the returned core, and
+// scratch.direct: every part but the camera rays and the resolve.
+Rect VplMethod::light(const GBuffer& gbuffer, const TileJob& job, Scratch& scratch, RayCounts& rays) const {
   {
     PartTimer timer(parts_, FramePart::GlossyGather, rays);
     trace_glossy_gather(context_.accel, context_.lights, gbuffer, settings_, frame_.seed, scratch.hits, rays);
@@ -476,7 +492,59 @@ void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCou
   scratch.filtered.resize(size_t(core.w) * core.h * gbuffer.layer_count());
   for (int l = 0; l < gbuffer.layer_count(); ++l) filter_layer(gbuffer, l, core, scratch);
   if (wavelet_levels_ > 0) wavelet_pass(gbuffer, core, job, scratch);
-  resolve(gbuffer, core, job, scratch, out);
+  return core;
+}
+
+// --light-divisor D (methods/light_upsample.h): the tile's own pixels at
+// full resolution, light on the lattice cells around them (with the filter's
+// border in lattice pixels), then each pixel's light upsampled from them.
+void VplMethod::render_lattice_tile(const TileJob& job, std::span<glm::vec3> out, Scratch& scratch,
+                                    RayCounts& rays) const {
+  const int step = settings_.light_divisor;
+  const TileJob cells = lattice_cells(job, step, frame_.width, frame_.height, light_border(settings_));
+  GBuffer& pixels = scratch.pixels;
+  GBuffer& lattice = scratch.gbuffer;
+  {
+    PartTimer timer(parts_, FramePart::Camera, rays);
+    const int depth = depth_limit(settings_.specular_depth);
+    build_gbuffer(context_.accel, frame_, Region{job.x, job.y, job.w, job.h}, settings_.aa_samples,
+                  settings_.glass_branches, depth, pixels, rays, log_);
+    Region region = tile_region(cells, lattice_extent(frame_.width, step), lattice_extent(frame_.height, step));
+    region.step = step;
+    build_gbuffer(context_.accel, frame_, region, settings_.aa_samples, settings_.glass_branches, depth, lattice,
+                  rays, log_);
+  }
+  const Rect core = light(lattice, cells, scratch, rays);
+  PartTimer timer(parts_, FramePart::Filter, rays);
+  // The cells' demodulated light per layer, as resolve() adds it up.
+  const size_t core_pixels = size_t(core.w) * core.h;
+  scratch.lattice_light.assign(size_t(lattice.layer_count()) * lattice.region.pixels(), glm::vec3(0.0f));
+  for (int l = 0; l < lattice.layer_count(); ++l)
+    for (int y = cells.y; y < cells.y + cells.h; ++y)
+      for (int x = cells.x; x < cells.x + cells.w; ++x) {
+        const size_t pixel = lattice.region.index(x, y);
+        const GSample& g = lattice.at(l, pixel);
+        if (!g.valid()) continue;
+        const size_t c_index = size_t(y - core.y) * core.w + size_t(x - core.x);
+        glm::vec3 filtered = scratch.filtered[size_t(l) * core_pixels + c_index];
+        if (l < lattice.samples && wavelet_levels_ > 0) filtered *= scratch.ratio[size_t(y - cells.y) * cells.w + (x - cells.x)];
+        scratch.lattice_light[size_t(l) * lattice.region.pixels() + pixel] =
+            filtered + scratch.direct[size_t(l) * lattice.region.pixels() + pixel] + caustic(g);
+      }
+  const LatticeLight light{lattice, scratch.lattice_light, cells};
+  const float inv_samples = 1.0f / float(pixels.samples);
+  for (int y = 0; y < job.h; ++y)
+    for (int x = 0; x < job.w; ++x) {
+      const size_t pixel = pixels.region.index(job.x + x, job.y + y);
+      glm::vec3 c(0.0f);
+      for (int l = 0; l < pixels.layer_count(); ++l) {
+        const GSample& g = pixels.at(l, pixel);
+        c += g.emitted;
+        if (g.valid())
+          c += g.throughput * modulation(g.surface, g.wo) * upsample_light(light, l, g, job.x + x, job.y + y);
+      }
+      out[size_t(y) * job.w + x] = c * inv_samples;
+    }
 }
 
 }  // namespace igi

@@ -93,6 +93,8 @@ class VplMethod final : public Method {
   void wavelet_pass(const GBuffer& gbuffer, const Rect& core, const TileJob& job, Scratch& scratch) const;
   void resolve(const GBuffer& gbuffer, const Rect& core, const TileJob& job, const Scratch& scratch,
                std::span<glm::vec3> out) const;
+  Rect light(const GBuffer& gbuffer, const TileJob& job, Scratch& scratch, RayCounts& rays) const;
+  void render_lattice_tile(const TileJob& job, std::span<glm::vec3> out, Scratch& scratch, RayCounts& rays) const;
   glm::vec3 caustic(const GSample& g) const { return caustics_ ? caustics_->radiance(g) : glm::vec3(0.0f); }
 
   SceneContext context_;

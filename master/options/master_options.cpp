@@ -103,6 +103,12 @@ void add_run_options(CLI::App& app, MasterOptions& o) {
                  "that take about this long; 0 = full frames only [" + std::to_string(int(kWindowFrameBudgetMs)) + "]")
       ->check(cli::non_negative_number())->check(cli::bounded_number(10000.0))->group(group)->type_name("MS");
   app.add_option_function<std::string>(
+         "--previews", [&o](const std::string& v) { o.sharp_previews = v == "sharp"; },
+         "window: previews while the view changes: sharp (camera rays, textures and edges at every pixel, light on "
+         "a coarser lattice upsampled along the surfaces; after a stop, frames refine up to the full frame) or "
+         "coarse (fewer pixels, the full frame at once after a stop) [sharp]")
+      ->check(cli::one_of({"sharp", "coarse"}))->group(group)->type_name("sharp|coarse");
+  app.add_option_function<std::string>(
          "--reproject", [&o](const std::string& v) { o.reproject = v == "on"; },
          "window: carry the accumulated image through camera moves where the surface is the same [on]")
       ->check(cli::one_of({"on", "off"}))->group(group)->type_name("on|off");

@@ -47,6 +47,7 @@ struct MasterOptions {
   // many ms (frame_budget.h); 0: every frame full. Negative: the default
   // (kWindowFrameBudgetMs in the window, off headless).
   double frame_budget_ms = -1.0;
+  bool sharp_previews = true;     // window: previews with camera rays at every pixel, and refining after a stop (--previews)
   bool reproject = true;          // window: carry the accumulated image through camera moves (view_history.h)
   int history_frames = 16;        // window: a carried pixel keeps at most this many frames of history
   // Headless motion benchmark (motion_run.cpp): a scripted user.

@@ -185,7 +185,7 @@ PanelOptions panel_options(const MasterOptions& o, const InteractiveWindow& wind
   p.help = o.help;
   p.overlay = *parse_overlay(o.overlay);  // checked with the options
   if (!o.render.camera_file.empty()) p.bookmark = o.render.camera_file;
-  const FrameBudget budget(o.render.width, o.render.height, 0.0);
+  const FrameBudget budget(o.render.width, o.render.height, 0.0, o.sharp_previews);
   for (const PreviewLevel& level : budget.levels()) p.preview_levels.push_back(level_name(level));
   return p;
 }

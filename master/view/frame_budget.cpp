@@ -5,7 +5,11 @@
 namespace igi {
 namespace {
 
-double pixels(const PreviewLevel& level) { return 1.0 / (double(level.divisor) * level.divisor); }
+// The share of a full frame's shading a level does.
+double pixels(const PreviewLevel& level) {
+  const double d = double(level.divisor) * level.light;
+  return 1.0 / (d * d);
+}
 
 }  // namespace
 
@@ -16,6 +20,7 @@ RenderSettings preview_settings(RenderSettings settings, const PreviewLevel& lev
     settings.aa_samples = 1;
     settings.compensation_samples = 0;
   }
+  settings.light_divisor = level.light;
   return settings;
 }
 
@@ -26,13 +31,18 @@ double level_weight(const RenderSettings& full, const PreviewLevel& level) {
 
 std::string level_name(const PreviewLevel& level) {
   if (!level.cheap && level.divisor == 1) return "full";
+  if (level.light > 1) return "light 1/" + std::to_string(level.light);
   return "preview 1/" + std::to_string(level.divisor);
 }
 
-FrameBudget::FrameBudget(int width, int height, double budget_ms) : budget_ms_(budget_ms) {
+FrameBudget::FrameBudget(int width, int height, double budget_ms, bool sharp) : budget_ms_(budget_ms), sharp_(sharp) {
   levels_.push_back({1, false});
+  levels_.push_back({1, true});
+  if (sharp)
+    for (int l : kLightDivisors)
+      if (std::max(width, height) / l >= 8) levels_.push_back({1, true, l});
   const int long_side = std::max(width, height);
-  for (int d = 1; long_side / d >= kMinLongSide; ++d)
+  for (int d = 2; long_side / d >= kMinLongSide; ++d)
     if (width % d == 0 && height % d == 0) levels_.push_back({d, true});
   cost_.assign(levels_.size(), 0.0);
 }
@@ -52,9 +62,34 @@ double FrameBudget::predicted(int level) const {
   return 0.0;
 }
 
+int FrameBudget::refine(int from) {
+  // The finest level at full resolution finer than `from` that is predicted to fit this step's budget ...
+  const double budget = budget_ms_ * 1e-3 * double(1 << std::min(refine_step_, 16));
+  for (int l = 0; l < from; ++l)
+    if (levels_[size_t(l)].divisor == 1 && predicted(l) > 0.0 && predicted(l) <= budget) return l;
+  // ... else the next finer one at full resolution.
+  for (int l = from - 1; l > 0; --l)
+    if (levels_[size_t(l)].divisor == 1) return l;
+  return 0;
+}
+
 int FrameBudget::pick(bool moving) {
   if (pinned_) return *pinned_;
+  if (!moving && refine_ > 0) {  // the move ended: each frame finer than the one before, up to the full frame
+    refine_ = refine(refine_);
+    ++refine_step_;
+    return refine_;
+  }
   if (!moving || budget_ms_ <= 0.0 || levels_.size() == 1) return 0;
+  if (sharp_) {  // where refining starts when the move ends
+    refine_ = pick_moving();
+    refine_step_ = 0;
+    return refine_;
+  }
+  return pick_moving();
+}
+
+int FrameBudget::pick_moving() {
   const double budget = budget_ms_ * 1e-3;
   const int coarsest = int(levels_.size()) - 1;
   if (moving_ == 0) {  // the first move: the finest preview the full frames' cost predicts to fit, else the coarsest

@@ -6,7 +6,7 @@
 namespace igi {
 
 MotionPlanner::MotionPlanner(const MasterOptions& options, const Scene& scene, double budget_ms)
-    : options_(options), scene_(scene), budget_(options.render.width, options.render.height, budget_ms) {}
+    : options_(options), scene_(scene), budget_(options.render.width, options.render.height, budget_ms, options.sharp_previews) {}
 
 std::vector<uint64_t> MotionPlanner::stale(const MovingView& view, const std::vector<uint64_t>& open) const {
   std::vector<uint64_t> out;

@@ -72,6 +72,13 @@ std::vector<TileCase> tile_cases() {
   draws_wavelet.wavelet_levels = 2;
   RenderSettings ir_draws = vpl_settings(MethodKind::InstantRadiosity, 4, 0.05f);
   ir_draws.vpl_draws = 2;
+  // Light on a lattice (--light-divisor): the lattice's cells and their border come from the tile alone.
+  RenderSettings lattice = all;
+  lattice.light_divisor = 3;
+  RenderSettings lattice_wavelet = draws_wavelet;
+  lattice_wavelet.light_divisor = 4;
+  RenderSettings ir_lattice = ir_all;
+  ir_lattice.light_divisor = 2;
   const std::string interior = std::string(IGI_TEST_DATA_DIR) + "/interior/interior.glb";
   return {{"ir", "cornell", vpl_settings(MethodKind::InstantRadiosity, 4, 0.05f)},
           {"igi", "cornell", vpl_settings(MethodKind::Igi, 4, 0.05f)},
@@ -97,7 +104,11 @@ std::vector<TileCase> tile_cases() {
           // glTF's metallic-roughness model (Blender's room): textured, a sharp metal ball's lobe gathered
           // and its light as photons, the rough walls' lobes clamped and compensated.
           {"igi_aa_gltf_materials_caustics", interior, caustics},
-          {"ir_aa_gltf_materials", interior, ir_all}};
+          {"ir_aa_gltf_materials", interior, ir_all},
+          {"igi_light3_aa_glossy_compensation", "glossy", lattice},
+          {"igi_light3_aa_glass", "glass", lattice},
+          {"igi_light4_draws_wavelet_sky", "courtyard", lattice_wavelet},
+          {"ir_light2_aa_gltf_materials", interior, ir_lattice}};
 }
 
 class TileInvariance : public ::testing::TestWithParam<TileCase> {};

@@ -66,7 +66,7 @@ TEST(WindowPanel, EveryWidgetsRangeIsTheRangeTheSettingsCheckAccepts) {
     if (auto* member = std::get_if<int RenderSettings::*>(&row.member)) expect_range(row, *member);
     if (auto* member = std::get_if<float RenderSettings::*>(&row.member)) expect_range(row, *member);
   }
-  EXPECT_EQ(ranges, 24) << "every count and number but the square counts";
+  EXPECT_EQ(ranges, 25) << "every count and number but the square counts";
 }
 
 TEST(WindowPanel, CommitSendsValidChangesOnceAndHoldsBackSetsThatDoNotFit) {

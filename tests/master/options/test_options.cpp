@@ -320,7 +320,7 @@ TEST(Options, HelpShowsTheDefaultsOfTheSettingsStructs) {
         },
         row.member);
   }
-  ASSERT_EQ(defaults.size(), 4u + 27u);
+  ASSERT_EQ(defaults.size(), 4u + 28u);
   for (const std::string binary : {IGI_RENDER_BINARY, IGI_MASTER_BINARY}) {
     const test::RunResult r = test::run(binary + " --help", 30);
     ASSERT_EQ(r.exit_code, 0) << r.output;

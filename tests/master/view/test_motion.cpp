@@ -171,12 +171,23 @@ TEST(ViewHistory, APreviewFillsEachFullPixelFromThePixelItLiesIn) {
 }
 
 TEST(FrameBudget, LevelsAreWholeDivisorsThatKeep128PixelsOnTheLongSide) {
-  const FrameBudget budget(640, 480, 40.0);
+  const FrameBudget budget(640, 480, 40.0, false);
   std::vector<int> divisors;
   for (const PreviewLevel& l : budget.levels()) divisors.push_back(l.divisor);
   EXPECT_EQ(divisors, (std::vector<int>{1, 1, 2, 4, 5}));
   EXPECT_FALSE(budget.levels()[0].cheap);
   EXPECT_TRUE(budget.levels()[1].cheap);
+}
+
+TEST(FrameBudget, SharpPreviewsComeBeforeFewerPixels) {
+  const FrameBudget budget(640, 480, 40.0);
+  std::vector<std::pair<int, int>> levels;  // divisor, light
+  for (const PreviewLevel& l : budget.levels()) levels.emplace_back(l.divisor, l.light);
+  EXPECT_EQ(levels, (std::vector<std::pair<int, int>>{{1, 1}, {1, 1}, {1, 2}, {1, 3}, {1, 4}, {1, 6}, {1, 8},
+                                                      {2, 1}, {4, 1}, {5, 1}}));
+  EXPECT_EQ(preview_settings(RenderSettings{}, budget.levels()[3]).light_divisor, 3);
+  EXPECT_EQ(preview_settings(RenderSettings{}, budget.levels()[1]).light_divisor, 1);
+  EXPECT_EQ(level_name(budget.levels()[3]), "light 1/3");
 }
 
 // Seconds a frame of `level` takes: a fixed 4 ms and 0.2 s for a full frame's pixels; previews' settings cost 0.6 of it.
@@ -185,7 +196,7 @@ double fake_cost(const PreviewLevel& level) {
 }
 
 TEST(FrameBudget, MovingFramesTakeTheFinestLevelAFakeCostModelFitsInTheBudget) {
-  FrameBudget budget(640, 480, 40.0);
+  FrameBudget budget(640, 480, 40.0, false);
   budget.measured(budget.pick(false), fake_cost(budget.levels()[0]));  // a still frame first
   std::vector<int> picks;
   for (int frame = 0; frame < 30; ++frame) {
@@ -203,11 +214,47 @@ TEST(FrameBudget, MovingFramesTakeTheFinestLevelAFakeCostModelFitsInTheBudget) {
   EXPECT_EQ(off.pick(true), 0) << "no budget: every frame full";
 }
 
+// Sharp previews: camera rays at every pixel (a fixed 20 ms here), light by the lattice's share of it.
+double sharp_cost(const PreviewLevel& level) {
+  const double d = double(level.divisor) * level.light;
+  return 0.004 + 0.02 / double(level.divisor * level.divisor) + 0.2 * (level.cheap ? 0.6 : 1.0) / (d * d);
+}
+
+TEST(FrameBudget, AfterTheStopEachFrameIsFinerThanTheOneBeforeUpToTheFullFrame) {
+  FrameBudget budget(640, 480, 40.0);
+  budget.measured(budget.pick(false), sharp_cost(budget.levels()[0]));
+  int moving = 0;
+  for (int frame = 0; frame < 30; ++frame) {
+    moving = budget.pick(true);
+    budget.measured(moving, sharp_cost(budget.levels()[size_t(moving)]));
+  }
+  // light 1/3: 4 + 20 + 13 = 37 ms; light 1/2 would take 54.
+  EXPECT_EQ(budget.levels()[size_t(moving)], (PreviewLevel{1, true, 3})) << "the finest level within the budget";
+  std::vector<int> after;
+  for (int frame = 0; frame < 10 && (after.empty() || after.back() != 0); ++frame) {
+    after.push_back(budget.pick(false));
+    budget.measured(after.back(), sharp_cost(budget.levels()[size_t(after.back())]));
+  }
+  ASSERT_EQ(after.back(), 0) << "the refinement ends at the full frame";
+  int before = moving;
+  for (int level : after) {
+    EXPECT_LT(level, before) << "each frame after the stop is finer than the one before";
+    EXPECT_EQ(budget.levels()[size_t(level)].divisor, 1) << "at full resolution";
+    before = level;
+  }
+  EXPECT_LE(after.size(), 4u) << "a few steps, not every level";
+  EXPECT_EQ(budget.pick(false), 0) << "then full frames";
+  FrameBudget coarse(640, 480, 40.0, false);
+  coarse.pick(true);
+  EXPECT_EQ(coarse.pick(false), 0) << "coarse previews: the full frame at once";
+}
+
 TEST(FrameBudget, APreviewWeighsItsShareOfAFullFramesSamples) {
   RenderSettings settings;
   settings.aa_samples = 4;
   EXPECT_DOUBLE_EQ(level_weight(settings, {1, false}), 1.0);
   EXPECT_DOUBLE_EQ(level_weight(settings, {2, true}), 1.0 / 16.0);
+  EXPECT_DOUBLE_EQ(level_weight(settings, {1, true, 3}), 1.0 / 36.0) << "light on one pixel in 9, one sub-sample in 4";
   settings.method = MethodKind::PathTracer;
   EXPECT_DOUBLE_EQ(level_weight(settings, {2, true}), 0.25);
   EXPECT_EQ(preview_settings(RenderSettings{}, {2, true}).aa_samples, 1);
@@ -221,6 +268,7 @@ class MotionPlannerTest : public ::testing::Test {
   MotionPlannerTest() : scene(make_builtin_scene("cornell")) {
     options.render.width = 640;
     options.render.height = 480;
+    options.sharp_previews = false;  // previews over fewer pixels, which the frame's width tells
   }
   MovingView view(uint64_t camera_generation, uint64_t settings_generation = 0) const {
     MovingView v;
@@ -282,6 +330,23 @@ TEST_F(MotionPlannerTest, AStillViewAsksForSurfacesUntilAFullFrameBringsThem) {
   options.reproject = false;
   MotionPlanner off(options, scene, 40.0);
   EXPECT_FALSE(off.next(view(0), s, t0).want_surfaces) << "no reprojection, no surfaces";
+}
+
+TEST_F(MotionPlannerTest, SharpPreviewsAreFullSizeWithLightOnALatticeAndRefineAfterTheStop) {
+  options.sharp_previews = true;
+  MotionPlanner planner(options, scene, 40.0);
+  RenderSettings s;
+  const auto t0 = MotionPlanner::Clock::now();
+  planner.completed(planner.next(view(0), s, t0).frame_id, 0.2);  // a full frame: 200 ms
+  const FrameSetup moved = planner.next(view(1), s, t0 + std::chrono::milliseconds(10));
+  EXPECT_EQ(moved.width, 640) << "camera rays at every pixel";
+  EXPECT_GT(s.light_divisor, 1) << "light on a lattice";
+  EXPECT_EQ(s.aa_samples, 1);
+  const int moving_divisor = s.light_divisor;
+  planner.completed(moved.frame_id, 0.03);
+  const FrameSetup still = planner.next(view(1), s, t0 + std::chrono::milliseconds(400));
+  EXPECT_EQ(still.width, 640);
+  EXPECT_LT(s.light_divisor, moving_divisor) << "the first frame after the stop is finer";
 }
 
 TEST_F(MotionPlannerTest, AMoveCancelsTheFramesItLeftBehindButTheOldestPreview) {
