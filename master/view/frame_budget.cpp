@@ -31,7 +31,8 @@ double level_weight(const RenderSettings& full, const PreviewLevel& level) {
 
 std::string level_name(const PreviewLevel& level) {
   if (!level.cheap && level.divisor == 1) return "full";
-  if (level.light > 1) return "light 1/" + std::to_string(level.light);
+  if (level.divisor == 1 && level.light > 1) return "preview light 1/" + std::to_string(level.light);
+  if (level.light > 1) return "preview 1/" + std::to_string(level.divisor) + " light 1/" + std::to_string(level.light);
   return "preview 1/" + std::to_string(level.divisor);
 }
 
@@ -43,7 +44,7 @@ FrameBudget::FrameBudget(int width, int height, double budget_ms, bool sharp) : 
       if (std::max(width, height) / l >= 8) levels_.push_back({1, true, l});
   const int long_side = std::max(width, height);
   for (int d = 2; long_side / d >= kMinLongSide; ++d)
-    if (width % d == 0 && height % d == 0) levels_.push_back({d, true});
+    if (width % d == 0 && height % d == 0) levels_.push_back({d, true, sharp ? 2 : 1});
   cost_.assign(levels_.size(), 0.0);
 }
 
@@ -67,9 +68,10 @@ int FrameBudget::refine(int from) {
   const double budget = budget_ms_ * 1e-3 * double(1 << std::min(refine_step_, 16));
   for (int l = 0; l < from; ++l)
     if (levels_[size_t(l)].divisor == 1 && predicted(l) > 0.0 && predicted(l) <= budget) return l;
-  // ... else the next finer one at full resolution.
-  for (int l = from - 1; l > 0; --l)
-    if (levels_[size_t(l)].divisor == 1) return l;
+  // ... else, from fewer pixels, the cheapest level at full resolution; from there the full frame.
+  if (levels_[size_t(from)].divisor > 1)
+    for (int l = from - 1; l > 0; --l)
+      if (levels_[size_t(l)].divisor == 1) return l;
   return 0;
 }
 
@@ -92,6 +94,11 @@ int FrameBudget::pick(bool moving) {
 int FrameBudget::pick_moving() {
   const double budget = budget_ms_ * 1e-3;
   const int coarsest = int(levels_.size()) - 1;
+  if (moving_ == 0 && sharp_) {  // the first move: the cheapest sharp preview, and from there by measurement
+    moving_ = 1;
+    while (moving_ < coarsest && levels_[size_t(moving_ + 1)].divisor == 1) ++moving_;
+    return moving_;
+  }
   if (moving_ == 0) {  // the first move: the finest preview the full frames' cost predicts to fit, else the coarsest
     moving_ = coarsest;
     for (int l = 1; l < coarsest; ++l)

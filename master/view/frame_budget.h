@@ -11,10 +11,11 @@
 // along the surfaces (--light-divisor L, methods/light_upsample.h), L = 2,
 // 3, 4, 6, 8; then, for when even those cost more than the budget, the same
 // camera over fewer pixels (the image over a whole divisor of both sides,
-// the long side never under kMinLongSide pixels, as Cycles' viewport),
-// whose blocks cover textures and silhouettes alike. The first moving frame
-// takes the finest preview that the full frames' measured cost, scaled by
-// what is shaded, predicts to fit the budget. Then the level steps coarser
+// the long side never under kMinLongSide pixels, as Cycles' viewport; with
+// sharp previews their light at L = 2 of them), whose blocks cover textures
+// and silhouettes alike. The first moving frame takes the cheapest sharp
+// preview (coarse previews only: the finest preview that the full frames'
+// measured cost, scaled by pixels, predicts to fit the budget). Then the level steps coarser
 // when its frames take more than the budget, and finer when they take at
 // most kStepUp of it and the finer level was never measured over the
 // budget: measuring is the only sure prediction (a frame's fixed costs do
@@ -22,10 +23,12 @@
 // again, so the level does not flicker between two.
 //
 // After the stop (sharp previews): frames refine, each finer than the one
-// before: frame k after the stop takes the finest level predicted to cost
-// at most 2^k budgets (at least the next finer one), until the full frame;
-// so a full frame that takes seconds comes after a few frames that each
-// show more, never straight after the coarse preview of the move.
+// before: frame k after the stop takes the finest level at full resolution
+// predicted to cost at most 2^k budgets; where none is, the cheapest level
+// at full resolution after a preview of fewer pixels, else the full frame.
+// So a full frame that takes seconds comes after a few frames that each
+// show more (at most about log2(its cost / the budget)), never straight
+// after the blocks of a coarse preview.
 //
 // Pure bookkeeping: the caller measures and says so (tests feed a cost model).
 #include <optional>
