@@ -49,9 +49,11 @@ ViewHistory::ViewHistory(int width, int height, int max_history)
 void ViewHistory::Layer::clear(size_t pixels) {
   sum.assign(pixels, glm::dvec3(0.0));
   weight.assign(pixels, 0.0);
+  any = false;
 }
 
 void ViewHistory::Layer::add(const Image& frame, const Upscale& up, int width, double w) {
+  any = true;
   for (size_t i = 0; i < sum.size(); ++i) {
     sum[i] += glm::dvec3(frame.pixels[up.at(int(i % size_t(width)), int(i / size_t(width)))]) * w;
     weight[i] += w;
@@ -104,6 +106,7 @@ std::pair<glm::dvec3, double> ViewHistory::shown(size_t i) const {
 
 void ViewHistory::settle() {
   for (size_t i = 0; i < still_.sum.size(); ++i) std::tie(still_.sum[i], still_.weight[i]) = shown(i);
+  still_.any = true;
   still_view_ = std::move(view_);
   view_ = View{};
   const size_t pixels = size_t(width_) * height_;
@@ -136,7 +139,7 @@ std::vector<ViewHistory::Seen> ViewHistory::seen(std::span<const PixelSurface> s
 ViewHistory::Layer ViewHistory::carry(const Layer& from, const View& before, const View& now) const {
   Layer to;
   to.clear(size_t(width_) * height_);
-  if (now.seen.empty() || before.seen.empty()) return to;
+  if (now.seen.empty() || before.seen.empty() || !from.any) return to;  // (a layer of no frames: sharp previews leave moving_ so)
   const CameraBasis old_basis(before.camera, width_, height_);
   for (size_t i = 0; i < now.seen.size(); ++i) {
     const Seen& s = now.seen[i];
@@ -150,6 +153,7 @@ ViewHistory::Layer ViewHistory::carry(const Layer& from, const View& before, con
     const float distance = glm::length(s.point - old_basis.origin);
     if (std::abs(glm::dot(s.point - old.point, old.normal)) > kPlaneTolerance * distance) continue;
     if (glm::dot(s.normal, old.normal) < kNormalCos) continue;
+    to.any = true;
     to.weight[i] = std::min(from.weight[q], double(max_history_));
     to.sum[i] = from.sum[q] * (to.weight[i] / from.weight[q]);
   }

@@ -87,6 +87,7 @@ class ViewHistory {
   struct Layer {
     std::vector<glm::dvec3> sum;
     std::vector<double> weight;
+    bool any = false;  // some pixel has weight (else carrying it is skipped)
     void clear(size_t pixels);
     void add(const Image& frame, const Upscale& up, int width, double weight);
   };

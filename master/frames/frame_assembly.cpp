@@ -15,10 +15,10 @@ const std::vector<TileJob>& FrameAssembly::open(const FrameSetup& frame, const R
   open.record.frame_id = frame.frame_id;
   if (frame.want_surfaces) open.surfaces.resize(size_t(frame.width) * size_t(frame.height));
   frames_[frame.frame_id] = std::move(open);
-  const int border = tile_border(settings);
-  if (tiles_.empty() || tiles_cut_ != std::tuple{frame.width, frame.height, border}) {
-    tiles_ = make_tiles(frame.width, frame.height, tile_size_, tile_size_, border);
-    tiles_cut_ = {frame.width, frame.height, border};
+  const int border = tile_border(settings), tile = frame_tile_size(tile_size_, settings);
+  if (tiles_.empty() || tiles_cut_ != std::tuple{frame.width, frame.height, border, tile}) {
+    tiles_ = make_tiles(frame.width, frame.height, tile, tile, border);
+    tiles_cut_ = {frame.width, frame.height, border, tile};
   }
   return tiles_;
 }

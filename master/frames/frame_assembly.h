@@ -69,7 +69,7 @@ class FrameAssembly {
     std::optional<Clock::time_point> started;  // its first job out
   };
 
-  // Frames cut into tiles of `tile_size` (and their filter border).
+  // Frames cut into tiles of `tile_size` (frame_tile_size(): larger with lattice light) and their filter border.
   FrameAssembly(PixelFormat format, int tile_size) : format_(format), tile_size_(tile_size) {}
   PixelFormat pixel_format() const { return format_; }
 
@@ -94,7 +94,7 @@ class FrameAssembly {
   FrameBufferPool pool_;
   std::map<uint64_t, OpenFrame> frames_;
   std::vector<TileJob> tiles_;                    // the tiles of a frame as tiles_cut_ says
-  std::tuple<int, int, int> tiles_cut_{0, 0, 0};  // width, height, border of tiles_
+  std::tuple<int, int, int, int> tiles_cut_{0, 0, 0, 0};  // width, height, border, tile size of tiles_
 };
 
 }  // namespace igi
