@@ -24,12 +24,13 @@ inline bool lattice_light(const RenderSettings& s) {
   return s.light_divisor > 1 && (s.method == MethodKind::Igi || s.method == MethodKind::InstantRadiosity);
 }
 inline int tile_border(const RenderSettings& s) { return lattice_light(s) ? 0 : light_border(s); }
-// With lattice light, tiles are larger by half the divisor: a tile shades
-// the lattice cells around it and their filter border, whose cost small
-// tiles pay over and over (at light 1/8, 64-pixel tiles shaded 8.8 times the
-// lattice's samples).
+// With lattice light, tiles are larger by a quarter of the divisor: a tile
+// shades the lattice cells around it and their filter border, whose cost
+// small tiles pay over and over (at light 1/8, 64-pixel tiles shaded 8.8
+// times the lattice's samples), while a frame of a few large tiles leaves
+// the master all their pixels to decode at once at the end.
 inline int frame_tile_size(int tile_size, const RenderSettings& s) {
-  return lattice_light(s) ? tile_size * (s.light_divisor + 1) / 2 : tile_size;
+  return lattice_light(s) ? tile_size * (4 + s.light_divisor) / 4 : tile_size;
 }
 
 // Tiles of at most tile_w x tile_h covering the image, each with `border`,

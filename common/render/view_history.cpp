@@ -54,10 +54,13 @@ void ViewHistory::Layer::clear(size_t pixels) {
 
 void ViewHistory::Layer::add(const Image& frame, const Upscale& up, int width, double w) {
   any = true;
-  for (size_t i = 0; i < sum.size(); ++i) {
-    sum[i] += glm::dvec3(frame.pixels[up.at(int(i % size_t(width)), int(i / size_t(width)))]) * w;
-    weight[i] += w;
-  }
+  const int height = int(sum.size() / size_t(width));
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const size_t i = size_t(y) * size_t(width) + size_t(x);
+      sum[i] += glm::dvec3(frame.pixels[up.at(x, y)]) * w;
+      weight[i] += w;
+    }
 }
 
 void ViewHistory::reset() {

@@ -19,6 +19,7 @@ RenderSettings preview_settings(RenderSettings settings, const PreviewLevel& lev
     settings.paths_per_set = std::max(1, settings.paths_per_set / std::max(1, settings.aa_samples));
     settings.aa_samples = 1;
     settings.compensation_samples = 0;
+    settings.caustics = false;  // 20,000 photon paths a frame: 40 % of a Sponza preview's time at 1/5
   }
   settings.light_divisor = level.light;
   return settings;

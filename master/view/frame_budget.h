@@ -5,7 +5,7 @@
 //
 // Levels, finest first: the full frame (level 0), then previews with cheaper
 // settings (one sub-sample a pixel, shaded by the light paths one sub-sample
-// of a full frame has, and no bias compensation): first at every pixel, then
+// of a full frame has, no bias compensation and no caustic photons): first at every pixel, then
 // sharp previews (--previews sharp, the default): camera rays, textures and
 // edges at every pixel, light on a lattice of one pixel in L x L upsampled
 // along the surfaces (--light-divisor L, methods/light_upsample.h), L = 2,

@@ -260,6 +260,10 @@ TEST(FrameBudget, APreviewWeighsItsShareOfAFullFramesSamples) {
   EXPECT_DOUBLE_EQ(level_weight(settings, {2, true}), 0.25);
   EXPECT_EQ(preview_settings(RenderSettings{}, {2, true}).aa_samples, 1);
   EXPECT_EQ(preview_settings(RenderSettings{}, {2, true}).compensation_samples, 0);
+  RenderSettings caustics;
+  caustics.caustics = true;
+  EXPECT_FALSE(preview_settings(caustics, {2, true}).caustics) << "a preview shoots no photons";
+  EXPECT_TRUE(preview_settings(caustics, {1, false}).caustics);
   EXPECT_EQ(preview_settings(RenderSettings{}, {2, true}).paths_per_set, RenderSettings{}.paths_per_set / 4)
       << "a preview pixel has the light paths of one of a full pixel's 4 sub-samples";
 }
