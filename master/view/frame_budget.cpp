@@ -110,7 +110,13 @@ int FrameBudget::pick_moving() {
     return moving_;
   }
   const double cost = cost_[size_t(moving_)];
-  if (cost > budget && moving_ < coarsest) ++moving_;
+  if (cost > 2.0 * budget && moving_ < coarsest) {
+    // Far over: straight to the first coarser level whose frame, scaled by its pixels, would fit (camera rays
+    // at every pixel are what a heavy scene's sharp previews pay: Sponza at light 1/8 cost 4 times its 1/5).
+    const double d = levels_[size_t(moving_)].divisor;
+    while (moving_ < coarsest && cost * (d * d) / double(levels_[size_t(moving_)].divisor * levels_[size_t(moving_)].divisor) > budget)
+      ++moving_;
+  } else if (cost > budget && moving_ < coarsest) ++moving_;
   else if (cost > 0.0 && cost <= kStepUp * budget && moving_ > 1 && cost_[size_t(moving_ - 1)] <= budget)
     --moving_;  // room to spare, and the finer level fits or was never tried
   return moving_;

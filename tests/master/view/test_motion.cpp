@@ -220,6 +220,15 @@ double sharp_cost(const PreviewLevel& level) {
   return 0.004 + 0.02 / double(level.divisor * level.divisor) + 0.2 * (level.cheap ? 0.6 : 1.0) / (d * d);
 }
 
+TEST(FrameBudget, AHeavySceneGoesStraightToFewerPixelsWhenSharpPreviewsCostFarMore) {
+  FrameBudget budget(640, 480, 40.0);
+  const int first = budget.pick(true);
+  ASSERT_EQ(budget.levels()[size_t(first)], (PreviewLevel{1, true, 8})) << "the cheapest sharp preview first";
+  budget.measured(first, 0.45);  // camera rays at every pixel: Sponza's 450 ms
+  const PreviewLevel next = budget.levels()[size_t(budget.pick(true))];
+  EXPECT_EQ(next.divisor, 4) << "the first level whose pixels, a sixteenth, would fit: not one level a frame";
+}
+
 TEST(FrameBudget, AfterTheStopEachFrameIsFinerThanTheOneBeforeUpToTheFullFrame) {
   FrameBudget budget(640, 480, 40.0);
   budget.measured(budget.pick(false), sharp_cost(budget.levels()[0]));
