@@ -45,7 +45,7 @@ FrameBudget::FrameBudget(int width, int height, double budget_ms, bool sharp) : 
       if (std::max(width, height) / l >= 8) levels_.push_back({1, true, l});
   const int long_side = std::max(width, height);
   for (int d = 2; long_side / d >= kMinLongSide; ++d)
-    if (width % d == 0 && height % d == 0) levels_.push_back({d, true, sharp ? 2 : 1});
+    if (width % d == 0 && height % d == 0) levels_.push_back({d, true});
   cost_.assign(levels_.size(), 0.0);
 }
 

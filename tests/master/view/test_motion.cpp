@@ -184,7 +184,7 @@ TEST(FrameBudget, SharpPreviewsComeBeforeFewerPixels) {
   std::vector<std::pair<int, int>> levels;  // divisor, light
   for (const PreviewLevel& l : budget.levels()) levels.emplace_back(l.divisor, l.light);
   EXPECT_EQ(levels, (std::vector<std::pair<int, int>>{{1, 1}, {1, 1}, {1, 2}, {1, 3}, {1, 4}, {1, 6}, {1, 8},
-                                                      {2, 2}, {4, 2}, {5, 2}}));
+                                                      {2, 1}, {4, 1}, {5, 1}}));
   EXPECT_EQ(preview_settings(RenderSettings{}, budget.levels()[3]).light_divisor, 3);
   EXPECT_EQ(preview_settings(RenderSettings{}, budget.levels()[1]).light_divisor, 1);
   EXPECT_EQ(level_name(budget.levels()[3]), "preview light 1/3");
