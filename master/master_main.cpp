@@ -101,6 +101,7 @@ int run(igi::MasterOptions o) {
   arm_test_hooks(o, session, workers);
   if (!o.motion.empty()) return igi::run_motion(o, scene, session, workers, g_interrupted);
   if (o.frames > 0) return igi::run_headless(o, scene, session, workers, g_interrupted);
+  if (!o.viewer_listen.empty()) return igi::run_for_viewer(o, scene, session, workers, g_interrupted);
   return igi::run_interactive(o, scene, session, workers, g_interrupted);
 }
 

@@ -1,7 +1,8 @@
 #pragma once
-// igi-master's two ways to run a session: headless (a number of frames,
-// written to files) and the window. Both keep the session's loop on one
-// thread that does nothing else; files and the display have threads of their own.
+// igi-master's ways to run a session: headless (a number of frames,
+// written to files), the window, and a remote viewer's window. Each keeps the
+// session's loop on one thread that does nothing else; files, the display and
+// the viewer's port have threads of their own.
 #include <atomic>
 
 #include "cluster/local_workers.h"
@@ -19,5 +20,8 @@ int run_motion(const MasterOptions& options, const Scene& scene, MasterSession& 
                const std::atomic<bool>& interrupted);
 int run_interactive(const MasterOptions& options, const Scene& scene, MasterSession& session, LocalWorkers& workers,
                     std::atomic<bool>& interrupted);
+// --viewer-listen: the window is igi-view's, on another machine (viewer_run.cpp); runs until interrupted.
+int run_for_viewer(const MasterOptions& options, const Scene& scene, MasterSession& session, LocalWorkers& workers,
+                   const std::atomic<bool>& interrupted);
 
 }  // namespace igi

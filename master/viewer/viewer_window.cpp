@@ -1,0 +1,163 @@
+#include "viewer/viewer_window.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+
+#include "display/interactive_window.h"
+#include "display/view_changes.h"
+#include "display/window_panel.h"
+#include "view/camera_bookmark.h"
+#include "view/frame_rate.h"
+#include "viewer/viewer_client.h"
+
+namespace igi {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+uint64_t now_us() {
+  return uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(Clock::now().time_since_epoch()).count());
+}
+
+protocol::CurveClientKeys client_keys(const ViewerOptions& o) {
+  return {protocol::read_public_key_file(o.master_key), protocol::read_secret_key_file(o.key_file)};
+}
+
+PanelOptions panel_options(const ViewerOptions& o, const display::Welcome& w, const InteractiveWindow& window) {
+  PanelOptions p;
+  p.image_width = w.width;
+  p.image_height = w.height;
+  p.shown = o.panel && panel_opens(float(window.width()), float(window.height()), w.width, w.height,
+                                   panel_layout(w.width).width);
+  p.bookmark = o.bookmark;
+  p.preview_levels = w.preview_levels;
+  return p;
+}
+
+// What the window shows and what it measured.
+struct Screen {
+  InteractiveWindow& window;
+  WindowPanel& panel;
+  ViewerFigures& figures;
+  bool metering;
+  float accumulated = 0.0f;
+  uint64_t last_stamp = 0;
+  Clock::time_point first{};
+  FrameRate rate;
+
+  // A frame of the current settings: up, with its status and the opening meter's exposure.
+  void show(const display::Frame& f) {
+    std::string error;
+    std::optional<std::vector<uint8_t>> rgb = display::unpack_pixels(f, error);
+    if (!rgb) throw ViewerError("the master sent a frame that does not unpack: " + error);
+    window.upload_srgb8(*rgb, f.width, f.height);
+    if (metering && f.metered > 0.0f) panel.settings().set_exposure(f.metered);
+    if (f.full) metering = false;
+    accumulated = f.accumulated;
+    const auto now = Clock::now();
+    if (figures.frames++ == 0) first = now;
+    figures.seconds = std::chrono::duration<double>(now - first).count();
+    figures.bytes += double(f.pixels.size());
+    figures.pixels += double(f.width) * f.height;
+    if (f.stamp_us != 0 && f.stamp_us != last_stamp) {  // the first frame that shows this input
+      figures.delays_ms.push_back(std::max(0.0, double(now_us()) - double(f.stamp_us)) * 1e-3);
+      last_stamp = f.stamp_us;
+    }
+    rate.shown(now);
+    char fps[48];
+    std::snprintf(fps, sizeof fps, "  |  shown %.1f fps", rate.fps(now));
+    window.set_status(f.status + fps);
+  }
+};
+
+// F5 and F9 here, M and F12 on the master.
+void act(const PanelActions& a, WindowPanel& panel, CameraController& controller, float speed, ViewerClient& client) {
+  try {
+    if (a.meter) client.send(display::Request{display::RequestKind::Meter});
+    if (a.save_image) client.send(display::Request{display::RequestKind::SaveImage});
+    if (a.save_camera) {
+      write_camera_file(panel.options().bookmark, controller.camera());
+      panel.set_message("camera saved to " + panel.options().bookmark);
+    }
+    if (a.load_camera) {
+      controller = CameraController(read_camera_file(panel.options().bookmark), speed);
+      controller.hold();
+      panel.set_message("camera loaded from " + panel.options().bookmark);
+    }
+  } catch (const std::exception& e) {
+    panel.set_message(e.what());
+  }
+}
+
+}  // namespace
+
+std::string ViewerFigures::summary() const {
+  std::vector<double> d = delays_ms;
+  std::sort(d.begin(), d.end());
+  const double median = d.empty() ? 0.0 : d[d.size() / 2];
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "%d frames in %.1f s (%.1f a second), %.3f bytes a pixel, input to frame median %.0f ms over %zu inputs",
+                frames, seconds, seconds > 0 ? (frames - 1) / seconds : 0.0, pixels > 0 ? bytes / pixels : 0.0,
+                median, d.size());
+  return text;
+}
+
+ViewerFigures run_viewer(const ViewerOptions& o, const std::atomic<bool>& interrupted) {
+  ViewerClient client(o.connect, client_keys(o));
+  const display::Welcome w = client.join(std::chrono::seconds(o.wait_seconds));
+  InteractiveWindow window(w.width, w.height, panel_layout(w.width).width, o.panel, "igi-view: " + w.scene);
+  WindowPanel panel(window.handle(), w.settings, w.tone, panel_options(o, w, window));
+  CameraController controller(w.camera, w.speed);
+  ViewChanges changes(controller);
+  ViewerFigures figures;
+  Screen screen{window, panel, figures, w.metering, 0.0f, 0, {}, {}};
+  auto view = [&] {
+    return display::View{controller.camera(), panel.settings().settings(), changes.camera_generation(),
+                         changes.settings_generation(), controller.light_offset(), panel.options().preview,
+                         panel.settings().tone(), screen.metering, now_us()};
+  };
+  display::View sent = view();
+  client.send(sent);
+  auto last_draw = Clock::now();
+  bool shot = false;
+  while (!shot && window.poll(controller) && !interrupted) {
+    const ViewChanges::Change change = changes.take(panel, controller, sent.preview);
+    const ToneMapping tone = panel.settings().tone();
+    if (change != ViewChanges::Change::None || tone.exposure != sent.tone.exposure || tone.view != sent.tone.view ||
+        screen.metering != sent.metering)
+      client.send(sent = view());
+    bool fresh = false;
+    for (auto wait = std::chrono::milliseconds(5); auto m = client.receive(wait); wait = std::chrono::milliseconds(0)) {
+      if (auto* f = std::get_if<display::Frame>(&*m)) {
+        client.send(display::Ack{f->sequence});
+        if (f->settings_generation != changes.settings_generation()) continue;  // rendered with old settings
+        screen.show(*f);
+        fresh = true;
+      } else if (auto* r = std::get_if<display::Reply>(&*m)) {
+        if (r->exposure > 0.0f) panel.settings().set_exposure(r->exposure);
+        if (!o.quiet) std::fprintf(stderr, "igi-view: %s\n", r->text.c_str());
+        panel.set_message(r->text);
+      }
+    }
+    const auto now = Clock::now();
+    if (!fresh && now - last_draw < std::chrono::milliseconds(50)) continue;  // redraw for the panel at 20 Hz
+    last_draw = now;
+    window.draw(panel.image_viewport(float(window.width()), float(window.height())), panel.settings().tone());
+    const PanelActions actions = panel.draw(int(screen.accumulated), window.take_panel_taps());
+    window.set_input_captured(panel.wants_mouse(), panel.wants_keyboard());
+    act(actions, panel, controller, w.speed, client);
+    if (actions.load_camera) changes.forget_camera(controller);
+    if (fresh && !o.screenshot.empty() && screen.accumulated >= float(o.screenshot_after)) {
+      window.screenshot(o.screenshot);
+      shot = true;
+    }
+    window.present();
+  }
+  client.close("the viewer's window closed");
+  return figures;
+}
+
+}  // namespace igi

@@ -1,0 +1,183 @@
+// The display link with a real igi-master (--viewer-listen) and the viewer's
+// client in this process (viewer/viewer_client.h, what igi-view runs under
+// its window): frames come tone-mapped and follow the viewer's camera, a
+// viewer that falls silent or vanishes leaves the master rendering, and every
+// failure (a wrong key, a second viewer, a master that goes away) ends in an
+// error that says what happened. The window itself: tests/master/display/test_window.cpp.
+#include <csignal>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "protocol/curve.h"
+#include "support/process.h"
+#include "support/sanitizers.h"
+#include "viewer/viewer_client.h"
+
+namespace igi {
+namespace {
+
+namespace fs = std::filesystem;
+using std::chrono::milliseconds;
+
+struct Keys {
+  fs::path dir;
+  protocol::CurveClientKeys viewer, stranger;
+};
+
+// DIR/master.key, DIR/viewers/laptop.pub (authorised) and a stranger's pair (not).
+Keys make_keys(const std::string& name) {
+  Keys k{fs::path(IGI_TEST_OUTPUT_DIR) / name, {}, {}};
+  fs::remove_all(k.dir);
+  fs::create_directories(k.dir / "viewers");
+  const protocol::CurveKeyPair master = protocol::make_curve_keypair();
+  protocol::write_key_files((k.dir / "master").string(), master);
+  k.viewer = {master.public_key, protocol::make_curve_keypair()};
+  protocol::write_key_files((k.dir / "viewers" / "laptop").string(), k.viewer.own);
+  k.stranger = {master.public_key, protocol::make_curve_keypair()};
+  return k;
+}
+
+struct Master {
+  std::string endpoint;
+  pid_t pid;
+};
+
+Master start_master(const Keys& k) {
+  const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(test::free_port());
+  const pid_t pid = test::start(std::string(IGI_MASTER_BINARY) + " --workers 1 --worker-threads 1 --scene cornell "
+                                "--size 64x48 --key " + (k.dir / "master.key").string() + " --viewer-listen " +
+                                endpoint + " --viewer-keys " + (k.dir / "viewers").string() + " 2>" +
+                                (k.dir / "master.log").string());
+  return {endpoint, pid};
+}
+
+const auto kPatience = milliseconds(int(20000 * test::kSlowdown));
+
+// The next Frame, acknowledged (nullopt after `patience` without one).
+std::optional<display::Frame> next_frame(ViewerClient& client, milliseconds patience = kPatience) {
+  const auto until = std::chrono::steady_clock::now() + patience;
+  while (std::chrono::steady_clock::now() < until)
+    if (auto m = client.receive(milliseconds(20)))
+      if (auto* f = std::get_if<display::Frame>(&*m)) {
+        client.send(display::Ack{f->sequence});
+        return std::move(*f);
+      }
+  return std::nullopt;
+}
+
+display::View view_of(const display::Welcome& w, uint64_t camera_generation, uint64_t stamp) {
+  return {w.camera, w.settings, camera_generation, 0, {}, -1, {1.0f, ViewTransform::Standard}, false, stamp};
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const ViewerError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(ViewerLink, FramesFollowTheViewersCameraAndEchoItsStamp) {
+  const Keys k = make_keys("viewer_link_frames");
+  const Master m = start_master(k);
+  ViewerClient client(m.endpoint, k.viewer);
+  const display::Welcome w = client.join(kPatience);
+  EXPECT_EQ(w.width, 64);
+  EXPECT_EQ(w.height, 48);
+  client.send(view_of(w, 0, 1000));
+  std::optional<display::Frame> first = next_frame(client);
+  ASSERT_TRUE(first);
+  std::string error;
+  const std::optional<std::vector<uint8_t>> before = display::unpack_pixels(*first, error);
+  ASSERT_TRUE(before) << error;
+  // Turn the camera half a right angle: the frames that show it carry the new stamp, and other pixels.
+  display::View turned = view_of(w, 1, 2000);
+  turned.camera.forward = glm::normalize(w.camera.forward + glm::cross(w.camera.forward, w.camera.up));
+  client.send(turned);
+  std::optional<display::Frame> after;
+  for (int n = 0; n < 200 && (!after || after->stamp_us != 2000); ++n) after = next_frame(client);
+  ASSERT_TRUE(after && after->stamp_us == 2000) << "no frame showed the turned camera";
+  const std::optional<std::vector<uint8_t>> moved = display::unpack_pixels(*after, error);
+  ASSERT_TRUE(moved) << error;
+  EXPECT_NE(*before, *moved);
+  test::stop(m.pid);
+}
+
+TEST(ViewerLink, AViewerWithAWrongKeyIsRefusedSayingWhy) {
+  const Keys k = make_keys("viewer_link_wrong_key");
+  const Master m = start_master(k);
+  ViewerClient stranger(m.endpoint, k.stranger);
+  const std::string error = error_of([&] { stranger.join(kPatience); });
+  EXPECT_NE(error.find("refused this viewer's key"), std::string::npos) << error;
+  EXPECT_NE(error.find("--viewer-keys"), std::string::npos) << error;
+  // A wrong master key: no handshake completes, and the viewer says which key to check.
+  protocol::CurveClientKeys wrong_master = k.viewer;
+  wrong_master.server_key = protocol::make_curve_keypair().public_key;
+  ViewerClient lost(m.endpoint, wrong_master);
+  const std::string silent = error_of([&] { lost.join(milliseconds(3000)); });
+  EXPECT_NE(silent.find("--master-key"), std::string::npos) << silent;
+  test::stop(m.pid);
+}
+
+TEST(ViewerLink, ASecondViewerIsRefusedAndTheFirstGoesOn) {
+  const Keys k = make_keys("viewer_link_second");
+  const Master m = start_master(k);
+  ViewerClient first(m.endpoint, k.viewer);
+  const display::Welcome w = first.join(kPatience);
+  first.send(view_of(w, 0, 1));
+  ASSERT_TRUE(next_frame(first));
+  ViewerClient second(m.endpoint, k.viewer);
+  const std::string error = error_of([&] { second.join(kPatience); });
+  EXPECT_NE(error.find("another viewer ('laptop') is connected"), std::string::npos) << error;
+  EXPECT_TRUE(next_frame(first)) << "the first viewer lost its frames";
+  test::stop(m.pid);
+}
+
+// A viewer that vanishes between frames (its process killed: its connection
+// closes, no Bye) leaves the master rendering, and the next viewer is let in
+// at once and sees the image accumulate further.
+TEST(ViewerLink, AViewerKilledMidFrameLeavesTheMasterRendering) {
+  const Keys k = make_keys("viewer_link_killed");
+  const Master m = start_master(k);
+  float accumulated = 0.0f;
+  {
+    ViewerClient doomed(m.endpoint, k.viewer);
+    const display::Welcome w = doomed.join(kPatience);
+    doomed.send(view_of(w, 0, 1));
+    std::optional<display::Frame> f = next_frame(doomed);
+    ASSERT_TRUE(f);
+    accumulated = f->accumulated;
+    // Gone without a Bye or an Ack, with a frame in flight.
+  }
+  ViewerClient next(m.endpoint, k.viewer);
+  const display::Welcome w = next.join(kPatience);
+  next.send(view_of(w, 0, 2));
+  std::optional<display::Frame> f;
+  for (int n = 0; n < 200 && (!f || f->accumulated <= accumulated + 2.0f); ++n) f = next_frame(next);
+  ASSERT_TRUE(f);
+  EXPECT_GT(f->accumulated, accumulated + 2.0f) << "the image did not go on accumulating";
+  test::stop(m.pid);
+}
+
+TEST(ViewerLink, AMasterThatGoesAwayIsReported) {
+  const Keys k = make_keys("viewer_link_master_gone");
+  const Master m = start_master(k);
+  ViewerClient client(m.endpoint, k.viewer);
+  const display::Welcome w = client.join(kPatience);
+  client.send(view_of(w, 0, 1));
+  ASSERT_TRUE(next_frame(client));
+  ::kill(m.pid, SIGKILL);  // no Bye: the process is gone
+  const auto start = std::chrono::steady_clock::now();
+  const std::string error = error_of([&] {
+    for (;;) client.receive(milliseconds(50));
+  });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_NE(error.find("the master at " + m.endpoint), std::string::npos) << error;
+  EXPECT_LT(seconds, 3.5 * test::kSlowdown) << error;
+  test::wait_exit(m.pid, 5);
+}
+
+}  // namespace
+}  // namespace igi
