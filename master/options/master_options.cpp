@@ -52,6 +52,11 @@ void add_network_options(CLI::App& app, MasterOptions& o) {
   app.add_option("--viewer-keys", o.viewer_keys, "viewers allowed to connect to --viewer-listen: a folder of their "
                  ".pub files (igi-keys new NAME), or a file with one Z85 public key per line")
       ->type_name("PATH")->group(group);
+  app.add_option("--viewer-codec", o.viewer_codec, "the viewer's frames while the view moves: h264 (libx264, "
+                 "low latency, within --viewer-mbit) or zstd (lossless 8-bit); a still view's frames are always "
+                 "lossless [h264]")->check(cli::one_of({"h264", "zstd"}))->type_name("h264|zstd")->group(group);
+  app.add_option("--viewer-mbit", o.viewer_mbit, "h264: the most Mbit/s the moving frames take; 0: no cap (x264's default quality) [20]")
+      ->check(cli::bounded_number(10000.0))->check(cli::non_negative_number())->type_name("M")->group(group);
   app.add_option("--credits", o.credits, "jobs a worker holds at once [2]")
       ->check(integer<int>(1, protocol::kMaxCredits))->group(group)->type_name("K");
   add_liveness_options(app, o.heartbeat_ms, o.timeout_ms, group);

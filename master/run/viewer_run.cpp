@@ -3,14 +3,18 @@
 // owns the viewer port (viewer/viewer_port.h): it turns the viewer's View into
 // the view the session follows, accumulates the frames as the window does
 // (view_history.h), and sends the viewer the newest image tone-mapped at its
-// exposure and view transform, 8-bit and lossless (zstd), whenever the viewer
-// has acknowledged enough frames: one that falls behind gets fewer frames,
-// never a queue. With no viewer connected the frames still accumulate, so a
-// viewer that joins (again) sees the image as far as it has come.
+// exposure and view transform, 8-bit, whenever the viewer has acknowledged
+// enough frames: one that falls behind gets fewer frames, never a queue.
+// While the view moves (the planner's "moving") they go as H.264 within
+// --viewer-mbit (video_codec.h); once it is still, lossless (zstd), at most
+// kStillFramesPerSecond a second. With no viewer connected
+// the frames still accumulate, so a viewer that joins (again) sees the image
+// as far as it has come.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <optional>
 #include <thread>
 
@@ -23,12 +27,18 @@
 #include "scene/animation.h"
 #include "view/frame_budget.h"
 #include "view/frame_rate.h"
+#include "viewer/video_codec.h"
 #include "viewer/viewer_port.h"
 
 namespace igi {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// A still view's lossless frames (about 1 byte a pixel each): enough for the
+// image to settle on the viewer, few enough to leave a slow link room.
+constexpr double kStillFramesPerSecond = 4.0;
+constexpr double kVideoFramesPerSecond = 25.0;  // what the H.264 rate control plans a frame's bits for
 
 display::Welcome welcome_for(const MasterOptions& o, const Scene& scene) {
   display::Welcome w;
@@ -100,6 +110,7 @@ class ViewerState {
 struct Latest {
   bool fresh = false;  // not sent yet
   bool full = false;
+  bool moving = false;  // the camera changed just before it (motion_planner.h's kStillAfter)
   uint64_t stamp = 0;
   float metered = 0.0f;
   std::string status;
@@ -121,9 +132,20 @@ struct ViewerServer {
   Latest latest;
   FrameRate rate;
   int shots = 0;
+  std::unique_ptr<VideoEncoder> video;  // one stream per viewer connection; null: zstd only
+  Clock::time_point last_lossless{};
+
+  void start_stream() {
+    video.reset();
+    if (o.viewer_codec == "h264" && o.render.width % 2 == 0 && o.render.height % 2 == 0)
+      video = std::make_unique<VideoEncoder>(o.render.width, o.render.height, o.viewer_mbit, kVideoFramesPerSecond);
+  }
 
   void take_view(const ViewerPort::Incoming& in) {
-    if (in.joined) state.joined();
+    if (in.joined) {
+      state.joined();
+      start_stream();
+    }
     if (!in.view) return;
     if (state.take(*in.view)) history.reset();
     handover.publish(state.view());
@@ -142,14 +164,17 @@ struct ViewerServer {
       shown.frame.pixels.reset();  // back to the pool
       const auto now = Clock::now();
       rate.shown(now);
-      latest = {true, shown.planned.level == 0, state.stamp_of(shown.planned.camera_generation), 0.0f,
-                status_line(shown, history.weight(), rate.fps(now), false)};
+      latest = {true, shown.planned.level == 0, shown.planned.moving, state.stamp_of(shown.planned.camera_generation),
+                0.0f, status_line(shown, history.weight(), rate.fps(now), false)};
       if (stats) stats->add(shown.frame.record);
     }
   }
 
   void send_latest() {
     if (!latest.fresh || !port.can_send_frame() || history.weight() <= 0.0) return;
+    const bool lossless = !latest.moving || !video;
+    const auto now = Clock::now();
+    if (lossless && video && now - last_lossless < std::chrono::duration<double>(1.0 / kStillFramesPerSecond)) return;
     const Image image = history.resolve();
     display::Frame f;
     if (state.metering_) {  // the opening meter, as the window's: until a full frame
@@ -164,7 +189,9 @@ struct ViewerServer {
     f.full = latest.full;
     f.accumulated = float(history.weight());
     f.status = latest.status;
-    f.pixels = display::pack_pixels(rgb);
+    f.codec = lossless ? display::FrameCodec::Zstd : display::FrameCodec::H264;
+    f.pixels = lossless ? display::pack_pixels(rgb) : video->encode(rgb);
+    if (lossless) last_lossless = now;
     port.send_frame(std::move(f));
     latest.fresh = false;
   }
@@ -223,6 +250,9 @@ int run_for_viewer(const MasterOptions& o, const Scene& scene, MasterSession& se
   keys.own = protocol::read_secret_key_file(o.key_file);
   keys.authorized = protocol::read_authorized_keys(o.viewer_keys);
   if (keys.authorized.empty()) throw std::runtime_error(o.viewer_keys + ": no public keys: no viewer could join");
+  if (o.viewer_codec == "h264" && !have_h264_encoder())
+    throw std::runtime_error("--viewer-codec h264: this build's libavcodec has no H.264 encoder (libx264); "
+                             "--viewer-codec zstd sends every frame lossless");
   const display::Welcome welcome = welcome_for(o, scene);
   ViewerPort port(o.viewer_listen, keys, welcome, o.render.quiet);
   print_how_to_connect(o, port, keys.own.public_key);

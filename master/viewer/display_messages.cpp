@@ -210,7 +210,8 @@ void read(Reader& r, Frame& m) {
   read_side(r, "width", m.width);
   read_side(r, "height", m.height);
   const uint8_t codec = r.u8("codec");
-  if (codec != uint8_t(FrameCodec::Zstd)) r.fail("codec", std::to_string(codec) + ", expected 1 (zstd)");
+  if (codec != uint8_t(FrameCodec::Zstd) && codec != uint8_t(FrameCodec::H264))
+    r.fail("codec", std::to_string(codec) + ", expected 1 (zstd) or 2 (h264)");
   m.codec = FrameCodec(codec);
   m.full = r.boolean("full");
   m.metered = r.f32("metered");
@@ -317,6 +318,10 @@ std::vector<uint8_t> pack_pixels(std::span<const uint8_t> rgb) {
 }
 
 std::optional<std::vector<uint8_t>> unpack_pixels(const Frame& frame, std::string& error) {
+  if (frame.codec != FrameCodec::Zstd) {
+    error = "Frame.pixels: H.264, not zstd (video_codec.h decodes it)";
+    return std::nullopt;
+  }
   const size_t expected = size_t(frame.width) * size_t(frame.height) * 3;
   const unsigned long long content = ZSTD_getFrameContentSize(frame.pixels.data(), frame.pixels.size());
   if (content != expected) {

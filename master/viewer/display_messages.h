@@ -92,7 +92,9 @@ struct Reply {
   float exposure = 0.0f;  // > 0: the metered exposure (Meter)
 };
 
-enum class FrameCodec : uint8_t { Zstd = 1 };  // 8-bit sRGB, three bytes a pixel, zstd (lossless)
+// Zstd: 8-bit sRGB, three bytes a pixel, zstd (lossless): unpack_pixels().
+// H264: one access unit of the connection's H.264 stream (video_codec.h): lossy, decoded in order.
+enum class FrameCodec : uint8_t { Zstd = 1, H264 = 2 };
 struct Frame {
   uint64_t sequence = 0;             // counts up from 1; Ack names it
   uint64_t stamp_us = 0;             // the stamp of the View whose camera this frame shows
@@ -127,9 +129,9 @@ struct Decoded {
 // display version gets "display link version N, this build speaks M".
 Decoded decode(std::span<const uint8_t> bytes);
 
-// A frame's pixels: 8-bit sRGB (three bytes a pixel, row 0 at the top) packed
-// with zstd, and unpacked to exactly width * height * 3 bytes or refused
-// (nullopt, `error` set).
+// A Zstd frame's pixels: 8-bit sRGB (three bytes a pixel, row 0 at the top)
+// packed with zstd, and unpacked to exactly width * height * 3 bytes or refused
+// (nullopt, `error` set; an H264 frame too: video_codec.h decodes those).
 std::vector<uint8_t> pack_pixels(std::span<const uint8_t> rgb);
 std::optional<std::vector<uint8_t>> unpack_pixels(const Frame& frame, std::string& error);
 

@@ -10,6 +10,7 @@
 #include "display/window_panel.h"
 #include "view/camera_bookmark.h"
 #include "view/frame_rate.h"
+#include "viewer/video_codec.h"
 #include "viewer/viewer_client.h"
 
 namespace igi {
@@ -46,13 +47,21 @@ struct Screen {
   uint64_t last_stamp = 0;
   Clock::time_point first{};
   FrameRate rate;
+  VideoDecoder video;
+
+  // Every frame's pixels: H.264 frames are decoded in order even when not shown.
+  std::vector<uint8_t> unpack(const display::Frame& f) {
+    std::string error;
+    std::optional<std::vector<uint8_t>> rgb = f.codec == display::FrameCodec::H264
+                                                  ? video.decode(f.pixels, f.width, f.height, error)
+                                                  : display::unpack_pixels(f, error);
+    if (!rgb) throw ViewerError("the master sent a frame that does not unpack: " + error);
+    return std::move(*rgb);
+  }
 
   // A frame of the current settings: up, with its status and the opening meter's exposure.
-  void show(const display::Frame& f) {
-    std::string error;
-    std::optional<std::vector<uint8_t>> rgb = display::unpack_pixels(f, error);
-    if (!rgb) throw ViewerError("the master sent a frame that does not unpack: " + error);
-    window.upload_srgb8(*rgb, f.width, f.height);
+  void show(const display::Frame& f, const std::vector<uint8_t>& rgb) {
+    window.upload_srgb8(rgb, f.width, f.height);
     if (metering && f.metered > 0.0f) panel.settings().set_exposure(f.metered);
     if (f.full) metering = false;
     accumulated = f.accumulated;
@@ -113,7 +122,7 @@ ViewerFigures run_viewer(const ViewerOptions& o, const std::atomic<bool>& interr
   CameraController controller(w.camera, w.speed);
   ViewChanges changes(controller);
   ViewerFigures figures;
-  Screen screen{window, panel, figures, w.metering, 0.0f, 0, {}, {}};
+  Screen screen{window, panel, figures, w.metering, 0.0f, 0, {}, {}, {}};
   auto view = [&] {
     return display::View{controller.camera(), panel.settings().settings(), changes.camera_generation(),
                          changes.settings_generation(), controller.light_offset(), panel.options().preview,
@@ -133,8 +142,9 @@ ViewerFigures run_viewer(const ViewerOptions& o, const std::atomic<bool>& interr
     for (auto wait = std::chrono::milliseconds(5); auto m = client.receive(wait); wait = std::chrono::milliseconds(0)) {
       if (auto* f = std::get_if<display::Frame>(&*m)) {
         client.send(display::Ack{f->sequence});
+        const std::vector<uint8_t> rgb = screen.unpack(*f);
         if (f->settings_generation != changes.settings_generation()) continue;  // rendered with old settings
-        screen.show(*f);
+        screen.show(*f, rgb);
         fresh = true;
       } else if (auto* r = std::get_if<display::Reply>(&*m)) {
         if (r->exposure > 0.0f) panel.settings().set_exposure(r->exposure);

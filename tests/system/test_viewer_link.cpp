@@ -12,6 +12,7 @@
 #include "protocol/curve.h"
 #include "support/process.h"
 #include "support/sanitizers.h"
+#include "viewer/video_codec.h"
 #include "viewer/viewer_client.h"
 
 namespace igi {
@@ -54,17 +55,34 @@ Master start_master(const Keys& k) {
 
 const auto kPatience = milliseconds(int(20000 * test::kSlowdown));
 
-// The next Frame, acknowledged (nullopt after `patience` without one).
-std::optional<display::Frame> next_frame(ViewerClient& client, milliseconds patience = kPatience) {
-  const auto until = std::chrono::steady_clock::now() + patience;
-  while (std::chrono::steady_clock::now() < until)
-    if (auto m = client.receive(milliseconds(20)))
-      if (auto* f = std::get_if<display::Frame>(&*m)) {
-        client.send(display::Ack{f->sequence});
-        return std::move(*f);
-      }
-  return std::nullopt;
-}
+// A frame and its pixels, as igi-view unpacks them (H.264 frames decoded in order).
+struct Shown {
+  display::Frame frame;
+  std::vector<uint8_t> rgb;
+};
+
+struct Viewer {
+  ViewerClient client;
+  VideoDecoder video;
+  Viewer(const std::string& endpoint, const protocol::CurveClientKeys& keys) : client(endpoint, keys) {}
+
+  // The next Frame, acknowledged and unpacked (nullopt after `patience` without one).
+  std::optional<Shown> next_frame(milliseconds patience = kPatience) {
+    const auto until = std::chrono::steady_clock::now() + patience;
+    while (std::chrono::steady_clock::now() < until)
+      if (auto m = client.receive(milliseconds(20)))
+        if (auto* f = std::get_if<display::Frame>(&*m)) {
+          client.send(display::Ack{f->sequence});
+          std::string error;
+          std::optional<std::vector<uint8_t>> rgb = f->codec == display::FrameCodec::H264
+                                                        ? video.decode(f->pixels, f->width, f->height, error)
+                                                        : display::unpack_pixels(*f, error);
+          EXPECT_TRUE(rgb) << error;
+          return Shown{std::move(*f), rgb ? std::move(*rgb) : std::vector<uint8_t>{}};
+        }
+    return std::nullopt;
+  }
+};
 
 display::View view_of(const display::Welcome& w, uint64_t camera_generation, uint64_t stamp) {
   return {w.camera, w.settings, camera_generation, 0, {}, -1, {1.0f, ViewTransform::Standard}, false, stamp};
@@ -82,26 +100,31 @@ std::string error_of(const std::function<void()>& f) {
 TEST(ViewerLink, FramesFollowTheViewersCameraAndEchoItsStamp) {
   const Keys k = make_keys("viewer_link_frames");
   const Master m = start_master(k);
-  ViewerClient client(m.endpoint, k.viewer);
-  const display::Welcome w = client.join(kPatience);
+  Viewer viewer(m.endpoint, k.viewer);
+  const display::Welcome w = viewer.client.join(kPatience);
   EXPECT_EQ(w.width, 64);
   EXPECT_EQ(w.height, 48);
-  client.send(view_of(w, 0, 1000));
-  std::optional<display::Frame> first = next_frame(client);
-  ASSERT_TRUE(first);
-  std::string error;
-  const std::optional<std::vector<uint8_t>> before = display::unpack_pixels(*first, error);
-  ASSERT_TRUE(before) << error;
-  // Turn the camera half a right angle: the frames that show it carry the new stamp, and other pixels.
+  viewer.client.send(view_of(w, 0, 1000));
+  std::optional<Shown> before = viewer.next_frame();
+  ASSERT_TRUE(before);
+  EXPECT_EQ(before->frame.codec, display::FrameCodec::Zstd) << "a still view's frames are lossless";
+  // Turn the camera half a right angle: the frames that show it carry the new
+  // stamp, and other pixels; the first ones (moving) come as H.264, and once
+  // the view is still (150 ms on, motion_planner.h) lossless again.
   display::View turned = view_of(w, 1, 2000);
   turned.camera.forward = glm::normalize(w.camera.forward + glm::cross(w.camera.forward, w.camera.up));
-  client.send(turned);
-  std::optional<display::Frame> after;
-  for (int n = 0; n < 200 && (!after || after->stamp_us != 2000); ++n) after = next_frame(client);
-  ASSERT_TRUE(after && after->stamp_us == 2000) << "no frame showed the turned camera";
-  const std::optional<std::vector<uint8_t>> moved = display::unpack_pixels(*after, error);
-  ASSERT_TRUE(moved) << error;
-  EXPECT_NE(*before, *moved);
+  viewer.client.send(turned);
+  std::optional<Shown> after;
+  bool video = false;
+  for (int n = 0; n < 400 && (!after || after->frame.stamp_us != 2000 || !video ||
+                              after->frame.codec != display::FrameCodec::Zstd); ++n) {
+    after = viewer.next_frame();
+    video = video || (after && after->frame.codec == display::FrameCodec::H264);
+  }
+  ASSERT_TRUE(after && after->frame.stamp_us == 2000) << "no frame showed the turned camera";
+  EXPECT_TRUE(video) << "no moving frame came as H.264";
+  EXPECT_EQ(after->frame.codec, display::FrameCodec::Zstd);
+  EXPECT_NE(before->rgb, after->rgb);
   test::stop(m.pid);
 }
 
@@ -124,14 +147,14 @@ TEST(ViewerLink, AViewerWithAWrongKeyIsRefusedSayingWhy) {
 TEST(ViewerLink, ASecondViewerIsRefusedAndTheFirstGoesOn) {
   const Keys k = make_keys("viewer_link_second");
   const Master m = start_master(k);
-  ViewerClient first(m.endpoint, k.viewer);
-  const display::Welcome w = first.join(kPatience);
-  first.send(view_of(w, 0, 1));
-  ASSERT_TRUE(next_frame(first));
+  Viewer first(m.endpoint, k.viewer);
+  const display::Welcome w = first.client.join(kPatience);
+  first.client.send(view_of(w, 0, 1));
+  ASSERT_TRUE(first.next_frame());
   ViewerClient second(m.endpoint, k.viewer);
   const std::string error = error_of([&] { second.join(kPatience); });
   EXPECT_NE(error.find("another viewer ('laptop') is connected"), std::string::npos) << error;
-  EXPECT_TRUE(next_frame(first)) << "the first viewer lost its frames";
+  EXPECT_TRUE(first.next_frame()) << "the first viewer lost its frames";
   test::stop(m.pid);
 }
 
@@ -143,31 +166,32 @@ TEST(ViewerLink, AViewerKilledMidFrameLeavesTheMasterRendering) {
   const Master m = start_master(k);
   float accumulated = 0.0f;
   {
-    ViewerClient doomed(m.endpoint, k.viewer);
-    const display::Welcome w = doomed.join(kPatience);
-    doomed.send(view_of(w, 0, 1));
-    std::optional<display::Frame> f = next_frame(doomed);
+    Viewer doomed(m.endpoint, k.viewer);
+    const display::Welcome w = doomed.client.join(kPatience);
+    doomed.client.send(view_of(w, 0, 1));
+    std::optional<Shown> f = doomed.next_frame();
     ASSERT_TRUE(f);
-    accumulated = f->accumulated;
+    accumulated = f->frame.accumulated;
     // Gone without a Bye or an Ack, with a frame in flight.
   }
-  ViewerClient next(m.endpoint, k.viewer);
-  const display::Welcome w = next.join(kPatience);
-  next.send(view_of(w, 0, 2));
-  std::optional<display::Frame> f;
-  for (int n = 0; n < 200 && (!f || f->accumulated <= accumulated + 2.0f); ++n) f = next_frame(next);
+  Viewer next(m.endpoint, k.viewer);
+  const display::Welcome w = next.client.join(kPatience);
+  next.client.send(view_of(w, 0, 2));
+  std::optional<Shown> f;
+  for (int n = 0; n < 200 && (!f || f->frame.accumulated <= accumulated + 2.0f); ++n) f = next.next_frame();
   ASSERT_TRUE(f);
-  EXPECT_GT(f->accumulated, accumulated + 2.0f) << "the image did not go on accumulating";
+  EXPECT_GT(f->frame.accumulated, accumulated + 2.0f) << "the image did not go on accumulating";
   test::stop(m.pid);
 }
 
 TEST(ViewerLink, AMasterThatGoesAwayIsReported) {
   const Keys k = make_keys("viewer_link_master_gone");
   const Master m = start_master(k);
-  ViewerClient client(m.endpoint, k.viewer);
+  Viewer viewer(m.endpoint, k.viewer);
+  ViewerClient& client = viewer.client;
   const display::Welcome w = client.join(kPatience);
   client.send(view_of(w, 0, 1));
-  ASSERT_TRUE(next_frame(client));
+  ASSERT_TRUE(viewer.next_frame());
   ::kill(m.pid, SIGKILL);  // no Bye: the process is gone
   const auto start = std::chrono::steady_clock::now();
   const std::string error = error_of([&] {
