@@ -6,6 +6,7 @@ extern "C" {
 #include <libavcodec/avcodec.h>
 #include <libavutil/error.h>
 #include <libavutil/frame.h>
+#include <libavutil/log.h>
 #include <libavutil/opt.h>
 #include <libswscale/swscale.h>
 }
@@ -43,6 +44,7 @@ struct VideoEncoder::State : Codec {
 
 VideoEncoder::VideoEncoder(int width, int height, double mbit_per_second, double frames_per_second)
     : state_(std::make_unique<State>()) {
+  av_log_set_level(AV_LOG_ERROR);  // not x264's statistics on the master's terminal at every new stream
   const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
   if (!codec) throw std::runtime_error("this build's libavcodec has no H.264 encoder (libx264)");
   if (width % 2 || height % 2) throw std::runtime_error("H.264 frames need an even width and height");

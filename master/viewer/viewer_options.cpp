@@ -32,6 +32,11 @@ void declare(CLI::App& app, ViewerOptions& o) {
                  "accumulated, then exit")->type_name("FILE");
   app.add_option("--screenshot-after", o.screenshot_after, "see --screenshot [4]")
       ->check(cli::integer(1, INT_MAX))->type_name("N");
+  app.add_option("--screenshot-at-exit", o.exit_screenshot, "save the window as an image when it closes (Esc)")
+      ->type_name("FILE");
+  app.add_option("--frame-log", o.frame_log, "a line per frame shown: the wall clock (ms since 1970), codec "
+                 "(zstd, h264), bytes, pixels, and the ms from the input it first shows (- for none)")
+      ->type_name("FILE");
   app.add_flag("--quiet", o.quiet, "no summary at exit");
 }
 

@@ -15,6 +15,8 @@ struct ViewerOptions {
   int wait_seconds = 10;   // for the master's Welcome
   std::string screenshot;  // save the window after --screenshot-after accumulated frames, then exit
   int screenshot_after = 4;
+  std::string exit_screenshot;  // save the window as it is when it closes (scripts/bench-viewer.sh)
+  std::string frame_log;        // a line per frame shown (scripts/bench-viewer.sh)
   bool quiet = false;
   bool help = false;
 };

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <memory>
+#include <stdexcept>
 #include <optional>
 
 #include "display/interactive_window.h"
@@ -48,6 +50,18 @@ struct Screen {
   Clock::time_point first{};
   FrameRate rate;
   VideoDecoder video;
+  std::FILE* log = nullptr;  // --frame-log
+
+  // "1765148400123 h264 5120 307200 48.2": wall clock, codec, bytes, pixels, input to frame.
+  void log_frame(const display::Frame& f, double delay_ms) {
+    if (!log) return;
+    const auto wall = std::chrono::duration_cast<std::chrono::milliseconds>(
+        std::chrono::system_clock::now().time_since_epoch());
+    std::fprintf(log, "%lld %s %zu %d ", static_cast<long long>(wall.count()),
+                 f.codec == display::FrameCodec::H264 ? "h264" : "zstd", f.pixels.size(), f.width * f.height);
+    if (delay_ms >= 0.0) std::fprintf(log, "%.1f\n", delay_ms);
+    else std::fprintf(log, "-\n");
+  }
 
   // Every frame's pixels: H.264 frames are decoded in order even when not shown.
   std::vector<uint8_t> unpack(const display::Frame& f) {
@@ -70,10 +84,13 @@ struct Screen {
     figures.seconds = std::chrono::duration<double>(now - first).count();
     figures.bytes += double(f.pixels.size());
     figures.pixels += double(f.width) * f.height;
+    double delay_ms = -1.0;
     if (f.stamp_us != 0 && f.stamp_us != last_stamp) {  // the first frame that shows this input
-      figures.delays_ms.push_back(std::max(0.0, double(now_us()) - double(f.stamp_us)) * 1e-3);
+      delay_ms = std::max(0.0, double(now_us()) - double(f.stamp_us)) * 1e-3;
+      figures.delays_ms.push_back(delay_ms);
       last_stamp = f.stamp_us;
     }
+    log_frame(f, delay_ms);
     rate.shown(now);
     char fps[48];
     std::snprintf(fps, sizeof fps, "  |  shown %.1f fps", rate.fps(now));
@@ -122,7 +139,13 @@ ViewerFigures run_viewer(const ViewerOptions& o, const std::atomic<bool>& interr
   CameraController controller(w.camera, w.speed);
   ViewChanges changes(controller);
   ViewerFigures figures;
-  Screen screen{window, panel, figures, w.metering, 0.0f, 0, {}, {}, {}};
+  Screen screen{window, panel, figures, w.metering, 0.0f, 0, {}, {}, {}, nullptr};
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> log(nullptr, std::fclose);
+  if (!o.frame_log.empty()) {
+    log.reset(std::fopen(o.frame_log.c_str(), "w"));
+    if (!log) throw std::runtime_error("--frame-log " + o.frame_log + ": cannot write it");
+    screen.log = log.get();
+  }
   auto view = [&] {
     return display::View{controller.camera(), panel.settings().settings(), changes.camera_generation(),
                          changes.settings_generation(), controller.light_offset(), panel.options().preview,
@@ -165,6 +188,10 @@ ViewerFigures run_viewer(const ViewerOptions& o, const std::atomic<bool>& interr
       shot = true;
     }
     window.present();
+  }
+  if (!o.exit_screenshot.empty()) {  // the last frame shown, drawn again (the back buffer after a swap is undefined)
+    window.draw(panel.image_viewport(float(window.width()), float(window.height())), panel.settings().tone());
+    window.screenshot(o.exit_screenshot);
   }
   client.close("the viewer's window closed");
   return figures;
