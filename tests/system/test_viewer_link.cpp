@@ -6,6 +6,7 @@
 // error that says what happened. The window itself: tests/master/display/test_window.cpp.
 #include <csignal>
 #include <fstream>
+#include <functional>
 
 #include <gtest/gtest.h>
 
