@@ -112,8 +112,8 @@ struct Latest {
   bool full = false;
   bool moving = false;  // the camera changed just before it (motion_planner.h's kStillAfter)
   uint64_t stamp = 0;
-  float metered = 0.0f;
-  std::string status;
+  float seconds = 0.0f;
+  std::string level, status;
 };
 
 struct ViewerServer {
@@ -165,7 +165,7 @@ struct ViewerServer {
       const auto now = Clock::now();
       rate.shown(now);
       latest = {true, shown.planned.level == 0, shown.planned.moving, state.stamp_of(shown.planned.camera_generation),
-                0.0f, status_line(shown, history.weight(), rate.fps(now), false)};
+                float(shown.frame.record.seconds), shown.level, status_line(shown, history.weight(), rate.fps(now), false)};
       if (stats) stats->add(shown.frame.record);
     }
   }
@@ -188,6 +188,8 @@ struct ViewerServer {
     f.height = image.height;
     f.full = latest.full;
     f.accumulated = float(history.weight());
+    f.seconds = latest.seconds;
+    f.level = latest.level;
     f.status = latest.status;
     f.codec = lossless ? display::FrameCodec::Zstd : display::FrameCodec::H264;
     f.pixels = lossless ? display::pack_pixels(rgb) : video->encode(rgb);

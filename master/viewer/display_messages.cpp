@@ -199,6 +199,8 @@ void write(Writer& w, const Frame& m) {
   w.boolean(m.full);
   w.f32(m.metered);
   w.f32(m.accumulated);
+  w.f32(m.seconds);
+  w.string(m.level);
   w.string(m.status);
   w.bytes(m.pixels);
 }
@@ -220,6 +222,9 @@ void read(Reader& r, Frame& m) {
   m.accumulated = r.f32("accumulated");
   if (!(m.accumulated >= 0.0f && std::isfinite(m.accumulated)))
     r.fail("accumulated", show(m.accumulated) + ", expected a finite count >= 0");
+  m.seconds = r.f32("seconds");
+  if (!(m.seconds >= 0.0f && std::isfinite(m.seconds))) r.fail("seconds", show(m.seconds) + ", expected a finite time >= 0");
+  m.level = r.string("level", 64);
   m.status = r.string("status", kMaxText);
   m.pixels = r.bytes("pixels", size_t(m.width) * size_t(m.height) * 3 + 1024);  // zstd's worst case, at most
 }

@@ -104,6 +104,8 @@ struct Frame {
   bool full = false;         // a full frame (not a preview of a moving view)
   float metered = 0.0f;      // > 0: the exposure it was tone-mapped at, metered (View.metering)
   float accumulated = 0.0f;  // frames behind the image
+  float seconds = 0.0f;      // the last frame's render time (the panel's read-out and graph)
+  std::string level;         // its level's name ("full", "preview 1/4")
   std::string status;        // the master's status line ("12.3 fps  full  38 ms/frame ...")
   std::vector<uint8_t> pixels;  // in `codec`
 };

@@ -95,6 +95,9 @@ struct Screen {
     char fps[48];
     std::snprintf(fps, sizeof fps, "  |  shown %.1f fps", rate.fps(now));
     window.set_status(f.status + fps);
+    FrameRecord record;  // what the panel's read-out and graph show; the cluster's figures stay on the master
+    record.seconds = f.seconds;
+    panel.frame_shown(record, {}, rate.fps(now), f.level);
   }
 };
 
@@ -178,6 +181,7 @@ ViewerFigures run_viewer(const ViewerOptions& o, const std::atomic<bool>& interr
     const auto now = Clock::now();
     if (!fresh && now - last_draw < std::chrono::milliseconds(50)) continue;  // redraw for the panel at 20 Hz
     last_draw = now;
+    if (!fresh && screen.figures.frames > 0) panel.set_waiting(screen.rate.waiting(now));
     window.draw(panel.image_viewport(float(window.width()), float(window.height())), panel.settings().tone());
     const PanelActions actions = panel.draw(int(screen.accumulated), window.take_panel_taps());
     window.set_input_captured(panel.wants_mouse(), panel.wants_keyboard());

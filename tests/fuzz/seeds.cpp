@@ -252,6 +252,8 @@ std::vector<Seed> display_seeds() {
   frame.height = 2;
   frame.full = true;
   frame.status = "12.0 fps  full";
+  frame.level = "full";
+  frame.seconds = 0.04f;
   const std::vector<uint8_t> rgb(4 * 2 * 3, 128);
   frame.pixels = display::pack_pixels(rgb);
   const std::vector<std::pair<std::string, display::Message>> messages = {

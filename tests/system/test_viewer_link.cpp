@@ -7,9 +7,11 @@
 #include <csignal>
 #include <fstream>
 #include <functional>
+#include <numeric>
 
 #include <gtest/gtest.h>
 
+#include "display/settings_panel.h"
 #include "protocol/curve.h"
 #include "support/process.h"
 #include "support/sanitizers.h"
@@ -126,6 +128,30 @@ TEST(ViewerLink, FramesFollowTheViewersCameraAndEchoItsStamp) {
   EXPECT_TRUE(video) << "no moving frame came as H.264";
   EXPECT_EQ(after->frame.codec, display::FrameCodec::Zstd);
   EXPECT_NE(before->rgb, after->rgb);
+  test::stop(m.pid);
+}
+
+// The panel's settings reach the session: frames say which of the viewer's
+// settings they were rendered with, and show them (direct light only: darker).
+TEST(ViewerLink, NewSettingsFromTheViewerReachTheRender) {
+  const Keys k = make_keys("viewer_link_settings");
+  const Master m = start_master(k);
+  Viewer viewer(m.endpoint, k.viewer);
+  const display::Welcome w = viewer.client.join(kPatience);
+  viewer.client.send(view_of(w, 0, 1));
+  std::optional<Shown> f;
+  for (int n = 0; n < 400 && (!f || f->frame.accumulated < 4.0f); ++n) f = viewer.next_frame();
+  ASSERT_TRUE(f && f->frame.accumulated >= 4.0f);
+  display::View pt = view_of(w, 0, 2);
+  pt.settings = with_method(w.settings, MethodKind::PathTracer);
+  pt.settings.path_depth = 1;
+  pt.settings_generation = 1;
+  viewer.client.send(pt);
+  std::optional<Shown> after;
+  for (int n = 0; n < 400 && (!after || after->frame.settings_generation != 1); ++n) after = viewer.next_frame();
+  ASSERT_TRUE(after && after->frame.settings_generation == 1) << "no frame of the new settings";
+  auto mean = [](const std::vector<uint8_t>& rgb) { return std::accumulate(rgb.begin(), rgb.end(), 0.0) / rgb.size(); };
+  EXPECT_LT(mean(after->rgb), 0.9 * mean(f->rgb)) << "the frames of the new settings are not direct light only";
   test::stop(m.pid);
 }
 

@@ -80,7 +80,7 @@ TEST(DisplayMessages, TheSmallMessagesRoundTrip) {
 TEST(DisplayMessages, AFrameRoundTripsAndItsPixelsUnpackExactly) {
   std::vector<uint8_t> rgb(5 * 3 * 3);
   for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = uint8_t(i * 7);
-  Frame f{9, 1234, 2, 5, 3, FrameCodec::Zstd, true, 2.0f, 16.0f, "12 fps", pack_pixels(rgb)};
+  Frame f{9, 1234, 2, 5, 3, FrameCodec::Zstd, true, 2.0f, 16.0f, 0.04f, "preview 1/2", "12 fps", pack_pixels(rgb)};
   const Frame f2 = round_trip(f);
   EXPECT_EQ(f2.sequence, 9u);
   EXPECT_EQ(f2.stamp_us, 1234u);
@@ -88,6 +88,8 @@ TEST(DisplayMessages, AFrameRoundTripsAndItsPixelsUnpackExactly) {
   EXPECT_TRUE(f2.full);
   EXPECT_EQ(f2.metered, 2.0f);
   EXPECT_EQ(f2.accumulated, 16.0f);
+  EXPECT_EQ(f2.seconds, 0.04f);
+  EXPECT_EQ(f2.level, "preview 1/2");
   EXPECT_EQ(f2.status, "12 fps");
   std::string error;
   EXPECT_EQ(unpack_pixels(f2, error), std::optional(rgb)) << error;
@@ -140,9 +142,12 @@ TEST(DisplayMessages, ValuesOutOfRangeAreRefusedNamingTheField) {
   v.settings = some_settings();
   v.preview = 99;
   EXPECT_NE(error_of(encode(v)).find("View.preview"), std::string::npos);
-  Frame f{1, 0, 0, 0, 10, FrameCodec::Zstd, false, 0.0f, 0.0f, "", {}};
+  Frame f{1, 0, 0, 0, 10, FrameCodec::Zstd, false, 0.0f, 0.0f, 0.0f, "", "", {}};
   EXPECT_NE(error_of(encode(f)).find("Frame.width"), std::string::npos);
   f.width = 10;
+  f.seconds = -1.0f;
+  EXPECT_NE(error_of(encode(f)).find("Frame.seconds"), std::string::npos);
+  f.seconds = 0.0f;
   f.codec = FrameCodec(9);
   EXPECT_NE(error_of(encode(f)).find("Frame.codec"), std::string::npos);
   std::vector<uint8_t> request = encode(Request{});
