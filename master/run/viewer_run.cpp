@@ -39,6 +39,9 @@ using Clock = std::chrono::steady_clock;
 // image to settle on the viewer, few enough to leave a slow link room.
 constexpr double kStillFramesPerSecond = 4.0;
 constexpr double kVideoFramesPerSecond = 25.0;  // what the H.264 rate control plans a frame's bits for
+// The share of the measured link (link_meter.h) the moving frames may take:
+// the measure is a lower bound, and Acks and still frames share the link.
+constexpr double kLinkShare = 0.7;
 
 display::Welcome welcome_for(const MasterOptions& o, const Scene& scene) {
   display::Welcome w;
@@ -192,10 +195,23 @@ struct ViewerServer {
     f.level = latest.level;
     f.status = latest.status;
     f.codec = lossless ? display::FrameCodec::Zstd : display::FrameCodec::H264;
+    if (!lossless) follow_link();
     f.pixels = lossless ? display::pack_pixels(rgb) : video->encode(rgb);
     if (lossless) last_lossless = now;
     port.send_frame(std::move(f));
     latest.fresh = false;
+  }
+
+  // The H.264 bit rate: a share of the link measured, within --viewer-mbit; changed when 10 % off.
+  void follow_link() {
+    const double budget = o.viewer_mbit > 0.0 ? port.link().budget(o.viewer_mbit, kLinkShare) : 0.0;
+    const double was = video->bit_rate();
+    if (std::abs(budget - was) > 0.1 * was) {
+      video->set_bit_rate(budget);
+      if (!o.render.quiet && std::abs(budget - was) > 0.3 * was)  // the big steps on the terminal
+        std::fprintf(stderr, "igi-master: viewer link measured %.1f Mbit/s: moving frames at %.1f Mbit/s\n",
+                     port.link().mbit(), budget);
+    }
   }
 
   display::Reply answer(const display::Request& r) {

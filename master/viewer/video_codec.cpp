@@ -40,7 +40,19 @@ bool have_h264_encoder() { return avcodec_find_encoder_by_name("libx264") != nul
 
 struct VideoEncoder::State : Codec {
   int64_t pts = 0;
+  double frames_per_second = 25.0;
 };
+
+namespace {
+
+// The rate control's cap, and a VBV buffer of one frame's worth: no burst queues up behind it.
+void set_rate(AVCodecContext* c, double mbit_per_second, double frames_per_second) {
+  c->bit_rate = int64_t(mbit_per_second * 1e6);
+  c->rc_max_rate = c->bit_rate;
+  c->rc_buffer_size = int(double(c->bit_rate) / frames_per_second);
+}
+
+}  // namespace
 
 VideoEncoder::VideoEncoder(int width, int height, double mbit_per_second, double frames_per_second)
     : state_(std::make_unique<State>()) {
@@ -57,9 +69,8 @@ VideoEncoder::VideoEncoder(int width, int height, double mbit_per_second, double
   c->gop_size = 10 * c->time_base.den;  // a key frame every 10 s at most; a new viewer gets a new stream
   c->max_b_frames = 0;
   c->thread_count = 1;  // no frame threads: one frame in, one packet out
-  c->bit_rate = int64_t(mbit_per_second * 1e6);
-  c->rc_max_rate = c->bit_rate;
-  c->rc_buffer_size = int(double(c->bit_rate) / frames_per_second);  // one frame's worth: no burst queues up
+  state_->frames_per_second = frames_per_second;
+  set_rate(c, mbit_per_second, frames_per_second);
   av_opt_set(c->priv_data, "preset", "ultrafast", 0);
   av_opt_set(c->priv_data, "tune", "zerolatency", 0);
   if (const int e = avcodec_open2(c, codec, nullptr); e < 0) throw std::runtime_error("libx264: " + av_text(e));
@@ -91,6 +102,12 @@ std::vector<uint8_t> VideoEncoder::encode(std::span<const uint8_t> rgb) {
   }
   return unit;
 }
+
+void VideoEncoder::set_bit_rate(double mbit_per_second) {
+  set_rate(state_->context, mbit_per_second, state_->frames_per_second);
+}
+
+double VideoEncoder::bit_rate() const { return double(state_->context->bit_rate) * 1e-6; }
 
 struct VideoDecoder::State : Codec {
   int width = 0, height = 0;  // of the converter

@@ -31,6 +31,9 @@ class VideoEncoder {
   VideoEncoder& operator=(const VideoEncoder&) = delete;
   // 8-bit sRGB, three bytes a pixel, row 0 at the top: one H.264 access unit (Annex B).
   std::vector<uint8_t> encode(std::span<const uint8_t> rgb);
+  // From the next frame on (x264 reconfigures the stream; no new key frame). 0: no cap.
+  void set_bit_rate(double mbit_per_second);
+  double bit_rate() const;  // Mbit/s
 
  private:
   struct State;

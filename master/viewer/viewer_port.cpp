@@ -107,11 +107,21 @@ void ViewerPort::handle(const std::string& identity, zmq::message_t& payload) {
   }
   heard_ = Clock::now();
   if (auto* view = std::get_if<display::View>(&*d.message)) incoming_.view = std::move(*view);
-  else if (auto* ack = std::get_if<display::Ack>(&*d.message)) acknowledged_ = std::max(acknowledged_, std::min(ack->frame, sequence_));
+  else if (auto* ack = std::get_if<display::Ack>(&*d.message)) on_ack(ack->frame);
   else if (auto* request = std::get_if<display::Request>(&*d.message)) incoming_.requests.push_back(*request);
   else if (auto* bye = std::get_if<display::Bye>(&*d.message)) drop("left (" + bye->reason + ")");
   else if (!std::holds_alternative<display::Ping>(*d.message))
     log("viewer '" + name + "' sent a " + display::type_name(display::type_of(*d.message)) + " (ignored)");
+}
+
+void ViewerPort::on_ack(uint64_t frame) {
+  acknowledged_ = std::max(acknowledged_, std::min(frame, sequence_));
+  const auto now = Clock::now();
+  while (!in_flight_.empty() && in_flight_.front().sequence <= acknowledged_) {
+    const InFlight& f = in_flight_.front();
+    if (f.sequence == frame) link_.add(f.bytes, std::chrono::duration<double>(now - f.sent).count());
+    in_flight_.pop_front();
+  }
 }
 
 void ViewerPort::on_hello(const std::string& identity, const std::string& name, const display::Hello& hello) {
@@ -129,6 +139,7 @@ void ViewerPort::on_hello(const std::string& identity, const std::string& name, 
   viewer_name_ = name;
   heard_ = Clock::now();
   sequence_ = acknowledged_ = 0;
+  in_flight_.clear();
   incoming_ = {};
   incoming_.joined = true;
   log("viewer '" + name + "' (" + hello.program + ") joined");
@@ -151,6 +162,7 @@ size_t ViewerPort::send_frame(display::Frame frame) {
   const size_t bytes = frame.pixels.size();
   if (!send(viewer_, frame)) return 0;  // its queue is full or it has gone: the next poll sees
   ++sequence_;
+  in_flight_.push_back({sequence_, bytes, Clock::now()});
   ++frames_sent_;
   return bytes;
 }

@@ -12,6 +12,7 @@
 // Single-threaded: the thread that sends frames owns it.
 #include <chrono>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,6 +24,7 @@
 #include "protocol/monitor.h"
 #include "protocol/zap.h"
 #include "viewer/display_messages.h"
+#include "viewer/link_meter.h"
 
 namespace igi {
 
@@ -56,10 +58,13 @@ class ViewerPort {
   void close(const std::string& reason, int linger_ms);
 
   uint64_t frames_sent() const { return frames_sent_; }
+  // The link to the viewer, as its Acks of the frames sent measure it.
+  const LinkMeter& link() const { return link_; }
 
  private:
   void handle(const std::string& identity, zmq::message_t& payload);
   void on_hello(const std::string& identity, const std::string& key_name, const display::Hello& hello);
+  void on_ack(uint64_t frame);
   void drop(const std::string& why);
   bool send(const std::string& identity, const display::Message& message);
   void log(const std::string& text) const;
@@ -74,6 +79,13 @@ class ViewerPort {
   std::string viewer_, viewer_name_;  // routing id and key name of the viewer, "" when none
   std::chrono::steady_clock::time_point heard_, said_;
   uint64_t sequence_ = 0, acknowledged_ = 0, frames_sent_ = 0, failed_handshakes_ = 0;
+  struct InFlight {
+    uint64_t sequence;
+    size_t bytes;
+    std::chrono::steady_clock::time_point sent;
+  };
+  std::deque<InFlight> in_flight_;  // at most kFramesInFlight
+  LinkMeter link_;
   Incoming incoming_;
 };
 

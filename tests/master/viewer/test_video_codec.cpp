@@ -1,10 +1,13 @@
 // The display link's moving frames (master/viewer/video_codec.h): H.264
 // through libavcodec comes back close to what went in, within the bit rate
-// asked for, one packet per frame; bytes that are not the stream are refused.
+// asked for, one packet per frame, and follows a new rate mid-stream; bytes
+// that are not the stream are refused. The link's measure (link_meter.h).
 #include <cmath>
+#include <random>
 
 #include <gtest/gtest.h>
 
+#include "viewer/link_meter.h"
 #include "viewer/video_codec.h"
 
 namespace igi {
@@ -64,6 +67,43 @@ TEST(VideoCodec, BytesThatAreNotTheStreamAreRefused) {
   VideoDecoder fresh;
   EXPECT_FALSE(fresh.decode(encoder.encode(picture(0)), kW * 2, kH, error));
   EXPECT_NE(error.find("expected 320 x 120"), std::string::npos) << error;
+}
+
+// A lower bit rate set mid-stream (what the measured link asks for) makes the
+// next frames smaller, without a new key frame the decoder would need.
+TEST(VideoCodec, ALowerBitRateMidStreamShrinksTheFrames) {
+  if (!have_h264_encoder()) GTEST_SKIP() << "no libx264 in this libavcodec";
+  VideoEncoder encoder(kW, kH, 8.0, 25.0);
+  VideoDecoder decoder;
+  std::string error;
+  size_t high = 0, low = 0;
+  std::mt19937 noise(62);
+  for (int t = 0; t < 40; ++t) {
+    if (t == 20) encoder.set_bit_rate(0.5);
+    std::vector<uint8_t> in(size_t(kW) * kH * 3);  // noise, new each frame: more bits than either rate allows
+    for (uint8_t& v : in) v = uint8_t(noise() >> 24);
+    const std::vector<uint8_t> packet = encoder.encode(in);
+    ASSERT_TRUE(decoder.decode(packet, kW, kH, error)) << "frame " << t << ": " << error;
+    if (t >= 5 && t < 20) high += packet.size();
+    if (t >= 25) low += packet.size();
+  }
+  EXPECT_NEAR(encoder.bit_rate(), 0.5, 1e-9);
+  EXPECT_LT(double(low), 0.5 * double(high)) << "15 frames at 8 Mbit/s: " << high << " bytes, at 0.5: " << low;
+}
+
+TEST(LinkMeter, FollowsTheFramesItTimesAndCapsTheBudget) {
+  LinkMeter link;
+  EXPECT_EQ(link.budget(20.0, 0.7), 20.0) << "the cap before any sample";
+  link.add(1000, 0.001);  // too small to say anything about the link
+  EXPECT_EQ(link.mbit(), 0.0);
+  link.add(250000, 0.2);  // 10 Mbit/s
+  EXPECT_NEAR(link.mbit(), 10.0, 1e-9);
+  EXPECT_NEAR(link.budget(20.0, 0.7), 7.0, 1e-9);
+  link.add(50000, 0.0);  // a burst the link let through at once: averaged over the window, not 'infinite'
+  EXPECT_NEAR(link.mbit(), 12.0, 1e-9);
+  for (int n = 0; n < 8; ++n) link.add(250000, 0.05);  // then 40 Mbit/s: the window forgets the old rate
+  EXPECT_NEAR(link.mbit(), 40.0, 1e-9);
+  EXPECT_EQ(link.budget(20.0, 0.7), 20.0) << "never above --viewer-mbit";
 }
 
 }  // namespace
