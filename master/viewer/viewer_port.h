@@ -3,9 +3,10 @@
 // ROUTER socket with CURVE, whose ZAP handler lets in only the viewers' keys
 // (--viewer-keys), in a ZeroMQ context of its own (a context has one ZAP
 // handler, and the workers' keys are not the viewers'). One viewer at a time:
-// a second is refused, saying who holds the port. A viewer silent for
-// kViewerTimeout is gone (killed, or its link broke) and the port is free
-// again; the render never waits for it.
+// a second is refused, saying who holds the port. A viewer whose connection
+// closed (its process ended) is gone at the next send to it (ROUTER_MANDATORY),
+// one silent for kViewerTimeout (its link broke) at the timeout, and the port
+// is free again; the render never waits for it.
 //
 // Frames: at most kFramesInFlight unacknowledged (display_messages.h); the
 // caller asks can_send_frame() and sends the newest image only then.

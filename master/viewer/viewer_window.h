@@ -5,6 +5,8 @@
 // or a Request (M meters, F12 saves on the master); F5 and F9 keep the camera
 // file here. What it shows are the master's display frames, as they come.
 #include <atomic>
+#include <string>
+#include <vector>
 
 #include "viewer/viewer_options.h"
 
