@@ -7,6 +7,7 @@
 
 #include "cluster/local_workers.h"
 #include "options/master_options.h"
+#include "protocol/curve.h"
 #include "session/master_session.h"
 #include "scene/scene.h"
 
@@ -21,7 +22,8 @@ int run_motion(const MasterOptions& options, const Scene& scene, MasterSession& 
 int run_interactive(const MasterOptions& options, const Scene& scene, MasterSession& session, LocalWorkers& workers,
                     std::atomic<bool>& interrupted);
 // --viewer-listen: the window is igi-view's, on another machine (viewer_run.cpp); runs until interrupted.
+// `keys`: the master's pair and the viewers it lets in.
 int run_for_viewer(const MasterOptions& options, const Scene& scene, MasterSession& session, LocalWorkers& workers,
-                   const std::atomic<bool>& interrupted);
+                   const protocol::CurveServerKeys& keys, const std::atomic<bool>& interrupted);
 
 }  // namespace igi

@@ -263,12 +263,7 @@ void print_how_to_connect(const MasterOptions& o, const ViewerPort& port, const 
 }  // namespace
 
 int run_for_viewer(const MasterOptions& o, const Scene& scene, MasterSession& session, LocalWorkers& workers,
-                   const std::atomic<bool>& interrupted) {
-  protocol::CurveServerKeys keys;
-  keys.own = protocol::read_secret_key_file(o.key_file);
-  keys.authorized = protocol::read_authorized_keys(o.viewer_keys);
-  if (keys.authorized.empty()) throw std::runtime_error(o.viewer_keys + ": no public keys: no viewer could join");
-  if (o.viewer_codec == "h264" && !have_h264_encoder())
+                   const protocol::CurveServerKeys& keys, const std::atomic<bool>& interrupted) {  if (o.viewer_codec == "h264" && !have_h264_encoder())
     throw std::runtime_error("--viewer-codec h264: this build's libavcodec has no H.264 encoder (libx264); "
                              "--viewer-codec zstd sends every frame lossless");
   const display::Welcome welcome = welcome_for(o, scene);
