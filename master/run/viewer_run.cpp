@@ -13,6 +13,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <optional>
@@ -215,24 +217,28 @@ struct ViewerServer {
   }
 
   display::Reply answer(const display::Request& r) {
-    if (history.weight() <= 0.0) return {"no image yet", 0.0f};
+    if (history.weight() <= 0.0) return {"no image yet", 0.0f, {}};
     const Image image = history.resolve();
+    char text[160];
     if (r.kind == display::RequestKind::Meter) {
       const float exposure = metered_exposure(image);
-      return {"exposure metered on the master: " + std::to_string(std::log2(exposure)) + " EV", exposure};
+      std::snprintf(text, sizeof text, "exposure metered: %+.2f EV", std::log2(exposure));
+      return {text, exposure, {}};
     }
     char name[48];
     std::snprintf(name, sizeof name, "igi-shot-%04d", shots++);
+    std::vector<uint8_t> exr;
     try {
       write_image(image, std::string(name) + ".exr");
       write_image(image, std::string(name) + ".png", state.tone_);
+      std::ifstream in(std::string(name) + ".exr", std::ios::binary);  // the file as written, for the viewer
+      exr.assign(std::istreambuf_iterator<char>(in), {});
     } catch (const std::exception& e) {
-      return {std::string("the master could not save the image: ") + e.what(), 0.0f};
+      return {std::string("the master could not save the image: ") + e.what(), 0.0f, {}};
     }
-    char text[160];
     std::snprintf(text, sizeof text, "saved %s.exr and .png on the master (%.1f frames accumulated)", name,
                   history.weight());
-    return {text, 0.0f};
+    return {text, 0.0f, std::move(exr)};
   }
 
   void turn(const std::atomic<bool>& interrupted) {

@@ -181,12 +181,14 @@ void read(Reader& r, Request& m) {
 void write(Writer& w, const Reply& m) {
   w.string(m.text);
   w.f32(m.exposure);
+  w.bytes(m.exr);
 }
 void read(Reader& r, Reply& m) {
   m.text = r.string("text", kMaxText);
   m.exposure = r.f32("exposure");
   if (!(m.exposure >= 0.0f && m.exposure <= kMaxExposure))
     r.fail("exposure", show(m.exposure) + ", expected 0 (none) or (0, 1e6]");
+  m.exr = r.bytes("exr", kMaxMessageBytes);
 }
 
 void write(Writer& w, const Frame& m) {

@@ -90,6 +90,7 @@ struct Request {
 struct Reply {
   std::string text;     // shown on the viewer's screen and terminal
   float exposure = 0.0f;  // > 0: the metered exposure (Meter)
+  std::vector<uint8_t> exr;  // SaveImage: the master's float image as an OpenEXR file, for the viewer to keep
 };
 
 // Zstd: 8-bit sRGB, three bytes a pixel, zstd (lossless): unpack_pixels().

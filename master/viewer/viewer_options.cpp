@@ -11,8 +11,8 @@ namespace {
 
 void declare(CLI::App& app, ViewerOptions& o) {
   cli::add_version_flag(app);
-  app.footer("window keys (as igi-master's window; F5/F9 keep the camera file here, F12 saves the master's float "
-             "image on the master):\n" + window_keys_text("  "));
+  app.footer("window keys (as igi-master's window; F5/F9 keep the camera file here; F12 saves the master's float "
+             "image on the master and here, as igi-shot-NNNN.exr and .png):\n" + window_keys_text("  "));
   app.add_option("--connect", o.connect, "the master's viewer port (igi-master --viewer-listen), as this machine "
                  "reaches it: tcp://127.0.0.1:PORT through ssh -N -L PORT:127.0.0.1:PORT MASTER_HOST")
       ->required()->type_name("ENDPOINT");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 #include <stdexcept>
 #include <optional>
@@ -120,6 +121,24 @@ void act(const PanelActions& a, WindowPanel& panel, CameraController& controller
   }
 }
 
+// F12's answer: the master's float image, kept here as PREFIX-NNNN.exr, and as
+// .png at this window's exposure and view transform. Says what it saved.
+std::string keep_shot(const display::Reply& r, WindowPanel& panel, int& shots) {
+  char name[64];
+  std::snprintf(name, sizeof name, "%s-%04d", panel.options().shot_prefix.c_str(), shots++);
+  const std::string exr = std::string(name) + ".exr";
+  try {
+    std::ofstream out(exr, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(r.exr.data()), std::streamsize(r.exr.size()));
+    if (!out.flush()) throw std::runtime_error("cannot write " + exr);
+    out.close();
+    write_image(read_image(exr), std::string(name) + ".png", panel.settings().tone());
+  } catch (const std::exception& e) {
+    return std::string("not kept here: ") + e.what();
+  }
+  return std::string("kept here as ") + name + ".exr and .png";
+}
+
 }  // namespace
 
 std::string ViewerFigures::summary() const {
@@ -158,6 +177,7 @@ ViewerFigures run_viewer(const ViewerOptions& o, const std::atomic<bool>& interr
   client.send(sent);
   auto last_draw = Clock::now();
   bool shot = false;
+  int shots = 0;
   while (!shot && window.poll(controller) && !interrupted) {
     const ViewChanges::Change change = changes.take(panel, controller, sent.preview);
     const ToneMapping tone = panel.settings().tone();
@@ -174,8 +194,9 @@ ViewerFigures run_viewer(const ViewerOptions& o, const std::atomic<bool>& interr
         fresh = true;
       } else if (auto* r = std::get_if<display::Reply>(&*m)) {
         if (r->exposure > 0.0f) panel.settings().set_exposure(r->exposure);
-        if (!o.quiet) std::fprintf(stderr, "igi-view: %s\n", r->text.c_str());
-        panel.set_message(r->text);
+        const std::string text = r->exr.empty() ? r->text : r->text + "; " + keep_shot(*r, panel, shots);
+        if (!o.quiet) std::fprintf(stderr, "igi-view: %s\n", text.c_str());
+        panel.set_message(text);
       }
     }
     const auto now = Clock::now();

@@ -2,7 +2,8 @@
 // igi-view's window: igi-master's window code (display/: the window, its
 // panel, the camera controls, ViewChanges) on the viewer's machine. What the
 // user does goes to the master as a View (stamped with the time of the input)
-// or a Request (M meters, F12 saves on the master); F5 and F9 keep the camera
+// or a Request (M meters; F12 saves the master's float image there and sends
+// it, kept here as EXR and PNG); F5 and F9 keep the camera
 // file here. What it shows are the master's display frames, as they come.
 #include <atomic>
 #include <string>

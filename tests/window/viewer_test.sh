@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # igi-view driving an igi-master --viewer-listen, as a user does, under Xvfb:
 # F5 saves the viewer's camera before and after a drag, F12 asks the master to
-# save its image, then the viewer is killed (SIGKILL, frames in flight) and a
+# save its image (and send it: the first viewer runs in DIR/laptop, where it
+# keeps it), then the viewer is killed (SIGKILL, frames in flight) and a
 # second viewer connects and takes a screenshot: the master rendered on.
 # Run by tests/master/display/test_window.cpp (Window.AViewerDrivesAMasterAndOneKilledLeavesItRendering).
 #   viewer_test.sh SLOWDOWN IGI_MASTER IGI_VIEW DIR     (inside xvfb-run; DIR holds master.key,
@@ -14,8 +15,9 @@ port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0));
 "$master" --workers 2 --worker-threads 1 --scene cornell --size 320x240 --key master.key \
   --viewer-listen "tcp://127.0.0.1:$port" --viewer-keys viewers 2>master.log &
 master_pid=$!
-connect=(--connect "tcp://127.0.0.1:$port" --key laptop.key --master-key master.pub --panel off)
-"$view" "${connect[@]}" --camera-file camera.json 2>viewer-1.log &
+connect=(--connect "tcp://127.0.0.1:$port" --key "$dir/laptop.key" --master-key "$dir/master.pub" --panel off)
+mkdir -p laptop
+(cd laptop && exec "$view" "${connect[@]}" --camera-file "$dir/camera.json" 2>"$dir/viewer-1.log") &
 viewer_pid=$!
 trap 'kill $master_pid $viewer_pid 2>/dev/null || true' EXIT
 window=$(timeout 30 xdotool search --sync --name "igi-view" | head -1)

@@ -321,8 +321,8 @@ TEST(Window, F12WritesTheImageAndSaysSo) {
 // Issue 62: igi-view on one machine drives igi-master --viewer-listen on
 // another (here both under one Xvfb): a drag in the viewer turns the camera
 // (F5 saves the viewer's camera before and after it), F12 saves the master's
-// float image on the master, and a viewer killed with frames in flight leaves
-// the master rendering for the next.
+// float image on the master and on the viewer's machine, and a viewer killed
+// with frames in flight leaves the master rendering for the next.
 TEST(Window, AViewerDrivesAMasterAndOneKilledLeavesItRendering) {
   IGI_NEED_XVFB();
   if (std::system("command -v xdotool >/dev/null 2>&1") != 0) {
@@ -354,6 +354,10 @@ TEST(Window, AViewerDrivesAMasterAndOneKilledLeavesItRendering) {
   EXPECT_NE(text("before.json"), text("after.json")) << "the drag did not turn the camera\n" << logs;
   EXPECT_NE(text("master.log").find("saved igi-shot-0000.exr and .png on the master"), std::string::npos) << logs;
   EXPECT_EQ(read_image((dir / "igi-shot-0000.exr").string()).width, 320);
+  // ... and the viewer keeps the master's float image too, byte for byte, and a PNG at its exposure.
+  EXPECT_EQ(text("laptop/igi-shot-0000.exr"), text("igi-shot-0000.exr"));
+  EXPECT_TRUE(fs::exists(dir / "laptop" / "igi-shot-0000.png"));
+  EXPECT_NE(text("viewer-1.log").find("kept here as igi-shot-0000.exr and .png"), std::string::npos) << logs;
   // It starts where the first viewer left the camera (after the drag, the box's green wall at the left).
   const Image second = read_image((dir / "second.png").string());
   float brightest = 0.0f;

@@ -70,9 +70,10 @@ TEST(DisplayMessages, TheSmallMessagesRoundTrip) {
   EXPECT_EQ(round_trip(Refuse{"no"}).reason, "no");
   EXPECT_EQ(round_trip(Ack{42}).frame, 42u);
   EXPECT_EQ(round_trip(Request{RequestKind::SaveImage}).kind, RequestKind::SaveImage);
-  const Reply r = round_trip(Reply{"metered", 1.5f});
+  const Reply r = round_trip(Reply{"metered", 1.5f, {'v', '/', '1', 1}});
   EXPECT_EQ(r.text, "metered");
   EXPECT_EQ(r.exposure, 1.5f);
+  EXPECT_EQ(r.exr, (std::vector<uint8_t>{'v', '/', '1', 1}));
   round_trip(Ping{});
   EXPECT_EQ(round_trip(Bye{"closed"}).reason, "closed");
 }
