@@ -82,8 +82,11 @@ class ViewerState {
   // True when the image starts over.
   bool take(const display::View& v) {
     const bool restart = v.settings_generation != viewer_settings_ || v.light_offset != view_.light_offset;
+    const bool moved = !restart && v.camera_generation != viewer_camera_;
     if (restart) ++view_.settings_generation;
-    else if (v.camera_generation != viewer_camera_) ++view_.camera_generation;
+    if (moved) ++view_.camera_generation;
+    // The input a camera shows: the View that moved it (a View of a new exposure alone is no input to echo).
+    if (moved) stamps_[view_.camera_generation] = v.stamp_us;
     viewer_settings_ = v.settings_generation;
     viewer_camera_ = v.camera_generation;
     view_.camera = v.camera;
@@ -92,7 +95,6 @@ class ViewerState {
     view_.preview = v.preview;
     tone_ = v.tone;
     metering_ = v.metering;
-    stamps_[view_.camera_generation] = v.stamp_us;
     while (stamps_.size() > 256) stamps_.erase(stamps_.begin());
     return restart;
   }
