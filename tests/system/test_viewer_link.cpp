@@ -7,6 +7,7 @@
 #include <csignal>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <numeric>
 
 #include <gtest/gtest.h>
@@ -42,18 +43,24 @@ Keys make_keys(const std::string& name) {
   return k;
 }
 
+// Stopped when the test ends, however it ends (a failed ASSERT returns early,
+// and a master left running would hold the test's output open).
 struct Master {
   std::string endpoint;
   pid_t pid;
+  Master(std::string e, pid_t p) : endpoint(std::move(e)), pid(p) {}
+  Master(const Master&) = delete;
+  Master& operator=(const Master&) = delete;
+  ~Master() { test::stop(pid); }
 };
 
-Master start_master(const Keys& k) {
+std::unique_ptr<Master> start_master(const Keys& k) {
   const std::string endpoint = "tcp://127.0.0.1:" + std::to_string(test::free_port());
   const pid_t pid = test::start(std::string(IGI_MASTER_BINARY) + " --workers 1 --worker-threads 1 --scene cornell "
                                 "--size 64x48 --key " + (k.dir / "master.key").string() + " --viewer-listen " +
                                 endpoint + " --viewer-keys " + (k.dir / "viewers").string() + " 2>" +
                                 (k.dir / "master.log").string());
-  return {endpoint, pid};
+  return std::make_unique<Master>(endpoint, pid);
 }
 
 const auto kPatience = milliseconds(int(20000 * test::kSlowdown));
@@ -102,7 +109,8 @@ std::string error_of(const std::function<void()>& f) {
 
 TEST(ViewerLink, FramesFollowTheViewersCameraAndEchoItsStamp) {
   const Keys k = make_keys("viewer_link_frames");
-  const Master m = start_master(k);
+  const std::unique_ptr<Master> master = start_master(k);
+  const Master& m = *master;
   Viewer viewer(m.endpoint, k.viewer);
   const display::Welcome w = viewer.client.join(kPatience);
   EXPECT_EQ(w.width, 64);
@@ -128,14 +136,14 @@ TEST(ViewerLink, FramesFollowTheViewersCameraAndEchoItsStamp) {
   EXPECT_TRUE(video) << "no moving frame came as H.264";
   EXPECT_EQ(after->frame.codec, display::FrameCodec::Zstd);
   EXPECT_NE(before->rgb, after->rgb);
-  test::stop(m.pid);
 }
 
 // The panel's settings reach the session: frames say which of the viewer's
 // settings they were rendered with, and show them (direct light only: darker).
 TEST(ViewerLink, NewSettingsFromTheViewerReachTheRender) {
   const Keys k = make_keys("viewer_link_settings");
-  const Master m = start_master(k);
+  const std::unique_ptr<Master> master = start_master(k);
+  const Master& m = *master;
   Viewer viewer(m.endpoint, k.viewer);
   const display::Welcome w = viewer.client.join(kPatience);
   viewer.client.send(view_of(w, 0, 1));
@@ -152,12 +160,12 @@ TEST(ViewerLink, NewSettingsFromTheViewerReachTheRender) {
   ASSERT_TRUE(after && after->frame.settings_generation == 1) << "no frame of the new settings";
   auto mean = [](const std::vector<uint8_t>& rgb) { return std::accumulate(rgb.begin(), rgb.end(), 0.0) / rgb.size(); };
   EXPECT_LT(mean(after->rgb), 0.9 * mean(f->rgb)) << "the frames of the new settings are not direct light only";
-  test::stop(m.pid);
 }
 
 TEST(ViewerLink, AViewerWithAWrongKeyIsRefusedSayingWhy) {
   const Keys k = make_keys("viewer_link_wrong_key");
-  const Master m = start_master(k);
+  const std::unique_ptr<Master> master = start_master(k);
+  const Master& m = *master;
   ViewerClient stranger(m.endpoint, k.stranger);
   const std::string error = error_of([&] { stranger.join(kPatience); });
   EXPECT_NE(error.find("refused this viewer's key"), std::string::npos) << error;
@@ -168,12 +176,12 @@ TEST(ViewerLink, AViewerWithAWrongKeyIsRefusedSayingWhy) {
   ViewerClient lost(m.endpoint, wrong_master);
   const std::string silent = error_of([&] { lost.join(milliseconds(3000)); });
   EXPECT_NE(silent.find("--master-key"), std::string::npos) << silent;
-  test::stop(m.pid);
 }
 
 TEST(ViewerLink, ASecondViewerIsRefusedAndTheFirstGoesOn) {
   const Keys k = make_keys("viewer_link_second");
-  const Master m = start_master(k);
+  const std::unique_ptr<Master> master = start_master(k);
+  const Master& m = *master;
   Viewer first(m.endpoint, k.viewer);
   const display::Welcome w = first.client.join(kPatience);
   first.client.send(view_of(w, 0, 1));
@@ -182,7 +190,6 @@ TEST(ViewerLink, ASecondViewerIsRefusedAndTheFirstGoesOn) {
   const std::string error = error_of([&] { second.join(kPatience); });
   EXPECT_NE(error.find("another viewer ('laptop') is connected"), std::string::npos) << error;
   EXPECT_TRUE(first.next_frame()) << "the first viewer lost its frames";
-  test::stop(m.pid);
 }
 
 // A viewer that vanishes between frames (its process killed: its connection
@@ -190,7 +197,8 @@ TEST(ViewerLink, ASecondViewerIsRefusedAndTheFirstGoesOn) {
 // at once and sees the image accumulate further.
 TEST(ViewerLink, AViewerKilledMidFrameLeavesTheMasterRendering) {
   const Keys k = make_keys("viewer_link_killed");
-  const Master m = start_master(k);
+  const std::unique_ptr<Master> master = start_master(k);
+  const Master& m = *master;
   float accumulated = 0.0f;
   {
     Viewer doomed(m.endpoint, k.viewer);
@@ -208,12 +216,12 @@ TEST(ViewerLink, AViewerKilledMidFrameLeavesTheMasterRendering) {
   for (int n = 0; n < 200 && (!f || f->frame.accumulated <= accumulated + 2.0f); ++n) f = next.next_frame();
   ASSERT_TRUE(f);
   EXPECT_GT(f->frame.accumulated, accumulated + 2.0f) << "the image did not go on accumulating";
-  test::stop(m.pid);
 }
 
 TEST(ViewerLink, AMasterThatGoesAwayIsReported) {
   const Keys k = make_keys("viewer_link_master_gone");
-  const Master m = start_master(k);
+  const std::unique_ptr<Master> master = start_master(k);
+  const Master& m = *master;
   Viewer viewer(m.endpoint, k.viewer);
   ViewerClient& client = viewer.client;
   const display::Welcome w = client.join(kPatience);
@@ -227,7 +235,6 @@ TEST(ViewerLink, AMasterThatGoesAwayIsReported) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_NE(error.find("the master at " + m.endpoint), std::string::npos) << error;
   EXPECT_LT(seconds, 3.5 * test::kSlowdown) << error;
-  test::wait_exit(m.pid, 5);
 }
 
 }  // namespace
