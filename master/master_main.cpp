@@ -50,6 +50,16 @@ std::optional<CurveSetup> curve_setup(const igi::MasterOptions& o) {
   return c;
 }
 
+// --viewer-listen's keys: the master's own and the viewers' (read here, so that bad key files stop us first).
+std::optional<igi::protocol::CurveServerKeys> viewer_keys(const igi::MasterOptions& o) {
+  if (o.viewer_listen.empty()) return std::nullopt;
+  igi::protocol::CurveServerKeys keys;
+  keys.own = igi::protocol::read_secret_key_file(o.key_file);
+  keys.authorized = igi::protocol::read_authorized_keys(o.viewer_keys);
+  if (keys.authorized.empty()) throw std::runtime_error(o.viewer_keys + ": no public keys: no viewer could join");
+  return keys;
+}
+
 // Test hooks: a signal to local worker 0 after so many accepted results, once
 // every local worker has joined (so that it hits one that holds jobs).
 void arm_test_hooks(const igi::MasterOptions& o, igi::MasterSession& session, igi::LocalWorkers& workers) {
@@ -70,6 +80,7 @@ void arm_test_hooks(const igi::MasterOptions& o, igi::MasterSession& session, ig
 
 int run(igi::MasterOptions o) {
   const std::optional<CurveSetup> curve = curve_setup(o);  // bad key files stop us before anything is bound
+  const std::optional<igi::protocol::CurveServerKeys> viewers = viewer_keys(o);
   igi::SceneMessages messages;
   igi::Scene scene = igi::load_scene(o.render.scene, igi::scene_options(o.render), &messages);  // validates it, and gives the camera
   for (const std::string& w : messages.warnings) std::fprintf(stderr, "igi-master: warning: %s\n", w.c_str());
@@ -101,6 +112,7 @@ int run(igi::MasterOptions o) {
   arm_test_hooks(o, session, workers);
   if (!o.motion.empty()) return igi::run_motion(o, scene, session, workers, g_interrupted);
   if (o.frames > 0) return igi::run_headless(o, scene, session, workers, g_interrupted);
+  if (viewers) return igi::run_for_viewer(o, scene, session, workers, *viewers, g_interrupted);
   return igi::run_interactive(o, scene, session, workers, g_interrupted);
 }
 

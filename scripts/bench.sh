@@ -24,6 +24,7 @@ scaling       master + workers against the single-process render                
 master        one master with 8 to 256 simulated workers                        The cluster
 network       (root) master and workers over a shaped 1 and 10 Gbit/s link      The cluster, "Over a shaped link"
 trust         a slow worker, colluding keys, fakes, a flood (real processes)    The cluster, "Trust"
+viewer        (root) igi-view driving a master over a shaped 20/50 Mbit/s link    A window on another machine
 LIST
   exit 0
 fi

@@ -12,6 +12,7 @@ packages=(
   libzmq3-dev cppzmq-dev
   libxxhash-dev                        # XXH3 content hashes (scenes, VPL sets)
   libzstd-dev liblz4-dev               # tile pixels compressed on the wire (--pixel-codec zstd, lz4)
+  libavcodec-dev libavutil-dev libswscale-dev   # igi-view's moving frames as H.264 (libx264 comes with libavcodec)
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libtinyobjloader-dev                 # OBJ scenes (common/scene/obj_loader.cpp: the header alone)
   libcli11-dev                         # command-line options of every program

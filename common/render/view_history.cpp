@@ -66,6 +66,7 @@ void ViewHistory::Layer::add(const Image& frame, const Upscale& up, int width, d
 void ViewHistory::reset() {
   const size_t pixels = size_t(width_) * height_;
   for (Layer* layer : {&still_, &carried_, &moving_, &preview_}) layer->clear(pixels);
+  from_previews_.assign(pixels, 0);
   still_view_ = view_ = View{};
   empty_ = true;
   is_moving_ = false;
@@ -92,6 +93,14 @@ void ViewHistory::add(const Image& frame, std::span<const PixelSurface> surfaces
     return;
   }
   if (is_moving_) settle();
+  if (up.divisor == 1) {  // a frame at every pixel: what only previews showed starts over from it
+    for (size_t i = 0; i < from_previews_.size(); ++i)
+      if (from_previews_[i]) {
+        still_.sum[i] = glm::dvec3(0.0);
+        still_.weight[i] = 0.0;
+        from_previews_[i] = 0;
+      }
+  }
   still_.add(frame, up, width_, weight);
   still_view_.camera = camera;
   // Its surfaces: the first known, or finer ones (the first full frame after previews).
@@ -108,7 +117,10 @@ std::pair<glm::dvec3, double> ViewHistory::shown(size_t i) const {
 }
 
 void ViewHistory::settle() {
-  for (size_t i = 0; i < still_.sum.size(); ++i) std::tie(still_.sum[i], still_.weight[i]) = shown(i);
+  for (size_t i = 0; i < still_.sum.size(); ++i) {
+    std::tie(still_.sum[i], still_.weight[i]) = shown(i);
+    from_previews_[i] = carried_.weight[i] + moving_.weight[i] <= 0.0 && preview_.weight[i] > 0.0;
+  }
   still_.any = true;
   still_view_ = std::move(view_);
   view_ = View{};

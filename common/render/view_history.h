@@ -34,7 +34,10 @@
 // frame_budget.h) show only where neither could be carried: they are
 // blurred and biased (fewer pixels, no compensation), worse than one full
 // frame however many are averaged. When the camera stands still again, what
-// the view shows is the still image of the new view.
+// the view shows is the still image of the new view, but where it showed
+// previews alone: the first frame at every pixel (a full frame, or a sharp
+// preview refining after the stop) replaces them there, as their blocks
+// averaged in would outweigh a sharp preview's small weight for seconds.
 //
 // Frames may come at a preview resolution (the full size over a divisor):
 // each full-size pixel takes the colour of the preview pixel it lies in, and
@@ -112,6 +115,10 @@ class ViewHistory {
   Layer carried_;  // still_ carried in one step
   Layer moving_;   // full frames rendered while moving, carried from view to view
   Layer preview_;  // previews rendered while moving, likewise
+  // Pixels the still image holds from previews alone (settle()): the next
+  // frame at every pixel (a full frame, or a sharp preview refining after
+  // the stop) replaces them, instead of averaging with their blocks.
+  std::vector<uint8_t> from_previews_;
   bool empty_ = true, is_moving_ = false;
   double carried_share_ = 1.0;
 };

@@ -52,6 +52,13 @@ void main() {
 )";
 }
 
+// Display pixels (upload_srgb8) go to the screen as they are.
+const char* kPlainFragment = R"(#version 120
+uniform sampler2D image;
+varying vec2 uv;
+void main() { gl_FragColor = vec4(texture2D(image, uv).rgb, 1.0); }
+)";
+
 GLuint compile(GLenum kind, const char* source) {
   GLuint shader = glCreateShader(kind);
   glShaderSource(shader, 1, &source, nullptr);
@@ -79,24 +86,31 @@ GLuint make_texture(GLenum target) {
   return texture;
 }
 
-}  // namespace
-
-ImageView::ImageView() {
-  const std::string fragment_text = fragment_source();
+GLuint link(const char* fragment_text) {
   const GLuint vertex = compile(GL_VERTEX_SHADER, kVertex);
-  const GLuint fragment = compile(GL_FRAGMENT_SHADER, fragment_text.c_str());
-  program_ = glCreateProgram();
-  glAttachShader(program_, vertex);
-  glAttachShader(program_, fragment);
-  glLinkProgram(program_);
+  const GLuint fragment = compile(GL_FRAGMENT_SHADER, fragment_text);
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, vertex);
+  glAttachShader(program, fragment);
+  glLinkProgram(program);
   glDeleteShader(vertex);
   glDeleteShader(fragment);
   GLint ok = 0;
-  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (!ok) throw std::runtime_error("display shader: does not link");
+  glUseProgram(program);
+  glUniform1i(glGetUniformLocation(program, "image"), 0);
+  glUseProgram(0);
+  return program;
+}
+
+}  // namespace
+
+ImageView::ImageView() {
+  program_ = link(fragment_source().c_str());
+  plain_program_ = link(kPlainFragment);
   exposure_location_ = glGetUniformLocation(program_, "exposure");
   glUseProgram(program_);
-  glUniform1i(glGetUniformLocation(program_, "image"), 0);
   glUniform1i(glGetUniformLocation(program_, "view_table"), 1);
   glUseProgram(0);
   texture_ = make_texture(GL_TEXTURE_2D);
@@ -107,18 +121,34 @@ ImageView::~ImageView() {
   glDeleteTextures(1, &texture_);
   glDeleteTextures(1, &table_);
   glDeleteProgram(program_);
+  glDeleteProgram(plain_program_);
 }
 
 void ImageView::upload(const Image& image) {
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, texture_);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  if (image.width != width_ || image.height != height_) {
+  if (image.width != width_ || image.height != height_ || srgb8_) {
     width_ = image.width;
     height_ = image.height;
+    srgb8_ = false;
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, width_, height_, 0, GL_RGB, GL_FLOAT, image.pixels.data());
   } else {
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width_, height_, GL_RGB, GL_FLOAT, image.pixels.data());
+  }
+}
+
+void ImageView::upload_srgb8(const std::vector<unsigned char>& rgb, int width, int height) {
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, texture_);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  if (width != width_ || height != height_ || !srgb8_) {
+    width_ = width;
+    height_ = height;
+    srgb8_ = true;
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, width, height, 0, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+  } else {
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
   }
 }
 
@@ -141,8 +171,8 @@ void ImageView::draw(int window_width, int window_height, const Viewport& where,
   glViewport(GLint(where.x), GLint(float(window_height) - where.y - where.height), GLsizei(where.width),
              GLsizei(where.height));
   glDisable(GL_BLEND);
-  glUseProgram(program_);
-  glUniform1f(exposure_location_, tone.exposure);
+  glUseProgram(srgb8_ ? plain_program_ : program_);
+  if (!srgb8_) glUniform1f(exposure_location_, tone.exposure);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, texture_);
   // At its own size each window pixel shows its own image pixel, unfiltered; smaller, neighbours are averaged.

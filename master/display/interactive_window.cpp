@@ -114,6 +114,10 @@ std::set<int> InteractiveWindow::take_panel_taps() { return std::exchange(panel_
 
 void InteractiveWindow::upload(const Image& image) { view_->upload(image); }
 
+void InteractiveWindow::upload_srgb8(const std::vector<unsigned char>& rgb, int width, int height) {
+  view_->upload_srgb8(rgb, width, height);
+}
+
 void InteractiveWindow::draw(const Viewport& where, const ToneMapping& tone) {
   view_->draw(width_, height_, where, tone);
 }

@@ -11,6 +11,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "display/camera_controller.h"
 #include "display/image_view.h"
@@ -30,6 +31,8 @@ class InteractiveWindow {
   bool poll(CameraController& camera);
   // Draws the last upload into `where` of the back buffer (image_viewport()); present() makes it visible.
   void upload(const Image& image);
+  // Display pixels a remote master tone-mapped (igi-view): drawn as they are (ImageView::upload_srgb8).
+  void upload_srgb8(const std::vector<unsigned char>& rgb, int width, int height);
   void draw(const Viewport& where, const ToneMapping& tone);
   int width() const { return width_; }
   int height() const { return height_; }

@@ -45,6 +45,18 @@ void add_network_options(CLI::App& app, MasterOptions& o) {
                  "or a file with one Z85 public key per line (local workers are always allowed)")
       ->type_name("PATH")->group(group);
   app.add_flag("--curve", o.curve, "CURVE on a loopback endpoint too (needs --key)")->group(group);
+  app.add_option("--viewer-listen", o.viewer_listen, "leave the window to igi-view: no window here, one viewer at a "
+                 "time drives the camera and settings through this endpoint (tcp://127.0.0.1:5600; from a laptop "
+                 "through ssh -L), always with CURVE: needs --key and --viewer-keys")
+      ->type_name("ENDPOINT")->group(group);
+  app.add_option("--viewer-keys", o.viewer_keys, "viewers allowed to connect to --viewer-listen: a folder of their "
+                 ".pub files (igi-keys new NAME), or a file with one Z85 public key per line")
+      ->type_name("PATH")->group(group);
+  app.add_option("--viewer-codec", o.viewer_codec, "the viewer's frames while the view moves: h264 (libx264, "
+                 "low latency, within --viewer-mbit) or zstd (lossless 8-bit); a still view's frames are always "
+                 "lossless [h264]")->check(cli::one_of({"h264", "zstd"}))->type_name("h264|zstd")->group(group);
+  app.add_option("--viewer-mbit", o.viewer_mbit, "h264: the most Mbit/s the moving frames take; 0: no cap (x264's default quality) [20]")
+      ->check(cli::bounded_number(10000.0))->check(cli::non_negative_number())->type_name("M")->group(group);
   app.add_option("--credits", o.credits, "jobs a worker holds at once [2]")
       ->check(integer<int>(1, protocol::kMaxCredits))->group(group)->type_name("K");
   add_liveness_options(app, o.heartbeat_ms, o.timeout_ms, group);
@@ -163,6 +175,20 @@ RenderSettings edited_settings(const std::vector<std::string>& args, const std::
   return parse_master_options(edited).render.settings;
 }
 
+// A viewer drives the session and sees its image: always CURVE, even on
+// loopback, which every user of a shared login node can reach.
+void check_viewer_security(const MasterOptions& o) {
+  if (o.viewer_listen.empty()) {
+    if (!o.viewer_keys.empty()) throw OptionError("--viewer-keys: needs --viewer-listen ENDPOINT");
+    return;
+  }
+  if (o.frames > 0 || !o.motion.empty())
+    throw OptionError("--viewer-listen: a viewer takes the window's place; not with --frames or --motion");
+  if (o.key_file.empty() || o.viewer_keys.empty())
+    throw OptionError("--viewer-listen needs CURVE: --key MASTER.key (the viewer gets MASTER.pub) and --viewer-keys "
+                      "PATH (the viewers' .pub files; make keys with igi-keys new NAME)");
+}
+
 // Refuses what would expose workers' jobs and pixels, before anything is bound.
 void check_security(const MasterOptions& o) {
   if (!protocol::is_local_endpoint(o.listen) && !o.curve)
@@ -176,6 +202,7 @@ void check_security(const MasterOptions& o) {
     throw OptionError("CURVE needs the workers' public keys: --authorized-keys DIR (their .pub files)");
   if (!o.authorized_keys.empty() && !o.curve)
     throw OptionError("--authorized-keys needs --key MASTER.key: without CURVE every peer is let in");
+  check_viewer_security(o);
 }
 
 }  // namespace

@@ -25,6 +25,10 @@ struct MasterOptions {
   bool curve = false;             // --curve, or implied by --key
   std::string key_file;           // the master's NAME.key
   std::string authorized_keys;    // a folder of workers' .pub files, or a list of keys
+  std::string viewer_listen;      // igi-view connects here (viewer_run.cpp); "": the window is here
+  std::string viewer_keys;        // the viewers' .pub files, or a list of keys
+  std::string viewer_codec = "h264";  // moving frames to the viewer: h264 (lossy) or zstd (lossless)
+  double viewer_mbit = 20.0;      // h264's bit rate cap, Mbit/s
   int frames = 0;                 // headless: render this many frames; 0: window
   int min_workers = 0;            // headless: the first frame waits until this many workers joined...
   int min_workers_wait = 30;      // ... or this many seconds passed

@@ -1,4 +1,4 @@
-// The window: the session runs on a thread of its own; this thread draws.
+// The window: the session runs on a thread of its own (session_thread.h); this thread draws.
 //
 // The display thread owns the window and the camera; it publishes the view
 // (camera and settings, each with a generation bumped by every change) and
@@ -15,124 +15,26 @@
 // frames it has not taken.
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <cstdio>
-#include <deque>
-#include <mutex>
 #include <optional>
 #include <thread>
 #include <utility>
 
 #include "view/camera_bookmark.h"
 #include "display/interactive_window.h"
+#include "display/view_changes.h"
 #include "display/window_panel.h"
 #include "view/frame_rate.h"
 #include "image/exposure_check.h"
 #include "view/motion_planner.h"
 #include "run/run_modes.h"
+#include "run/session_thread.h"
 #include "scene/animation.h"
 #include "output/stats_writer.h"
 #include "render/view_history.h"
 
 namespace igi {
 namespace {
-
-struct Shown {
-  CompletedFrame frame;
-  PlannedFrame planned;
-  std::string level;  // the read-out's name of its level
-  double weight = 1.0;  // what it counts for in the accumulated image
-  size_t workers = 0;  // when it completed (the display thread must not ask the session)
-  std::vector<PeerView> peers;
-};
-
-// What the two threads share, under one mutex.
-class Handover {
- public:
-  using View = MovingView;
-  void publish(const View& view) {
-    std::lock_guard lock(mutex_);
-    view_ = view;
-  }
-  View view() {
-    std::lock_guard lock(mutex_);
-    return view_;
-  }
-  void deliver(Shown shown) {
-    {
-      std::lock_guard lock(mutex_);
-      frames_.push_back(std::move(shown));
-    }
-    arrived_.notify_one();
-  }
-  size_t waiting() {
-    std::lock_guard lock(mutex_);
-    return frames_.size();
-  }
-  // Waits up to `wait` for a frame (the window keeps polling input meanwhile).
-  std::deque<Shown> take(std::chrono::milliseconds wait) {
-    std::unique_lock lock(mutex_);
-    arrived_.wait_for(lock, wait, [&] { return !frames_.empty() || stop_; });
-    return std::exchange(frames_, {});
-  }
-  void stop(const std::string& error = {}) {
-    {
-      std::lock_guard lock(mutex_);
-      stop_ = true;
-      if (error_.empty()) error_ = error;
-    }
-    arrived_.notify_all();
-  }
-  bool stopped() {
-    std::lock_guard lock(mutex_);
-    return stop_;
-  }
-  std::string error() {
-    std::lock_guard lock(mutex_);
-    return error_;
-  }
-
- private:
-  std::mutex mutex_;
-  std::condition_variable arrived_;
-  View view_;
-  std::deque<Shown> frames_;
-  bool stop_ = false;
-  std::string error_;
-};
-
-void session_loop(const MasterOptions& o, const Scene& scene, MasterSession& session, Handover& handover,
-                  double budget_ms) {
-  MotionPlanner planner(o, scene, budget_ms);
-  try {
-    while (!handover.stopped())
-      for (MovedFrame& f : planner.turn(session, handover.view(), handover.waiting() < 2, 5))
-        handover.deliver({std::move(f.frame), f.planned, level_name(f.level), f.weight, session.worker_count(),
-                          session.peer_views()});
-  } catch (const std::exception& e) {
-    handover.stop(e.what());
-  }
-}
-
-std::string waiting_line(double seconds) {
-  char text[96];
-  std::snprintf(text, sizeof text, "waiting for a frame (%.1f s)", seconds);
-  return text;
-}
-
-// "12.3 fps  preview 1/4  38 ms/frame ...": frames a second over the last
-// second, the level of the frame shown, and what waits.
-std::string status_line(const Shown& shown, double accumulated, double fps, bool animated) {
-  const CompletedFrame& f = shown.frame;
-  char text[224];
-  const double s = f.record.seconds;
-  const int n = std::snprintf(text, sizeof text, "%.1f fps  %s  %.0f ms/frame  %.1f Mrays/s  %zu workers  ", fps,
-                              shown.level.c_str(), 1e3 * s, s > 0 ? f.record.rays.total() * 1e-6 / s : 0.0,
-                              shown.workers);
-  if (animated) std::snprintf(text + n, sizeof text - size_t(n), "t = %.2f s", f.setup.pose.time);
-  else std::snprintf(text + n, sizeof text - size_t(n), "%.1f frames accumulated", accumulated);
-  return text;
-}
 
 std::string metered_line(float exposure) {
   char text[64];
@@ -253,11 +155,11 @@ void window_loop(const MasterOptions& o, const Scene& scene, MasterSession& sess
   const bool camera_animated = animated && scene.camera && scene.animation->camera_node >= 0;
   CameraController controller(scene_camera(scene, o.render.time), speed);
   ViewHistory history(o.render.width, o.render.height, o.history_frames);
-  uint64_t camera_generation = 0, settings_generation = 0, seen_camera = controller.generation();
-  glm::vec3 light_offset = controller.light_offset();
+  ViewChanges changes(controller);
   auto view = [&] {
-    return Handover::View{controller.camera(), panel.settings().settings(), camera_generation, settings_generation,
-                          controller.light_offset(), camera_animated && !controller.placed(), panel.options().preview};
+    return Handover::View{controller.camera(), panel.settings().settings(), changes.camera_generation(),
+                          changes.settings_generation(), controller.light_offset(),
+                          camera_animated && !controller.placed(), panel.options().preview};
   };
   handover.publish(view());
   const double budget_ms = o.frame_budget_ms >= 0.0 ? o.frame_budget_ms : kWindowFrameBudgetMs;
@@ -267,22 +169,12 @@ void window_loop(const MasterOptions& o, const Scene& scene, MasterSession& sess
   int shots = 0;
   Shower shower{window, panel, controller, history, stats, meter, animated, camera_animated, 0, {}};
   while (window.poll(controller) && !interrupted && !handover.stopped()) {
-    const bool lights_moved = controller.light_offset() != light_offset;
-    if (panel.settings().take_change() || lights_moved) {  // the image starts over
-      light_offset = controller.light_offset();
-      ++settings_generation;
-      history.reset();
-      handover.publish(view());
-    } else if (controller.generation() != seen_camera) {  // the history is carried
-      ++camera_generation;
-      handover.publish(view());
-    } else if (panel.options().preview != handover.view().preview) {
-      handover.publish(view());
-    }
-    seen_camera = controller.generation();
+    const ViewChanges::Change change = changes.take(panel, controller, handover.view().preview);
+    if (change == ViewChanges::Change::Settings) history.reset();  // the image starts over; a camera's is carried
+    if (change != ViewChanges::Change::None) handover.publish(view());
     bool fresh = false;
     for (Shown& shown : handover.take(std::chrono::milliseconds(5))) {
-      if (shown.planned.settings_generation != settings_generation) continue;  // rendered with old settings
+      if (shown.planned.settings_generation != changes.settings_generation()) continue;  // rendered with old settings
       shower.show(shown);
       fresh = true;
     }
@@ -299,7 +191,7 @@ void window_loop(const MasterOptions& o, const Scene& scene, MasterSession& sess
       std::fprintf(stderr, "igi-master: %s\n", m.c_str());  // on the terminal, and on screen for a few seconds
       panel.set_message(m);
     }
-    if (actions.load_camera) seen_camera = ~controller.generation();  // a new controller: a new view
+    if (actions.load_camera) changes.forget_camera(controller);  // a new controller: a new view
     const int settled = animated ? shower.shown_frames : int(history.weight());  // an animation never accumulates
     if (fresh && edited && !o.render.screenshot.empty() && settled >= o.screenshot_after) {
       window.screenshot(o.render.screenshot);

@@ -28,6 +28,8 @@ launch_listen=""                   # what the master binds [tcp://0.0.0.0:PORT]
 launch_worker_args=()              # extra igi-worker options, for every worker
 launch_grace=10                    # seconds workers get to leave after the master ends
 launch_gather=30                   # seconds the master waits for every worker before the first frame
+launch_viewer_keys=""              # --viewer-keys: the window goes to igi-view (the master's --viewer-listen)
+launch_viewer_port=5600
 master_args=()                     # after --: igi-master's own options
 worker_pids=() worker_names=() worker_logs=()  # the launcher's channel to each worker (ssh, srun)
 worker_status=()                   # their exit statuses, as they end
@@ -42,7 +44,8 @@ launch_say() { echo "$LAUNCH_NAME: $*" >&2; }
 launch_parse_common() {
   shift_by=2
   case "$1" in
-    --build | --dir | --master-host | --port | --listen | --worker-args | --grace | --min-workers-wait)
+    --build | --dir | --master-host | --port | --listen | --worker-args | --grace | --min-workers-wait | \
+      --viewer-keys | --viewer-port)
       [ $# -ge 2 ] || launch_fail "$1: missing value" ;;
     --wait-workers) launch_fail "--wait-workers is now --min-workers-wait, as igi-master calls it" ;;
     *) shift_by=0; return ;;
@@ -56,6 +59,8 @@ launch_parse_common() {
     --worker-args) read -ra launch_worker_args <<<"$2" ;;
     --grace) launch_grace=$2 ;;
     --min-workers-wait) launch_gather=$2 ;;
+    --viewer-keys) launch_viewer_keys=$2 ;;
+    --viewer-port) launch_viewer_port=$2 ;;
   esac
 }
 
@@ -71,6 +76,10 @@ launch_common_usage() {
   --min-workers-wait S the first frame waits until every worker has joined, at most S seconds,
                        then starts with those present (igi-master's option of that name) [30]
   --grace S            seconds workers get to leave after the master ends [10]
+  --viewer-keys PATH   leave the window to igi-view on your own machine: the viewers' .pub files
+                       (igi-keys new NAME); the master listens for one on 127.0.0.1:VIEWER-PORT,
+                       and the launcher prints the ssh tunnel and igi-view commands
+  --viewer-port N      that port [5600]
   -- OPTIONS           igi-master's options (scene, method, --frames, -o, ...); the launcher adds
                        --workers 0 --listen --key --authorized-keys
 Exit status: 0 all went well; 1 the master failed or was interrupted; 2 bad options (nothing
@@ -87,6 +96,9 @@ launch_check_common() {
     launch_fail "--port: expected a number from 1 to 65535, got '$launch_port'"
   [[ "$launch_grace" =~ ^[0-9]+$ ]] || launch_fail "--grace: expected whole seconds, got '$launch_grace'"
   [[ "$launch_gather" =~ ^[0-9]+$ ]] || launch_fail "--min-workers-wait: expected whole seconds, got '$launch_gather'"
+  [[ "$launch_viewer_port" =~ ^[0-9]+$ ]] && [ "$launch_viewer_port" -ge 1 ] && [ "$launch_viewer_port" -le 65535 ] ||
+    launch_fail "--viewer-port: expected a number from 1 to 65535, got '$launch_viewer_port'"
+  [ -z "$launch_viewer_keys" ] || [ -e "$launch_viewer_keys" ] || launch_fail "--viewer-keys $launch_viewer_keys: not found"
   [ -n "$launch_master_host" ] || launch_master_host=$(launch_default_host)
   [ -n "$launch_listen" ] || launch_listen="tcp://0.0.0.0:$launch_port"
   [ -n "$launch_dir" ] || launch_dir="igi-run-$(date +%Y%m%d-%H%M%S)"
@@ -128,16 +140,18 @@ launch_worker_keys() {
 # fails). It gets SIGTERM if the launcher dies, even by SIGKILL (setpriv
 # --pdeathsig), and then says goodbye to its workers.
 launch_start_master() {
-  local workers=$1 guard=()
+  local workers=$1 guard=() viewer=()
   command -v setpriv >/dev/null && guard=(setpriv --pdeathsig TERM --)
+  [ -z "$launch_viewer_keys" ] ||
+    viewer=(--viewer-listen "tcp://127.0.0.1:$launch_viewer_port" --viewer-keys "$launch_viewer_keys")
   "${guard[@]}" "$launch_build/master/igi-master" --workers 0 --listen "$launch_listen" \
     --key "$launch_dir/keys/master.key" --authorized-keys "$launch_dir/keys/workers" \
-    --min-workers "$workers" --min-workers-wait "$launch_gather" "${master_args[@]}" \
+    --min-workers "$workers" --min-workers-wait "$launch_gather" "${viewer[@]}" "${master_args[@]}" \
     >"$launch_dir/master.log" 2>&1 &
   master_pid=$!
   local tries
   for ((tries = 0; tries < 200; ++tries)); do  # 20 s: loading a large scene comes first
-    grep -qs "listening on" "$launch_dir/master.log" && return 0
+    grep -qs "listening on" "$launch_dir/master.log" && { launch_say_viewer; return 0; }
     if ! kill -0 "$master_pid" 2>/dev/null; then
       wait "$master_pid"
       launch_say "the master did not start (exit $?):"
@@ -146,6 +160,17 @@ launch_start_master() {
     fi
     sleep 0.1
   done
+}
+
+# With --viewer-keys: how the user's own machine connects a window (the master's key is this run's).
+launch_say_viewer() {
+  [ -n "$launch_viewer_keys" ] || return 0
+  local here port=$launch_viewer_port
+  here="$(id -un)@$(launch_default_host)"
+  launch_say "the window: on your machine, with your viewer key (its .pub in $launch_viewer_keys):"
+  launch_say "  scp $here:$launch_dir/keys/master.pub igi-master.pub"
+  launch_say "  ssh -N -L $port:127.0.0.1:$port $here &"
+  launch_say "  igi-view --connect tcp://127.0.0.1:$port --key YOUR.key --master-key igi-master.pub"
 }
 
 # Records the exit status of every worker that has ended (once: bash hands

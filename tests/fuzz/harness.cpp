@@ -10,6 +10,7 @@
 #include "protocol/codec.h"
 #include "protocol/pixels.h"
 #include "scene/gltf_loader.h"
+#include "viewer/display_messages.h"
 
 namespace igi::fuzz {
 namespace {
@@ -125,6 +126,28 @@ std::string check_decode(std::span<const uint8_t> bytes) {
     if (a.size() != b.size() || std::memcmp(a.data(), b.data(), a.size() * sizeof(glm::vec3)) != 0)
       return "a re-encoded packed or rgb9e5 tile has other pixels";
     if (protocol::encode(*second.message) != encoded) return "re-encoding a packed or rgb9e5 tile twice gave other bytes";
+  }
+  return {};
+}
+
+std::string check_display_decode(std::span<const uint8_t> bytes) {
+  const display::Decoded first = display::decode(bytes);
+  if (!first.message) return first.error.empty() ? "display decode failed without an error message" : "";
+  if (!first.error.empty()) return "display decode succeeded with an error: " + first.error;
+  const std::vector<uint8_t> encoded = display::encode(*first.message);
+  if (!std::equal(encoded.begin(), encoded.end(), bytes.begin(), bytes.end()))
+    return "re-encoding a decoded display message gave other bytes (" + std::to_string(encoded.size()) + " vs " +
+           std::to_string(bytes.size()) + ")";
+  const display::Decoded second = display::decode(encoded);
+  if (!second.message || second.message->index() != first.message->index())
+    return "a re-encoded display message does not decode as itself: " + second.error;
+  const auto* frame = std::get_if<display::Frame>(&*first.message);
+  if (frame && frame->codec == display::FrameCodec::Zstd) {  // H.264 needs its stream: video_codec.h's tests
+    std::string error;
+    const std::optional<std::vector<uint8_t>> rgb = display::unpack_pixels(*frame, error);
+    if (rgb && rgb->size() != size_t(frame->width) * size_t(frame->height) * 3)
+      return "a frame's pixels unpacked to " + std::to_string(rgb->size()) + " bytes, not its size";
+    if (!rgb && error.empty()) return "a frame's pixels were refused without an error message";
   }
   return {};
 }

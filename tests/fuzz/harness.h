@@ -22,6 +22,12 @@ namespace igi::fuzz {
 // same messages, with the same error, and copies the same pixels.
 std::string check_decode(std::span<const uint8_t> bytes);
 
+// display::decode, the display link's (master/viewer/display_messages.h), as
+// check_decode: a rejected message has an error; an accepted one encodes back
+// to the same bytes, and a Frame's pixels unpack to its size or are refused.
+// The decode target runs both decoders on every input.
+std::string check_display_decode(std::span<const uint8_t> bytes);
+
 // load_gltf_memory (no external files): a rejected scene throws SceneError
 // naming the input; an accepted one validates, has finite lights, camera and
 // textures, and goes through what a renderer builds first (bounds, the

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   try {
     const fs::path dir = argv[1];
     write_all(dir / "decode", igi::fuzz::decode_seeds());
+    write_all(dir / "decode", igi::fuzz::display_seeds());
     write_all(dir / "scene", igi::fuzz::scene_seeds((dir / "scratch").string()));
     return 0;
   } catch (const std::exception& e) {

@@ -11,6 +11,7 @@
 #include "fuzz/harness.h"
 #include "fuzz/seeds.h"
 #include "protocol/codec.h"
+#include "viewer/display_messages.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene_file.h"
 
@@ -60,6 +61,31 @@ TEST(FuzzReplay, DecodeSeedsCutShortAreRejected) {
     }
 }
 
+TEST(FuzzReplay, DisplaySeedsCoverEveryMessageTypeAndDecode) {
+  std::vector<bool> seen(display::kTypes + 1, false);
+  for (const Seed& seed : display_seeds()) {
+    const display::Decoded result = display::decode(seed.bytes);
+    ASSERT_TRUE(result.message) << seed.name << ": " << result.error;
+    seen[size_t(display::type_of(*result.message))] = true;
+    EXPECT_EQ(check_display_decode(seed.bytes), "") << seed.name;
+    EXPECT_FALSE(protocol::decode(seed.bytes).message) << seed.name << ": the workers' decoder took it";
+    EXPECT_EQ(check_decode(seed.bytes), "") << seed.name;
+  }
+  EXPECT_EQ(std::count(seen.begin() + 1, seen.end(), true), display::kTypes) << "a seed of every type";
+}
+
+// Every truncation of every display seed is rejected with an error, never accepted.
+TEST(FuzzReplay, DisplaySeedsCutShortAreRejected) {
+  for (const Seed& seed : display_seeds())
+    for (size_t size = 0; size < seed.bytes.size(); ++size) {
+      const std::span<const uint8_t> cut(seed.bytes.data(), size);
+      const display::Decoded result = display::decode(cut);
+      EXPECT_FALSE(result.message) << seed.name << " cut to " << size;
+      EXPECT_FALSE(result.error.empty()) << seed.name << " cut to " << size;
+      EXPECT_EQ(check_display_decode(cut), "") << seed.name << " cut to " << size;
+    }
+}
+
 TEST(FuzzReplay, SceneSeedsLoadAndPassTheChecks) {
   const std::vector<Seed> seeds = scene_seeds_here();
   ASSERT_EQ(seeds.size(), 10u);
@@ -84,6 +110,7 @@ TEST(FuzzReplay, SceneSeedsCutShortAreRejectedNamingTheInput) {
 TEST(FuzzReplay, DecodeRegressions) {
   for (const Seed& input : regressions("decode")) {
     EXPECT_EQ(check_decode(input.bytes), "") << input.name;
+    EXPECT_EQ(check_display_decode(input.bytes), "") << input.name;
     if (input.bytes.size() < 6) continue;
     std::vector<uint8_t> current = input.bytes;
     current[4] = uint8_t(protocol::kVersion & 0xff);

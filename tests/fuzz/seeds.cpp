@@ -10,6 +10,7 @@
 #include "scene/gltf_writer.h"
 #include "scene/scene_file.h"
 #include "support/animated_gltf.h"
+#include "viewer/display_messages.h"
 
 namespace igi::fuzz {
 namespace {
@@ -233,6 +234,43 @@ std::vector<Seed> decode_seeds() {
   };
   std::vector<Seed> seeds;
   for (const auto& [name, message] : messages) seeds.push_back({name + ".bin", encode(message)});
+  return seeds;
+}
+
+std::vector<Seed> display_seeds() {
+  display::Welcome welcome;
+  welcome.scene = "cornell";
+  welcome.width = 64;
+  welcome.height = 48;
+  welcome.preview_levels = {"full", "preview 1/2"};
+  display::View view;
+  view.camera_generation = 3;
+  view.stamp_us = 123456789;
+  display::Frame frame;
+  frame.sequence = 7;
+  frame.width = 4;
+  frame.height = 2;
+  frame.full = true;
+  frame.status = "12.0 fps  full";
+  frame.level = "full";
+  frame.seconds = 0.04f;
+  const std::vector<uint8_t> rgb(4 * 2 * 3, 128);
+  frame.pixels = display::pack_pixels(rgb);
+  const std::vector<std::pair<std::string, display::Message>> messages = {
+      {"display-Hello", display::Hello{"igi-view 1"}},
+      {"display-Welcome", welcome},
+      {"display-Refuse", display::Refuse{"another viewer is connected"}},
+      {"display-View", view},
+      {"display-Ack", display::Ack{7}},
+      {"display-Request", display::Request{display::RequestKind::SaveImage}},
+      {"display-Reply", display::Reply{"metered", 2.0f, {}}},
+      {"display-Reply-image", display::Reply{"saved igi-shot-0000.exr", 0.0f, {'v', '/', '1', 1, 2, 0, 0, 0}}},
+      {"display-Frame", frame},
+      {"display-Ping", display::Ping{}},
+      {"display-Bye", display::Bye{"the window closed"}},
+  };
+  std::vector<Seed> seeds;
+  for (const auto& [name, message] : messages) seeds.push_back({name + ".bin", display::encode(message)});
   return seeds;
 }
 

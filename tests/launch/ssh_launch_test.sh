@@ -6,6 +6,7 @@
 #   - two workers started from a hosts file render frames equal, bit for bit,
 #     to the single-process render, and both take part;
 #   - the master and the remote workers end when the launcher is killed (-9);
+#   - --viewer-keys opens the master's viewer port and prints how to connect igi-view;
 #   - an unreachable host gives exit status 4 and names the host, no
 #     reachable host at all gives 3, and a bad hosts file 2 with its line.
 #   tests/launch/ssh_launch_test.sh BUILD-DIR
@@ -140,6 +141,23 @@ if ! wait_until 10 gone; then
   fail "processes outlived the killed launcher: $left"
 fi
 echo "launcher killed: master and workers ended"
+
+# --- the window left to a viewer (--viewer-keys): the master opens its viewer port on loopback and
+# the launcher prints the three commands that connect igi-view from the user's machine
+mkdir -p "$tmp/viewers" && (cd "$tmp/viewers" && "$BUILD/master/igi-keys" new laptop >/dev/null && rm laptop.key)
+port=$(free_port) viewer_port=$(free_port)
+launch "$port" "$tmp/hosts" --dir "$tmp/run-viewer" --viewer-keys "$tmp/viewers" --viewer-port "$viewer_port" -- \
+  "${RENDER[@]}"
+timeout -s KILL 8 "${scripts_launch[@]}" >"$tmp/launch-viewer.log" 2>&1
+grep -q "viewer port tcp://127.0.0.1:$viewer_port" "$tmp/run-viewer/master.log" ||
+  { cat "$tmp/launch-viewer.log" "$tmp/run-viewer/master.log"; fail "--viewer-keys: the master opened no viewer port"; }
+for line in "scp .*:$tmp/run-viewer/keys/master.pub" "ssh -N -L $viewer_port:127.0.0.1:$viewer_port" \
+            "igi-view --connect tcp://127.0.0.1:$viewer_port --key YOUR.key --master-key igi-master.pub"; do
+  grep -q -- "$line" "$tmp/launch-viewer.log" || { cat "$tmp/launch-viewer.log"; fail "--viewer-keys: no '$line'"; }
+done
+viewer_master_gone() { ! pgrep -f -- "tcp://127.0.0.1:$viewer_port" >/dev/null; }
+wait_until 10 viewer_master_gone || fail "the master outlived its launcher"
+echo "window left to a viewer: port and commands printed"
 
 # --- what the exit status says: one host unreachable (4), none reachable (3)
 printf 'worker-a 1\nnohost 1\n' >"$tmp/hosts-one-bad"

@@ -12,6 +12,7 @@ extern const char* const kDataDir;
 extern const char* const kFuzzRegressionsDir;
 extern const char* const kRenderBinary;
 extern const char* const kMasterBinary;
+extern const char* const kViewBinary;
 extern const char* const kWorkerBinary;
 extern const char* const kSoakBinary;
 extern const char* const kOffByOneLibm;
@@ -25,6 +26,7 @@ extern const char* const kWindowScriptsDir;
 #define IGI_FUZZ_REGRESSIONS_DIR (::igi::test::paths::kFuzzRegressionsDir)
 #define IGI_RENDER_BINARY (::igi::test::paths::kRenderBinary)
 #define IGI_MASTER_BINARY (::igi::test::paths::kMasterBinary)
+#define IGI_VIEW_BINARY (::igi::test::paths::kViewBinary)
 #define IGI_WORKER_BINARY (::igi::test::paths::kWorkerBinary)
 #define IGI_SOAK_BINARY (::igi::test::paths::kSoakBinary)
 #define IGI_OFF_BY_ONE_LIBM (::igi::test::paths::kOffByOneLibm)

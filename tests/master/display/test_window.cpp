@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -20,6 +21,7 @@
 #include "support/stats_file.h"
 #include "support/xvfb.h"
 #include "display/tile_overlay.h"
+#include "protocol/curve.h"
 
 namespace igi {
 namespace {
@@ -314,6 +316,54 @@ TEST(Window, F12WritesTheImageAndSaysSo) {
   const Image shown = read_image((dir / "igi-shot-0000.png").string());
   for (size_t i = 0; i < shot.pixels.size(); ++i) png += shown.pixels[i].x, at_one += std::min(shot.pixels[i].x, 1.0f);
   EXPECT_GT(png, 2.0 * at_one);
+}
+
+// Issue 62: igi-view on one machine drives igi-master --viewer-listen on
+// another (here both under one Xvfb): a drag in the viewer turns the camera
+// (F5 saves the viewer's camera before and after it), F12 saves the master's
+// float image on the master and on the viewer's machine, and a viewer killed
+// with frames in flight leaves the master rendering for the next.
+TEST(Window, AViewerDrivesAMasterAndOneKilledLeavesItRendering) {
+  IGI_NEED_XVFB();
+  if (std::system("command -v xdotool >/dev/null 2>&1") != 0) {
+    if (test::under_ci()) FAIL() << "xdotool not installed (scripts/setup.sh installs it)";
+    GTEST_SKIP() << "xdotool not installed";
+  }
+  namespace fs = std::filesystem;
+  const fs::path dir = test::output_path("viewer");
+  fs::remove_all(dir);
+  fs::create_directories(dir / "viewers");
+  const protocol::CurveKeyPair master = protocol::make_curve_keypair(), laptop = protocol::make_curve_keypair();
+  protocol::write_key_files((dir / "master").string(), master);
+  protocol::write_key_files((dir / "laptop").string(), laptop);
+  fs::copy_file(dir / "laptop.pub", dir / "viewers" / "laptop.pub");
+  const std::string command = "timeout -s KILL " + std::to_string(int(60 * test::kSlowdown)) +
+                              " xvfb-run -a -s '-screen 0 640x480x24' " + IGI_WINDOW_SCRIPTS_DIR + "/viewer_test.sh " +
+                              std::to_string(test::kSlowdown) + " " + IGI_MASTER_BINARY + " " + IGI_VIEW_BINARY + " " +
+                              dir.string() + " 2>&1";
+  const test::RunResult r = test::run(command, int(90 * test::kSlowdown));
+  auto text = [&](const char* name) {
+    std::ifstream in(dir / name);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string logs = r.output + "\nmaster.log:\n" + text("master.log") + "\nviewer-1.log:\n" +
+                           text("viewer-1.log") + "\nviewer-2.log:\n" + text("viewer-2.log");
+  ASSERT_EQ(r.exit_code, 0) << logs;
+  EXPECT_NE(r.output.find("second viewer: exit 0"), std::string::npos) << logs;
+  EXPECT_NE(r.output.find("master: exit 0"), std::string::npos) << logs;
+  EXPECT_NE(text("before.json"), text("after.json")) << "the drag did not turn the camera\n" << logs;
+  EXPECT_NE(text("master.log").find("saved igi-shot-0000.exr and .png on the master"), std::string::npos) << logs;
+  EXPECT_EQ(read_image((dir / "igi-shot-0000.exr").string()).width, 320);
+  // ... and the viewer keeps the master's float image too, byte for byte, and a PNG at its exposure.
+  EXPECT_EQ(text("laptop/igi-shot-0000.exr"), text("igi-shot-0000.exr"));
+  EXPECT_TRUE(fs::exists(dir / "laptop" / "igi-shot-0000.png"));
+  EXPECT_NE(text("viewer-1.log").find("kept here as igi-shot-0000.exr and .png"), std::string::npos) << logs;
+  // It starts where the first viewer left the camera (after the drag, the box's green wall at the left).
+  const Image second = read_image((dir / "second.png").string());
+  float brightest = 0.0f;
+  for (const glm::vec3& p : second.pixels) brightest = std::max(brightest, p.y);
+  EXPECT_GT(brightest, 0.1f) << "the second viewer shows no image\n" << logs;
+  EXPECT_NE(text("viewer-2.log").find("frames in"), std::string::npos) << logs;
 }
 
 }  // namespace

@@ -158,6 +158,7 @@ TEST(ViewHistory, PreviewsFillOnlyWhatTheStillImageCannot) {
   EXPECT_EQ(image.at(kW - 1, 10).z, 7.0f) << "off the old image: the preview";
   history.add(tagged(kW, kH, 3.0f), wall_surfaces(after, kW, kH, kDistance), after);  // still again: a full frame
   EXPECT_EQ(history.resolve().at(10, 10).z, 2.0f) << "the still image of the new view is what it showed";
+  EXPECT_EQ(history.resolve().at(kW - 1, 10).z, 3.0f) << "where only a preview showed, the first full frame alone";
 }
 
 TEST(ViewHistory, APreviewFillsEachFullPixelFromThePixelItLiesIn) {
