@@ -1,7 +1,5 @@
 #include "methods/vpl_method.h"
 
-#include "methods/light_upsample.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>

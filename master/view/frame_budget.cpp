@@ -33,17 +33,18 @@ double level_weight(const RenderSettings& full, const PreviewLevel& level) {
 std::string level_name(const PreviewLevel& level) {
   if (!level.cheap && level.divisor == 1) return "full";
   if (level.divisor == 1 && level.light > 1) return "preview light 1/" + std::to_string(level.light);
-  if (level.light > 1) return "preview 1/" + std::to_string(level.divisor) + " light 1/" + std::to_string(level.light);
   return "preview 1/" + std::to_string(level.divisor);
 }
 
 FrameBudget::FrameBudget(int width, int height, double budget_ms, bool sharp) : budget_ms_(budget_ms), sharp_(sharp) {
   levels_.push_back({1, false});
-  levels_.push_back({1, true});
-  if (sharp)
-    for (int l : kLightDivisors)
-      if (std::max(width, height) / l >= 8) levels_.push_back({1, true, l});
   const int long_side = std::max(width, height);
+  if (long_side >= kMinLongSide) {  // (a smaller image has the full frame alone)
+    levels_.push_back({1, true});
+    if (sharp)
+      for (int l : kLightDivisors)
+        if (long_side / l >= 8) levels_.push_back({1, true, l});
+  }
   for (int d = 2; long_side / d >= kMinLongSide; ++d)
     if (width % d == 0 && height % d == 0) levels_.push_back({d, true});
   cost_.assign(levels_.size(), 0.0);
