@@ -18,6 +18,40 @@
 #include "protocol/wire.h"
 
 namespace igi::protocol {
+
+// Every field of RenderSettings once, in the wire's order: its row in
+// core/settings_table.h. write() and read() both walk the table, so the two
+// cannot drift apart, and a setting needs no line here.
+void write_settings(Writer& w, const RenderSettings& s) {
+  for (const Setting& row : settings_table())
+    std::visit(
+        [&](auto member) {
+          using T = std::remove_cvref_t<decltype(s.*member)>;
+          if constexpr (std::is_same_v<T, MethodKind>) w.u8(static_cast<uint8_t>(s.*member));
+          else if constexpr (std::is_same_v<T, bool>) w.boolean(s.*member);
+          else if constexpr (std::is_same_v<T, float>) w.f32(s.*member);
+          else w.i32(s.*member);
+        },
+        row.member);
+}
+
+// RenderSettings in write()'s order, then the one check of them all
+// (core/settings.h): the wire knows the fields, not each method's rules.
+void read_settings(Reader& r, RenderSettings& s) {
+  for (const Setting& row : settings_table())
+    std::visit(
+        [&](auto member) {
+          using T = std::remove_cvref_t<decltype(s.*member)>;
+          if constexpr (std::is_same_v<T, MethodKind>) s.*member = static_cast<MethodKind>(r.u8(row.wire));
+          else if constexpr (std::is_same_v<T, bool>) s.*member = r.boolean(row.wire);
+          else if constexpr (std::is_same_v<T, float>) s.*member = r.f32(row.wire);
+          else s.*member = r.i32(row.wire);
+        },
+        row.member);
+  if (!r.ok()) return;
+  if (auto error = check_settings(s)) r.fail(("settings." + error->field).c_str(), error->message);
+}
+
 namespace {
 
 // zstd level 1: the fastest of its levels but the negative ones; a 1080p
@@ -160,38 +194,8 @@ void check_camera(Reader& r, const Camera& camera) {
 
 // ---- Shared parts.
 
-// Every field of RenderSettings once, in the wire's order: its row in
-// core/settings_table.h. write() and read() both walk the table, so the two
-// cannot drift apart, and a setting needs no line here.
-void write(Writer& w, const RenderSettings& s) {
-  for (const Setting& row : settings_table())
-    std::visit(
-        [&](auto member) {
-          using T = std::remove_cvref_t<decltype(s.*member)>;
-          if constexpr (std::is_same_v<T, MethodKind>) w.u8(static_cast<uint8_t>(s.*member));
-          else if constexpr (std::is_same_v<T, bool>) w.boolean(s.*member);
-          else if constexpr (std::is_same_v<T, float>) w.f32(s.*member);
-          else w.i32(s.*member);
-        },
-        row.member);
-}
-
-// RenderSettings in write()'s order, then the one check of them all
-// (core/settings.h): the wire knows the fields, not each method's rules.
-void read(Reader& r, RenderSettings& s) {
-  for (const Setting& row : settings_table())
-    std::visit(
-        [&](auto member) {
-          using T = std::remove_cvref_t<decltype(s.*member)>;
-          if constexpr (std::is_same_v<T, MethodKind>) s.*member = static_cast<MethodKind>(r.u8(row.wire));
-          else if constexpr (std::is_same_v<T, bool>) s.*member = r.boolean(row.wire);
-          else if constexpr (std::is_same_v<T, float>) s.*member = r.f32(row.wire);
-          else s.*member = r.i32(row.wire);
-        },
-        row.member);
-  if (!r.ok()) return;
-  if (auto error = check_settings(s)) r.fail(("settings." + error->field).c_str(), error->message);
-}
+void write(Writer& w, const RenderSettings& s) { write_settings(w, s); }
+void read(Reader& r, RenderSettings& s) { read_settings(r, s); }
 
 void write(Writer& w, const TileJob& t) {
   w.i32(t.x);

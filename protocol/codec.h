@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "protocol/messages.h"
+#include "protocol/wire.h"
 
 namespace igi::protocol {
 
@@ -71,5 +72,11 @@ std::optional<TileResultHead> tile_result_head(std::span<const uint8_t> bytes, s
 // exactly when decode() accepts it, with the same error text otherwise.
 // nullopt, with `error` set, when it does not decode (or is not a TileResult).
 std::optional<TileResultView> decode_tile_result(std::span<const uint8_t> bytes, std::string& error);
+
+// RenderSettings on the wire: every field once, in its table's order
+// (core/settings_table.h), then the one check of them all; the workers' and
+// the viewer's messages (master/viewer/display_messages.h) carry them alike.
+void write_settings(Writer& w, const RenderSettings& s);
+void read_settings(Reader& r, RenderSettings& s);
 
 }  // namespace igi::protocol

@@ -3,11 +3,10 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-#include <type_traits>
 
 #include <zstd.h>
 
-#include "core/settings_table.h"
+#include "protocol/codec.h"
 #include "protocol/wire.h"
 
 namespace igi::display {
@@ -51,35 +50,9 @@ void read(Reader& r, Camera& c) {
     r.fail("camera.vfov", show(c.vfov) + " radians, expected (0, pi)");
 }
 
-// RenderSettings by its table (core/settings_table.h), as the workers' wire
-// writes them, then the one check of them all.
-void write(Writer& w, const RenderSettings& s) {
-  for (const Setting& row : settings_table())
-    std::visit(
-        [&](auto member) {
-          using T = std::remove_cvref_t<decltype(s.*member)>;
-          if constexpr (std::is_same_v<T, MethodKind>) w.u8(static_cast<uint8_t>(s.*member));
-          else if constexpr (std::is_same_v<T, bool>) w.boolean(s.*member);
-          else if constexpr (std::is_same_v<T, float>) w.f32(s.*member);
-          else w.i32(s.*member);
-        },
-        row.member);
-}
-
-void read(Reader& r, RenderSettings& s) {
-  for (const Setting& row : settings_table())
-    std::visit(
-        [&](auto member) {
-          using T = std::remove_cvref_t<decltype(s.*member)>;
-          if constexpr (std::is_same_v<T, MethodKind>) s.*member = static_cast<MethodKind>(r.u8(row.wire));
-          else if constexpr (std::is_same_v<T, bool>) s.*member = r.boolean(row.wire);
-          else if constexpr (std::is_same_v<T, float>) s.*member = r.f32(row.wire);
-          else s.*member = r.i32(row.wire);
-        },
-        row.member);
-  if (!r.ok()) return;
-  if (auto error = check_settings(s)) r.fail(("settings." + error->field).c_str(), error->message);
-}
+// RenderSettings as the workers' wire writes and checks them (protocol/codec.h).
+void write(Writer& w, const RenderSettings& s) { protocol::write_settings(w, s); }
+void read(Reader& r, RenderSettings& s) { protocol::read_settings(r, s); }
 
 void write(Writer& w, const ToneMapping& t) {
   w.f32(t.exposure);
