@@ -5,7 +5,7 @@
 #                                  the whole suite in Release (build/); under ASan + UBSan
 #                                  (build-asan/) the unit tests (ctest label unit) and each fuzz
 #                                  target for 30 s; under TSan (build-tsan/) the tests that start
-#                                  threads or processes (labels threads, long). Every test runs in
+#                                  threads or processes (label threads). Every test runs in
 #                                  Release and under one sanitizer at most. Labels, timeouts:
 #                                  tests/CMakeLists.txt.
 # With --all every stage runs even when an earlier one failed; the exit status
@@ -66,7 +66,7 @@ stage "asan+ubsan build" - scripts/test-sanitizers.sh asan --build-only
 stage "asan+ubsan suite" build-asan scripts/test-sanitizers.sh asan -L unit "${retry[@]}"
 stage "fuzzing (30 s a target)" - scripts/fuzz.sh 30
 stage "tsan build" - scripts/test-sanitizers.sh tsan --build-only
-stage "tsan suite" build-tsan scripts/test-sanitizers.sh tsan -L "threads|long" "${retry[@]}"
+stage "tsan suite" build-tsan scripts/test-sanitizers.sh tsan -L threads "${retry[@]}"
 for t in "${flaky_tests[@]}"; do echo "=== flaky (failed, then passed when run again): $t"; done
 echo "=== stage times"
 for t in "${stage_times[@]}"; do echo "=== $t"; done
