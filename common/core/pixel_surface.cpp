@@ -14,6 +14,15 @@ int8_t snorm8(float v) { return static_cast<int8_t>(std::lround(std::clamp(v, -1
 
 }  // namespace
 
+bool view_dependent(const SurfacePoint& sp) {
+  switch (sp.material->type) {
+    case MaterialType::Diffuse: return false;
+    case MaterialType::Conductor:
+    case MaterialType::MetallicRoughness: return sp.alpha < kViewDependentAlpha;
+    default: return true;  // mirrors and glass
+  }
+}
+
 // 16-wide packets of 4 x 4 pixels on the image's own grid, every lane
 // inside the image traced (as core/gbuffer.cpp's camera packets): a
 // packet holds the same rays whichever tile traces it. One ray at a time
@@ -53,7 +62,7 @@ uint64_t trace_pixel_surfaces(const Accel& accel, const FrameSetup& frame, const
         const glm::vec3 n = sp.shading_normal_facing(-direction);
         s.depth = hit.t;
         for (int k = 0; k < 3; ++k) s.normal[k] = snorm8(n[k]);
-        if (sp.material->type != MaterialType::Diffuse) s.flags = PixelSurface::kViewDependent;
+        if (view_dependent(sp)) s.flags = PixelSurface::kViewDependent;
       }
     }
   return uint64_t(tile.w) * uint64_t(tile.h);

@@ -61,7 +61,7 @@ TEST(PixelSurface, ATileTracesItsOwnPixels) {
   EXPECT_THROW(trace_pixel_surfaces(*scene.accel, frame, tile, wrong), std::invalid_argument);
 }
 
-// The glossy floor and the mirror and glass are view-dependent, the walls are not.
+// The glossy floor (GGX metal, alpha 0.2) and the mirror and glass are view-dependent, the walls are not.
 TEST(PixelSurface, GlossyMirrorAndGlassPixelsAreViewDependent) {
   for (const char* name : {"glossy", "glass"}) {
     const test::Prepared scene(make_builtin_scene(name));
@@ -69,6 +69,29 @@ TEST(PixelSurface, GlossyMirrorAndGlassPixelsAreViewDependent) {
     EXPECT_GT(view_dependent(surfaces), 0u) << name;
     EXPECT_LT(view_dependent(surfaces), surfaces.size()) << name;
   }
+}
+
+// glTF's metallic-roughness material: a rough one (alpha = roughness^2 at
+// least kViewDependentAlpha: Sponza's stone) carries its history as Lambert
+// does, a smoother one, dielectric or metal, does not.
+TEST(PixelSurface, RoughMetallicRoughnessCarriesItsHistorySmoothDoesNot) {
+  for (const float metallic : {0.0f, 1.0f})
+    for (const float roughness : {1.0f, 0.75f, 0.6f, 0.3f}) {
+      Scene cornell = make_builtin_scene("cornell");
+      for (Material& m : cornell.materials) {
+        m.type = MaterialType::MetallicRoughness;
+        m.metallic = metallic;
+        m.roughness = roughness;
+        m.alpha = roughness * roughness;
+      }
+      const test::Prepared scene(std::move(cornell));
+      const std::vector<PixelSurface> surfaces = trace_image(scene, scene.frame(kWidth, kHeight));
+      const size_t seen = size_t(std::count_if(surfaces.begin(), surfaces.end(),
+                                               [](const PixelSurface& s) { return s.depth > 0.0f; }));
+      ASSERT_GT(seen, surfaces.size() / 2);
+      EXPECT_EQ(view_dependent(surfaces), roughness * roughness < kViewDependentAlpha ? seen : 0u)
+          << "metallic " << metallic << ", roughness " << roughness;
+    }
 }
 
 TEST(PixelSurface, ARayThatLeavesTheSceneHasNoSurface) {
