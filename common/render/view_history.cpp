@@ -6,6 +6,7 @@
 #include <string>
 #include <tuple>
 
+#include "core/parallel.h"
 #include "scene/camera_rays.h"
 
 namespace igi {
@@ -15,16 +16,24 @@ bool same_camera(const Camera& a, const Camera& b) {
   return a.position == b.position && a.forward == b.forward && a.up == b.up && a.vfov == b.vfov;
 }
 
-// Film coordinates (pixels) of a world point in a camera's image; false behind it.
-bool project(const CameraBasis& basis, glm::vec3 point, glm::vec2& film) {
-  const glm::vec3 d = point - basis.origin;
-  const float z = glm::dot(d, basis.forward);
-  if (!(z > 0.0f)) return false;
-  // direction(x, y) = forward + (x - x0) right + (y - y0) down, right and down orthogonal to forward.
-  film.x = basis.pixel_x0 + glm::dot(d, basis.right) / (z * glm::dot(basis.right, basis.right));
-  film.y = basis.pixel_y0 + glm::dot(d, basis.down) / (z * glm::dot(basis.down, basis.down));
-  return true;
-}
+// Film coordinates (pixels) of world points in a camera's image.
+struct Projection {
+  CameraBasis basis;
+  glm::vec3 right, down;  // basis.right and basis.down over their squared lengths
+  explicit Projection(const CameraBasis& b)
+      : basis(b), right(b.right / glm::dot(b.right, b.right)), down(b.down / glm::dot(b.down, b.down)) {}
+  // false behind the camera.
+  bool operator()(glm::vec3 point, glm::vec2& film) const {
+    const glm::vec3 d = point - basis.origin;
+    const float z = glm::dot(d, basis.forward);
+    if (!(z > 0.0f)) return false;
+    // direction(x, y) = forward + (x - x0) right + (y - y0) down, right and down orthogonal to forward.
+    const float inv_z = 1.0f / z;
+    film.x = basis.pixel_x0 + glm::dot(d, right) * inv_z;
+    film.y = basis.pixel_y0 + glm::dot(d, down) * inv_z;
+    return true;
+  }
+};
 
 }  // namespace
 
@@ -67,6 +76,7 @@ void ViewHistory::reset() {
   const size_t pixels = size_t(width_) * height_;
   for (Layer* layer : {&still_, &carried_, &moving_, &preview_}) layer->clear(pixels);
   from_previews_.assign(pixels, 0);
+  from_view_.assign(pixels, -1);
   still_view_ = view_ = View{};
   empty_ = true;
   is_moving_ = false;
@@ -80,15 +90,23 @@ void ViewHistory::add(const Image& frame, std::span<const PixelSurface> surfaces
     throw std::invalid_argument("view history: surfaces do not match the frame's pixels");
   const View& current = is_moving_ ? view_ : still_view_;
   if (!empty_ && !same_camera(camera, current.camera)) {
-    View now{camera, surfaces.empty() ? std::vector<Seen>{} : seen(surfaces, up, camera), up.divisor};
-    carried_ = carry(still_, still_view_, now);  // from where it was made, in one step
-    moving_ = carry(moving_, view_, now);
-    preview_ = carry(preview_, view_, now);
+    View now{camera, std::move(spare_seen_), up.divisor};
+    if (surfaces.empty()) now.seen.clear();
+    else seen(surfaces, up, camera, now.seen);
+    correspond(still_view_, now, from_still_);
+    carry(still_, from_still_, spare_);  // from where it was made, in one step
+    std::swap(carried_, spare_);
+    if (moving_.any || preview_.any) correspond(view_, now, from_view_);
+    for (Layer* layer : {&moving_, &preview_}) {
+      carry(*layer, from_view_, spare_);
+      std::swap(*layer, spare_);
+    }
+    spare_seen_ = std::move(view_.seen);  // its buffer, for the next move's
     view_ = std::move(now);
     is_moving_ = true;
     (weight < 1.0 ? preview_ : moving_).add(frame, up, width_, weight);
-    size_t kept = 0;
-    for (size_t i = 0; i < carried_.weight.size(); ++i) kept += carried_.weight[i] > 0.0;
+    const size_t kept = size_t(std::count_if(carried_.weight.begin(), carried_.weight.end(),
+                                             [](double w) { return w > 0.0; }));
     carried_share_ = double(kept) / double(carried_.weight.size());
     return;
   }
@@ -104,8 +122,10 @@ void ViewHistory::add(const Image& frame, std::span<const PixelSurface> surfaces
   still_.add(frame, up, width_, weight);
   still_view_.camera = camera;
   // Its surfaces: the first known, or finer ones (the first full frame after previews).
-  if (!surfaces.empty() && (still_view_.seen.empty() || up.divisor < still_view_.divisor))
-    still_view_ = View{camera, seen(surfaces, up, camera), up.divisor};
+  if (!surfaces.empty() && (still_view_.seen.empty() || up.divisor < still_view_.divisor)) {
+    still_view_.divisor = up.divisor;
+    seen(surfaces, up, camera, still_view_.seen);
+  }
   empty_ = false;
 }
 
@@ -131,15 +151,21 @@ void ViewHistory::settle() {
 
 // The point each full-size pixel shows: where its centre's ray meets the
 // plane of the surface its frame pixel saw (exact on a plane at any divisor).
-std::vector<ViewHistory::Seen> ViewHistory::seen(std::span<const PixelSurface> surfaces, const Upscale& up,
-                                                 const Camera& camera) const {
-  std::vector<Seen> out(size_t(width_) * height_);
+// Rows in parallel: each pixel's own arithmetic, whichever thread.
+void ViewHistory::seen(std::span<const PixelSurface> surfaces, const Upscale& up, const Camera& camera,
+                       std::vector<Seen>& out) const {
+  out.assign(size_t(width_) * height_, Seen{});
   const CameraBasis full(camera, width_, height_);
   const CameraBasis frame(camera, width_ / up.divisor, height_ / up.divisor);
-  for (int y = 0; y < height_; ++y)
+  parallel_tasks(height_, [&](int y) {
     for (int x = 0; x < width_; ++x) {
       const PixelSurface& s = surfaces[up.at(x, y)];
       if (s.depth <= 0.0f || (s.flags & PixelSurface::kViewDependent)) continue;
+      if (up.divisor == 1) {  // the pixel's own ray
+        const glm::vec3 ray = glm::normalize(full.direction(float(x) + 0.5f, float(y) + 0.5f));
+        out[size_t(y) * width_ + x] = {full.origin + s.depth * ray, surface_normal(s), true};
+        continue;
+      }
       const glm::vec3 centre =
           glm::normalize(frame.direction(float(x / up.divisor) + 0.5f, float(y / up.divisor) + 0.5f));
       const glm::vec3 hit = frame.origin + s.depth * centre, normal = surface_normal(s);
@@ -148,31 +174,43 @@ std::vector<ViewHistory::Seen> ViewHistory::seen(std::span<const PixelSurface> s
       const float t = std::abs(along) > 1e-3f ? glm::dot(hit - full.origin, normal) / along : -1.0f;
       out[size_t(y) * width_ + x] = {t > 0.0f ? full.origin + t * ray : hit, normal, true};
     }
-  return out;
+  });
 }
 
-ViewHistory::Layer ViewHistory::carry(const Layer& from, const View& before, const View& now) const {
-  Layer to;
+void ViewHistory::correspond(const View& before, const View& now, std::vector<int32_t>& source) const {
+  source.assign(size_t(width_) * height_, -1);
+  if (now.seen.empty() || before.seen.empty()) return;
+  const Projection project(CameraBasis(before.camera, width_, height_));
+  const float tolerance2 = kPlaneTolerance * kPlaneTolerance;
+  parallel_tasks(height_, [&](int y) {
+    for (size_t i = size_t(y) * width_; i < size_t(y + 1) * width_; ++i) {
+      const Seen& s = now.seen[i];
+      glm::vec2 film;
+      if (!s.carries || !project(s.point, film)) continue;
+      if (!(film.x >= 0.0f && film.y >= 0.0f && film.x < float(width_) && film.y < float(height_))) continue;
+      const size_t q = size_t(film.y) * width_ + size_t(film.x);
+      const Seen& old = before.seen[q];
+      if (!old.carries) continue;
+      // The plane test against the distance from the old camera, squared (no root).
+      const glm::vec3 from_camera = s.point - project.basis.origin;
+      const float off_plane = glm::dot(s.point - old.point, old.normal);
+      if (off_plane * off_plane > tolerance2 * glm::dot(from_camera, from_camera)) continue;
+      if (glm::dot(s.normal, old.normal) < kNormalCos) continue;
+      source[i] = int32_t(q);
+    }
+  });
+}
+
+void ViewHistory::carry(const Layer& from, const std::vector<int32_t>& source, Layer& to) const {
   to.clear(size_t(width_) * height_);
-  if (now.seen.empty() || before.seen.empty() || !from.any) return to;  // (a layer of no frames: sharp previews leave moving_ so)
-  const CameraBasis old_basis(before.camera, width_, height_);
-  for (size_t i = 0; i < now.seen.size(); ++i) {
-    const Seen& s = now.seen[i];
-    glm::vec2 film;
-    if (!s.carries || !project(old_basis, s.point, film)) continue;
-    const int qx = int(std::floor(film.x)), qy = int(std::floor(film.y));
-    if (qx < 0 || qy < 0 || qx >= width_ || qy >= height_) continue;
-    const size_t q = size_t(qy) * width_ + qx;
-    const Seen& old = before.seen[q];
-    if (!old.carries || from.weight[q] <= 0.0) continue;
-    const float distance = glm::length(s.point - old_basis.origin);
-    if (std::abs(glm::dot(s.point - old.point, old.normal)) > kPlaneTolerance * distance) continue;
-    if (glm::dot(s.normal, old.normal) < kNormalCos) continue;
+  if (!from.any) return;  // (a layer of no frames: sharp previews leave moving_ so)
+  for (size_t i = 0; i < source.size(); ++i) {
+    const int32_t q = source[i];
+    if (q < 0 || from.weight[size_t(q)] <= 0.0) continue;
     to.any = true;
-    to.weight[i] = std::min(from.weight[q], double(max_history_));
-    to.sum[i] = from.sum[q] * (to.weight[i] / from.weight[q]);
+    to.weight[i] = std::min(from.weight[size_t(q)], double(max_history_));
+    to.sum[i] = from.sum[size_t(q)] * (to.weight[i] / from.weight[size_t(q)]);
   }
-  return to;
 }
 
 Image ViewHistory::resolve() const {

@@ -101,9 +101,12 @@ class ViewHistory {
     int divisor = 0;  // of the frame `seen` came from
   };
   Upscale upscale_of(const Image& frame) const;
-  std::vector<Seen> seen(std::span<const PixelSurface> surfaces, const Upscale& up, const Camera& camera) const;
-  // `from`, made in view `before`, into view `now`: the pixels that pass the tests, at a capped weight.
-  Layer carry(const Layer& from, const View& before, const View& now) const;
+  void seen(std::span<const PixelSurface> surfaces, const Upscale& up, const Camera& camera,
+            std::vector<Seen>& out) const;
+  // Per pixel of view `now`, the pixel of view `before` whose history it takes (the tests above), or -1.
+  void correspond(const View& before, const View& now, std::vector<int32_t>& source) const;
+  // `from`, made in the view `source` reads, into `to`: at a capped weight.
+  void carry(const Layer& from, const std::vector<int32_t>& source, Layer& to) const;
   void settle();  // the camera stands still again: what the view shows becomes the still image
   // Pixel i's sum and weight as the view shows it.
   std::pair<glm::dvec3, double> shown(size_t i) const;
@@ -119,6 +122,14 @@ class ViewHistory {
   // frame at every pixel (a full frame, or a sharp preview refining after
   // the stop) replaces them, instead of averaging with their blocks.
   std::vector<uint8_t> from_previews_;
+  // Buffers kept from frame to frame (a moving frame at 640x480 had
+  // allocated 40 MB: 21 ms of the window's thread, against 6 now;
+  // tests/bench/view_history_bench.cpp): the correspondences of the
+  // current view to the still one and to the last, a spare layer and a
+  // spare view's surfaces.
+  std::vector<int32_t> from_still_, from_view_;
+  Layer spare_;
+  std::vector<Seen> spare_seen_;
   bool empty_ = true, is_moving_ = false;
   double carried_share_ = 1.0;
 };
