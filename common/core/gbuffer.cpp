@@ -1,8 +1,10 @@
 #include "core/gbuffer.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "core/camera_front_end.h"
+#include "core/pixel_surface.h"
 #include "material/bsdf.h"
 #include "sampling/hash.h"
 
@@ -132,7 +134,8 @@ namespace {
 // whichever tile traces it, and Embree's answer for a ray can depend on the
 // other rays of its packet (methods/shadow_batch.cpp).
 void trace_block(const Accel& accel, const CameraFrontEnd& camera, int image_width, int image_height, int bx, int by,
-                 int k, int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log) {
+                 int k, int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log,
+                 std::span<PixelSurface> surfaces) {
   const Region& region = out.region;
   const int step = region.step;
   const int lattice_width = lattice_extent(image_width, step), lattice_height = lattice_extent(image_height, step);
@@ -165,17 +168,20 @@ void trace_block(const Accel& accel, const CameraFrontEnd& camera, int image_wid
     // Region coordinates from here on.
     const int x = bx + (i & 3) - region.x0, y = by + (i >> 2) - region.y0;
     if (!valid[i] || x < 0 || y < 0 || x >= region.width || y >= region.height) continue;
+    const bool surface = k == 0 && !surfaces.empty();
     if (packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
       const glm::vec3 direction{packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]};
       GSample& g = out.at(k, size_t(y) * region.width + x);
       g = GSample{};
       g.emitted = accel.scene().sky(direction);  // black without one
+      if (surface) surfaces[size_t(y) * region.width + x] = PixelSurface{};
       continue;
     }
     Ray ray{{packet.ray.org_x[i], packet.ray.org_y[i], packet.ray.org_z[i]},
             {packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]}, 0.0f, 1e30f, kCameraRayMask};
     Hit hit{packet.ray.tfar[i], accel.triangle_index(packet.hit.instID[0][i], packet.hit.geomID[i], packet.hit.primID[i]),
             {packet.hit.u[i], packet.hit.v[i]}};
+    if (surface) surfaces[size_t(y) * region.width + x] = pixel_surface(accel, hit, ray.direction);
     const uint32_t seed = camera.chain_seed(image_x(region.x0 + x), image_y(region.y0 + y), k);
     // Branch 0 into its layer; further branches on the stack, then into
     // layers of their own, which the region gets when a pixel first needs one.
@@ -195,7 +201,10 @@ void trace_block(const Accel& accel, const CameraFrontEnd& camera, int image_wid
 }  // namespace
 
 void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& region, int samples,
-                   int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log) {
+                   int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log,
+                   std::span<PixelSurface> surfaces) {
+  if (!surfaces.empty() && (region.step != 1 || surfaces.size() != region.pixels()))
+    throw std::invalid_argument("build_gbuffer: surfaces are one a pixel of a region without a step");
   out.region = region;  // with its step
   out.samples = samples;
   out.branches = 1;
@@ -208,7 +217,8 @@ void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& re
   for (int k = 0; k < samples; ++k)
     for (int by = region.y0 / 4 * 4; by < y_end; by += 4)
       for (int bx = region.x0 / 4 * 4; bx < x_end; bx += 4)
-        trace_block(accel, camera, frame.width, frame.height, bx, by, k, glass_branches, specular_depth, out, rays, log);
+        trace_block(accel, camera, frame.width, frame.height, bx, by, k, glass_branches, specular_depth, out, rays, log,
+                    surfaces);
 }
 
 }  // namespace igi

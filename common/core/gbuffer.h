@@ -2,6 +2,7 @@
 // First non-specular surface seen through each sub-sample of each pixel of a
 // tile region: the input to VPL shading and to the discontinuity buffer.
 #include <algorithm>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -72,8 +73,12 @@ struct GBuffer {
 // of single-sided faces (scene/accel.h). A region with a step traces its
 // lattice's pixels, 4 x 4 of the lattice to a packet: a lattice pixel's
 // sample is its image pixel's ray (the packet's other rays differ).
+// `surfaces` (a region without a step: one a region pixel, or empty): what
+// each pixel's sub-sample 0 hits first (core/pixel_surface.h), the ray
+// trace_pixel_surfaces() would trace, so it is not traced twice.
 void build_gbuffer(const Accel& accel, const FrameSetup& frame, const Region& region, int samples,
-                   int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log = nullptr);
+                   int glass_branches, int specular_depth, GBuffer& out, RayCounts& rays, RayLog* log = nullptr,
+                   std::span<PixelSurface> surfaces = {});
 
 // Follows mirrors and glass from `hit` (found along `ray`) to the first
 // non-specular surface, at most `specular_depth` surfaces in all, filling

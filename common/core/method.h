@@ -24,6 +24,14 @@ class Method {
   virtual void begin_frame(const FrameSetup& frame) = 0;
   // Writes the job's inner w x h linear RGB pixels, row-major, into `out`.
   virtual void render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const = 0;
+  // The same, and into `surfaces` (w x h) what the pixels show
+  // (core/pixel_surface.h) from the method's own camera rays; false when
+  // it has none to give (then the caller traces them: trace_pixel_surfaces).
+  virtual bool render_tile_with_surfaces(const TileJob& job, std::span<glm::vec3> out,
+                                         std::span<PixelSurface> surfaces, RayCounts& rays) const {
+    (void)job, (void)out, (void)surfaces, (void)rays;
+    return false;
+  }
   // Content hash of the per-frame state (VPL sets); 0 for methods without one.
   virtual uint64_t frame_state_hash() const { return 0; }
 };

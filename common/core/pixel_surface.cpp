@@ -23,15 +23,30 @@ bool view_dependent(const SurfacePoint& sp) {
   }
 }
 
+glm::vec2 surface_film_offset(const FrameSetup& frame, int samples_per_pixel) {
+  return CameraFrontEnd(frame, samples_per_pixel).subpixel(0);
+}
+
+PixelSurface pixel_surface(const Accel& accel, const Hit& hit, glm::vec3 direction) {
+  const SurfacePoint sp = surface_at(accel.scene(), hit, direction);
+  const glm::vec3 n = sp.shading_normal_facing(-direction);
+  PixelSurface s;
+  s.depth = hit.t;
+  for (int k = 0; k < 3; ++k) s.normal[k] = snorm8(n[k]);
+  if (view_dependent(sp)) s.flags = PixelSurface::kViewDependent;
+  return s;
+}
+
 // 16-wide packets of 4 x 4 pixels on the image's own grid, every lane
-// inside the image traced (as core/gbuffer.cpp's camera packets): a
-// packet holds the same rays whichever tile traces it. One ray at a time
-// took as long as the sharp previews' whole camera pass (Cornell box at
-// 640x480: 141 ms a preview with surfaces, 63 without).
-uint64_t trace_pixel_surfaces(const Accel& accel, const FrameSetup& frame, const TileJob& tile,
+// inside the image traced, as core/gbuffer.cpp's camera packets of
+// sub-sample 0 are: the same rays in the same packets, whichever tile and
+// whichever of the two traces them. One ray at a time took as long as the
+// sharp previews' whole camera pass (Cornell box at 640x480: 141 ms a
+// preview with surfaces, 63 without).
+uint64_t trace_pixel_surfaces(const Accel& accel, const FrameSetup& frame, int samples_per_pixel, const TileJob& tile,
                               std::span<PixelSurface> out) {
   if (out.size() != size_t(tile.w) * size_t(tile.h)) throw std::invalid_argument("trace_pixel_surfaces: wrong size");
-  const CameraFrontEnd camera(frame);
+  const CameraFrontEnd camera(frame, samples_per_pixel);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   for (int by = tile.y / 4 * 4; by < tile.y + tile.h; by += 4)
@@ -41,7 +56,7 @@ uint64_t trace_pixel_surfaces(const Accel& accel, const FrameSetup& frame, const
       for (int i = 0; i < 16; ++i) {
         const int x = bx + (i & 3), y = by + (i >> 2);
         valid[i] = x < frame.width && y < frame.height ? -1 : 0;
-        Ray ray = camera.ray(float(x) + 0.5f, float(y) + 0.5f);
+        Ray ray = camera.pixel_ray(x, y, 0);
         ray.tfar = INFINITY;
         set_rtc_lane(packet.ray, i, ray);
         packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
@@ -58,11 +73,7 @@ uint64_t trace_pixel_surfaces(const Accel& accel, const FrameSetup& frame, const
         const Hit hit{packet.ray.tfar[i],
                       accel.triangle_index(packet.hit.instID[0][i], packet.hit.geomID[i], packet.hit.primID[i]),
                       {packet.hit.u[i], packet.hit.v[i]}};
-        const SurfacePoint sp = surface_at(accel.scene(), hit, direction);
-        const glm::vec3 n = sp.shading_normal_facing(-direction);
-        s.depth = hit.t;
-        for (int k = 0; k < 3; ++k) s.normal[k] = snorm8(n[k]);
-        if (view_dependent(sp)) s.flags = PixelSurface::kViewDependent;
+        s = pixel_surface(accel, hit, direction);
       }
     }
   return uint64_t(tile.w) * uint64_t(tile.h);

@@ -1,8 +1,13 @@
 #pragma once
 // The surfaces a frame's pixels show, for the master's reprojection
-// (render/view_history.h): one camera ray through each pixel's centre, the
-// same ray in every tile, thread and worker (core/camera_front_end.h).
+// (render/view_history.h): the first hit of one camera ray a pixel, through
+// sub-sample 0 of the frame's grid (surface_film_offset(): the ray the
+// G-buffer traces first, core/gbuffer.h, so a method that traces it takes
+// the surface from there instead of a pass of its own), the same ray in
+// every tile, thread and worker (core/camera_front_end.h).
 #include <span>
+
+#include <glm/vec2.hpp>
 
 #include "core/frame.h"
 #include "scene/accel.h"
@@ -23,9 +28,16 @@ namespace igi {
 inline constexpr float kViewDependentAlpha = 0.5f;
 bool view_dependent(const SurfacePoint& sp);
 
+// Where inside each pixel the surfaces' rays pass, in pixel units: sub-sample
+// 0 of `samples_per_pixel` (the settings' aa_samples) at the frame's jitter.
+glm::vec2 surface_film_offset(const FrameSetup& frame, int samples_per_pixel);
+
+// What a camera ray along `direction` that hit `hit` shows.
+PixelSurface pixel_surface(const Accel& accel, const Hit& hit, glm::vec3 direction);
+
 // `out`: tile.w * tile.h surfaces of the tile's interior (not its border),
 // row-major. Returns the rays traced (one a pixel).
-uint64_t trace_pixel_surfaces(const Accel& accel, const FrameSetup& frame, const TileJob& tile,
+uint64_t trace_pixel_surfaces(const Accel& accel, const FrameSetup& frame, int samples_per_pixel, const TileJob& tile,
                               std::span<PixelSurface> out);
 
 }  // namespace igi

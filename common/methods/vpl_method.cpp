@@ -87,6 +87,7 @@ struct VplMethod::Scratch {
   std::vector<glm::vec3> wavelet_out;  // per tile pixel: the filtered mean of its sub-samples
   std::vector<glm::vec3> ratio;        // per tile pixel: wavelet_out / the unfiltered mean, per channel
   std::vector<uint8_t> rotation;       // per region pixel: subpixel_rotation (S > 1)
+  std::vector<PixelSurface> surfaces;  // per region pixel, when the caller wants them (border included)
 };
 
 VplMethod::VplMethod(const SceneContext& context, const RenderSettings& settings)
@@ -434,13 +435,33 @@ void VplMethod::resolve(const GBuffer& gbuffer, const Rect& core, const TileJob&
 }
 
 void VplMethod::render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const {
+  render(job, out, {}, rays);
+}
+
+bool VplMethod::render_tile_with_surfaces(const TileJob& job, std::span<glm::vec3> out,
+                                          std::span<PixelSurface> surfaces, RayCounts& rays) const {
+  render(job, out, surfaces, rays);
+  return true;
+}
+
+// The surfaces, when wanted, come from the G-buffer's sub-sample 0: the rays
+// trace_pixel_surfaces() would trace (a third of a sharp preview's time on
+// Sponza when traced again).
+void VplMethod::render(const TileJob& job, std::span<glm::vec3> out, std::span<PixelSurface> surfaces,
+                       RayCounts& rays) const {
   thread_local Scratch scratch;
-  if (lattice_light(settings_)) return render_lattice_tile(job, out, scratch, rays);
+  if (lattice_light(settings_)) return render_lattice_tile(job, out, surfaces, scratch, rays);
   GBuffer& gbuffer = scratch.gbuffer;
   {
     PartTimer timer(parts_, FramePart::Camera, rays);
-    build_gbuffer(context_.accel, frame_, tile_region(job, frame_.width, frame_.height), settings_.aa_samples,
-                  settings_.glass_branches, depth_limit(settings_.specular_depth), gbuffer, rays, log_);
+    const Region region = tile_region(job, frame_.width, frame_.height);
+    scratch.surfaces.resize(surfaces.empty() ? 0 : region.pixels());
+    build_gbuffer(context_.accel, frame_, region, settings_.aa_samples, settings_.glass_branches,
+                  depth_limit(settings_.specular_depth), gbuffer, rays, log_, scratch.surfaces);
+    if (!surfaces.empty())
+      for (int y = 0; y < job.h; ++y)
+        std::copy_n(scratch.surfaces.begin() + ptrdiff_t(region.index(job.x, job.y + y)), job.w,
+                    surfaces.begin() + ptrdiff_t(size_t(y) * job.w));
   }
   const Rect core = light(gbuffer, job, scratch, rays);
   PartTimer timer(parts_, FramePart::Filter, rays);
@@ -496,8 +517,8 @@ Rect VplMethod::light(const GBuffer& gbuffer, const TileJob& job, Scratch& scrat
 // --light-divisor D (methods/light_upsample.h): the tile's own pixels at
 // full resolution, light on the lattice cells around them (with the filter's
 // border in lattice pixels), then each pixel's light upsampled from them.
-void VplMethod::render_lattice_tile(const TileJob& job, std::span<glm::vec3> out, Scratch& scratch,
-                                    RayCounts& rays) const {
+void VplMethod::render_lattice_tile(const TileJob& job, std::span<glm::vec3> out, std::span<PixelSurface> surfaces,
+                                    Scratch& scratch, RayCounts& rays) const {
   const int step = settings_.light_divisor;
   const TileJob cells = lattice_cells(job, step, frame_.width, frame_.height, light_border(settings_));
   GBuffer& pixels = scratch.pixels;
@@ -506,7 +527,7 @@ void VplMethod::render_lattice_tile(const TileJob& job, std::span<glm::vec3> out
     PartTimer timer(parts_, FramePart::Camera, rays);
     const int depth = depth_limit(settings_.specular_depth);
     build_gbuffer(context_.accel, frame_, Region{job.x, job.y, job.w, job.h}, settings_.aa_samples,
-                  settings_.glass_branches, depth, pixels, rays, log_);
+                  settings_.glass_branches, depth, pixels, rays, log_, surfaces);
     Region region = tile_region(cells, lattice_extent(frame_.width, step), lattice_extent(frame_.height, step));
     region.step = step;
     build_gbuffer(context_.accel, frame_, region, settings_.aa_samples, settings_.glass_branches, depth, lattice,

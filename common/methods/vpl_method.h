@@ -66,6 +66,8 @@ class VplMethod final : public Method {
   VplMethod(const SceneContext& context, const RenderSettings& settings);
   void begin_frame(const FrameSetup& frame) override;
   void render_tile(const TileJob& job, std::span<glm::vec3> out, RayCounts& rays) const override;
+  bool render_tile_with_surfaces(const TileJob& job, std::span<glm::vec3> out, std::span<PixelSurface> surfaces,
+                                 RayCounts& rays) const override;
   // The VPL sets' hash, and the caustic map's folded in when there is one.
   uint64_t frame_state_hash() const override;
   const VplSets& vpls() const { return vpls_; }
@@ -94,7 +96,9 @@ class VplMethod final : public Method {
   void resolve(const GBuffer& gbuffer, const Rect& core, const TileJob& job, const Scratch& scratch,
                std::span<glm::vec3> out) const;
   Rect light(const GBuffer& gbuffer, const TileJob& job, Scratch& scratch, RayCounts& rays) const;
-  void render_lattice_tile(const TileJob& job, std::span<glm::vec3> out, Scratch& scratch, RayCounts& rays) const;
+  void render(const TileJob& job, std::span<glm::vec3> out, std::span<PixelSurface> surfaces, RayCounts& rays) const;
+  void render_lattice_tile(const TileJob& job, std::span<glm::vec3> out, std::span<PixelSurface> surfaces,
+                           Scratch& scratch, RayCounts& rays) const;
   glm::vec3 caustic(const GSample& g) const { return caustics_ ? caustics_->radiance(g) : glm::vec3(0.0f); }
 
   SceneContext context_;

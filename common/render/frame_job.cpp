@@ -24,10 +24,16 @@ void FrameJob::render_pixels(const TileJob& tile, std::span<glm::vec3> pixels, R
 RenderedTile FrameJob::render(const TileJob& tile) const {
   RenderedTile r;
   r.pixels.resize(size_t(tile.w) * size_t(tile.h));
-  render_pixels(tile, r.pixels, r.rays);
-  if (frame_.want_surfaces) {  // the master's reprojection; its rays are counted with the camera's
-    r.surfaces.resize(r.pixels.size());
-    r.rays.primary += trace_pixel_surfaces(accel_, frame_, tile, r.surfaces);
+  if (!frame_.want_surfaces) {
+    render_pixels(tile, r.pixels, r.rays);
+    return r;
+  }
+  // The master's reprojection: from the method's own camera rays, or a pass
+  // of their own (counted with the camera's rays).
+  r.surfaces.resize(r.pixels.size());
+  if (!method_->render_tile_with_surfaces(tile, r.pixels, r.surfaces, r.rays)) {
+    render_pixels(tile, r.pixels, r.rays);
+    r.rays.primary += trace_pixel_surfaces(accel_, frame_, settings_.aa_samples, tile, r.surfaces);
   }
   return r;
 }

@@ -84,7 +84,7 @@ void ViewHistory::reset() {
 }
 
 void ViewHistory::add(const Image& frame, std::span<const PixelSurface> surfaces, const Camera& camera,
-                      double weight) {
+                      double weight, glm::vec2 surface_offset) {
   const Upscale up = upscale_of(frame);
   if (!surfaces.empty() && surfaces.size() != frame.pixels.size())
     throw std::invalid_argument("view history: surfaces do not match the frame's pixels");
@@ -92,7 +92,7 @@ void ViewHistory::add(const Image& frame, std::span<const PixelSurface> surfaces
   if (!empty_ && !same_camera(camera, current.camera)) {
     View now{camera, std::move(spare_seen_), up.divisor};
     if (surfaces.empty()) now.seen.clear();
-    else seen(surfaces, up, camera, now.seen);
+    else seen(surfaces, up, camera, surface_offset, now.seen);
     correspond(still_view_, now, from_still_);
     carry(still_, from_still_, spare_);  // from where it was made, in one step
     std::swap(carried_, spare_);
@@ -124,7 +124,7 @@ void ViewHistory::add(const Image& frame, std::span<const PixelSurface> surfaces
   // Its surfaces: the first known, or finer ones (the first full frame after previews).
   if (!surfaces.empty() && (still_view_.seen.empty() || up.divisor < still_view_.divisor)) {
     still_view_.divisor = up.divisor;
-    seen(surfaces, up, camera, still_view_.seen);
+    seen(surfaces, up, camera, surface_offset, still_view_.seen);
   }
   empty_ = false;
 }
@@ -150,10 +150,12 @@ void ViewHistory::settle() {
 }
 
 // The point each full-size pixel shows: where its centre's ray meets the
-// plane of the surface its frame pixel saw (exact on a plane at any divisor).
-// Rows in parallel: each pixel's own arithmetic, whichever thread.
+// plane of the surface its frame pixel's ray (through `offset` in it) saw:
+// exact on a plane at any divisor. Rows in parallel: each pixel's own
+// arithmetic, whichever thread.
 void ViewHistory::seen(std::span<const PixelSurface> surfaces, const Upscale& up, const Camera& camera,
-                       std::vector<Seen>& out) const {
+                       glm::vec2 offset, std::vector<Seen>& out) const {
+  const bool centred = up.divisor == 1 && offset == glm::vec2(0.5f);
   out.assign(size_t(width_) * height_, Seen{});
   const CameraBasis full(camera, width_, height_);
   const CameraBasis frame(camera, width_ / up.divisor, height_ / up.divisor);
@@ -161,14 +163,14 @@ void ViewHistory::seen(std::span<const PixelSurface> surfaces, const Upscale& up
     for (int x = 0; x < width_; ++x) {
       const PixelSurface& s = surfaces[up.at(x, y)];
       if (s.depth <= 0.0f || (s.flags & PixelSurface::kViewDependent)) continue;
-      if (up.divisor == 1) {  // the pixel's own ray
+      if (centred) {  // the pixel's own centre ray
         const glm::vec3 ray = glm::normalize(full.direction(float(x) + 0.5f, float(y) + 0.5f));
         out[size_t(y) * width_ + x] = {full.origin + s.depth * ray, surface_normal(s), true};
         continue;
       }
-      const glm::vec3 centre =
-          glm::normalize(frame.direction(float(x / up.divisor) + 0.5f, float(y / up.divisor) + 0.5f));
-      const glm::vec3 hit = frame.origin + s.depth * centre, normal = surface_normal(s);
+      const glm::vec3 seen_along =
+          glm::normalize(frame.direction(float(x / up.divisor) + offset.x, float(y / up.divisor) + offset.y));
+      const glm::vec3 hit = frame.origin + s.depth * seen_along, normal = surface_normal(s);
       const glm::vec3 ray = glm::normalize(full.direction(float(x) + 0.5f, float(y) + 0.5f));
       const float along = glm::dot(ray, normal);
       const float t = std::abs(along) > 1e-3f ? glm::dot(hit - full.origin, normal) / along : -1.0f;

@@ -6,8 +6,8 @@
 // render/accumulator.h adds passes (the same image, bit for bit).
 //
 // Moved camera: the history is carried into the new view (reprojection).
-// Each pixel's surface (PixelSurface: depth and normal of its centre's
-// camera ray, returned by the workers) gives the point it shows; that point
+// Each pixel's surface (PixelSurface: depth and normal of one camera ray's
+// first hit, returned by the workers) gives the point it shows; that point
 // is projected into an older view, and the old pixel it lands on is its
 // history there when
 //   - both pixels show a surface (neither ray left the scene),
@@ -41,7 +41,8 @@
 //
 // Frames may come at a preview resolution (the full size over a divisor):
 // each full-size pixel takes the colour of the preview pixel it lies in, and
-// the point where its own centre's ray meets that pixel's surface plane.
+// the point where its own centre's ray meets that pixel's surface plane (so
+// at the full size too, where the surface's ray passed off the centre).
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -63,8 +64,10 @@ class ViewHistory {
   // `frame` (and `surfaces`, row-major, one per pixel, or none) at the full
   // size or the full size over a whole divisor, counting `weight` frames
   // (a preview's is less than 1: frame_budget.h). Without surfaces a moved
-  // camera starts every pixel over.
-  void add(const Image& frame, std::span<const PixelSurface> surfaces, const Camera& camera, double weight = 1.0);
+  // camera starts every pixel over. `surface_offset`: where in its pixel
+  // each surface's ray passed (core/pixel_surface.h: surface_film_offset).
+  void add(const Image& frame, std::span<const PixelSurface> surfaces, const Camera& camera, double weight = 1.0,
+           glm::vec2 surface_offset = glm::vec2(0.5f));
   void reset();
   Image resolve() const;
 
@@ -101,7 +104,7 @@ class ViewHistory {
     int divisor = 0;  // of the frame `seen` came from
   };
   Upscale upscale_of(const Image& frame) const;
-  void seen(std::span<const PixelSurface> surfaces, const Upscale& up, const Camera& camera,
+  void seen(std::span<const PixelSurface> surfaces, const Upscale& up, const Camera& camera, glm::vec2 offset,
             std::vector<Seen>& out) const;
   // Per pixel of view `now`, the pixel of view `before` whose history it takes (the tests above), or -1.
   void correspond(const View& before, const View& now, std::vector<int32_t>& source) const;

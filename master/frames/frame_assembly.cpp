@@ -2,8 +2,9 @@
 
 #include <utility>
 
-#include "protocol/pixels.h"
+#include "core/pixel_surface.h"
 #include "core/tiling.h"
+#include "protocol/pixels.h"
 
 namespace igi {
 
@@ -62,7 +63,8 @@ CompletedFrame FrameAssembly::complete(uint64_t frame_id, Clock::time_point bega
   OpenFrame& f = frames_.at(frame_id);
   f.record.seconds = f.started ? std::chrono::duration<double>(Clock::now() - *f.started).count() : 0.0;
   f.record.completed_at = std::chrono::duration<double>(Clock::now() - began).count();
-  CompletedFrame done{f.setup, std::move(f.pixels), std::move(f.record), std::move(f.surfaces)};
+  CompletedFrame done{f.setup, std::move(f.pixels), std::move(f.record), std::move(f.surfaces),
+                      surface_film_offset(f.setup, f.settings.aa_samples)};
   frames_.erase(frame_id);
   return done;
 }

@@ -17,6 +17,8 @@
 #include <tuple>
 #include <vector>
 
+#include <glm/vec2.hpp>
+
 #include "core/frame.h"
 #include "core/settings.h"
 #include "frames/frame_buffer_pool.h"
@@ -55,6 +57,7 @@ struct CompletedFrame {
   std::shared_ptr<FrameBuffer> pixels;  // back to the session's pool when the last copy goes
   FrameRecord record;
   std::vector<PixelSurface> surfaces;  // one a pixel when setup.want_surfaces, else none
+  glm::vec2 surface_offset{0.5f};      // where in its pixel each surface's ray passes (core/pixel_surface.h)
 };
 
 class FrameAssembly {

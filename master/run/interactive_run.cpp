@@ -126,7 +126,8 @@ struct Shower {
     if (animated) history.reset();  // each frame stands at its own time
     if (camera_animated) controller.follow(shown.frame.setup.camera);  // a first move starts from the view shown
     ++shown_frames;
-    history.add(shown.frame.pixels->to_image(), shown.frame.surfaces, shown.frame.setup.camera, shown.weight);
+    history.add(shown.frame.pixels->to_image(), shown.frame.surfaces, shown.frame.setup.camera, shown.weight,
+                shown.frame.surface_offset);
     shown.frame.pixels.reset();  // back to the pool
     if (meter.metering) meter.shown(history.resolve(), shown.planned.level == 0, panel.settings());  // 0: full
     const auto now = FrameRate::Clock::now();

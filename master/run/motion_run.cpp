@@ -105,7 +105,7 @@ int run_motion(const MasterOptions& o, const Scene& scene, MasterSession& sessio
       // (Legacy frames carry no surfaces: a moved camera starts the history over.)
       Image rendered = f.frame.pixels->to_image();
       const float mean = luminance(rendered.mean());  // the frame's own brightness: flicker between frames
-      history.add(std::move(rendered), f.frame.surfaces, f.frame.setup.camera, f.weight);
+      history.add(std::move(rendered), f.frame.surfaces, f.frame.setup.camera, f.weight, f.frame.surface_offset);
       const double now = std::chrono::duration<double>(Clock::now() - *start).count();
       char line[320];
       std::snprintf(line, sizeof line,

@@ -167,7 +167,8 @@ struct ViewerServer {
   void take_frames() {
     for (Shown& shown : handover.take(std::chrono::milliseconds(0))) {
       if (shown.planned.settings_generation != state.view().settings_generation) continue;  // old settings
-      history.add(shown.frame.pixels->to_image(), shown.frame.surfaces, shown.frame.setup.camera, shown.weight);
+      history.add(shown.frame.pixels->to_image(), shown.frame.surfaces, shown.frame.setup.camera, shown.weight,
+                  shown.frame.surface_offset);
       shown.frame.pixels.reset();  // back to the pool
       const auto now = Clock::now();
       rate.shown(now);

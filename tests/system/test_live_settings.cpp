@@ -130,7 +130,7 @@ TEST(LiveSettings, ACancelledFrameNeverComesAndSurfacesLeaveThePixelsAlone) {
   EXPECT_EQ(done[0].setup.frame_id, 1u) << "the cancelled frame came after all";
   EXPECT_EQ(max_abs_error(done[0].pixels->to_image(), render_here(scene, settings, still)), 0.0f);
   std::vector<PixelSurface> here(size_t(48) * 36);
-  trace_pixel_surfaces(*scene.accel, still, TileJob{0, 0, 48, 36, 0}, here);
+  trace_pixel_surfaces(*scene.accel, still, settings.aa_samples, TileJob{0, 0, 48, 36, 0}, here);
   ASSERT_EQ(done[0].surfaces.size(), here.size());
   EXPECT_TRUE(done[0].surfaces == here) << "the surfaces the worker traced differ from this process's";
 }

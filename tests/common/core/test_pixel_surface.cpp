@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 
 #include "core/camera_front_end.h"
+#include "core/parallel.h"
 #include "core/pixel_surface.h"
+#include "core/tiling.h"
+#include "render/frame_job.h"
 #include "scene/builtin_scenes.h"
 #include "support/render_fixture.h"
 
@@ -16,7 +19,7 @@ constexpr int kWidth = 32, kHeight = 24;
 
 std::vector<PixelSurface> trace(const test::Prepared& scene, const FrameSetup& frame, const TileJob& tile) {
   std::vector<PixelSurface> out(size_t(tile.w) * size_t(tile.h));
-  EXPECT_EQ(trace_pixel_surfaces(*scene.accel, frame, tile, out), out.size()) << "one ray a pixel";
+  EXPECT_EQ(trace_pixel_surfaces(*scene.accel, frame, 1, tile, out), out.size()) << "one ray a pixel";
   return out;
 }
 
@@ -58,7 +61,7 @@ TEST(PixelSurface, ATileTracesItsOwnPixels) {
     for (int x = 0; x < tile.w; ++x)
       ASSERT_EQ(surfaces[size_t(y) * tile.w + x], image[size_t(tile.y + y) * kWidth + tile.x + x]) << x << ", " << y;
   std::vector<PixelSurface> wrong(10);
-  EXPECT_THROW(trace_pixel_surfaces(*scene.accel, frame, tile, wrong), std::invalid_argument);
+  EXPECT_THROW(trace_pixel_surfaces(*scene.accel, frame, 1, tile, wrong), std::invalid_argument);
 }
 
 // The glossy floor (GGX metal, alpha 0.2) and the mirror and glass are view-dependent, the walls are not.
@@ -92,6 +95,45 @@ TEST(PixelSurface, RoughMetallicRoughnessCarriesItsHistorySmoothDoesNot) {
       EXPECT_EQ(view_dependent(surfaces), roughness * roughness < kViewDependentAlpha ? seen : 0u)
           << "metallic " << metallic << ", roughness " << roughness;
     }
+}
+
+// IR and IGI give a frame's surfaces from their G-buffer's sub-sample 0
+// (core/gbuffer.h): the rays a pass of their own would trace, so the same
+// surfaces bit for bit, with and without anti-aliasing (sub-sample 0 off the
+// pixel's centre), with light on a lattice (the window's sharp previews),
+// through glass (the first hit, not the chain's end), in tiles of any size
+// with their filter border; and the pixels are those of a frame without them.
+TEST(PixelSurface, IgisOwnCameraRaysGiveTheSurfacesAPassOfTheirOwnWould) {
+  FlushToZeroScope flush_to_zero;  // as on every render thread
+  for (const char* name : {"cornell", "glass"}) {
+    const test::Prepared scene(make_builtin_scene(name));
+    for (const int aa : {1, 4})
+      for (const int divisor : {1, 3}) {
+        RenderSettings settings = test::vpl_settings(MethodKind::Igi, 4, 0.1f, true, 0, aa);
+        settings.light_divisor = divisor;
+        FrameSetup frame = scene.frame(kWidth, kHeight, 5);
+        frame.jitter_x = 0.3f, frame.jitter_y = 0.8f;  // a progressive pass's
+        FrameJob plain(scene.context(), settings), with(scene.context(), settings);
+        plain.begin(frame);
+        frame.want_surfaces = true;
+        with.begin(frame);
+        for (const int size : {8, 13})
+          for (const TileJob& tile : make_tiles(kWidth, kHeight, size, size, plain.border())) {
+            const RenderedTile got = with.render(tile);
+            std::vector<PixelSurface> own(size_t(tile.w) * size_t(tile.h));
+            trace_pixel_surfaces(*scene.accel, frame, aa, tile, own);
+            const std::string what = std::string(name) + ", aa " + std::to_string(aa) + ", light 1/" +
+                                     std::to_string(divisor) + ", tile at " + std::to_string(tile.x) + ", " +
+                                     std::to_string(tile.y);
+            ASSERT_TRUE(got.surfaces == own) << what;
+            EXPECT_TRUE(got.pixels == plain.render(tile).pixels) << what;
+          }
+        if (aa == 4) {  // sub-sample 0 is not the centre: the surfaces' offset says where it is
+          const glm::vec2 offset = surface_film_offset(frame, aa);
+          EXPECT_EQ(offset, glm::vec2(0.15f, 0.4f)) << "cell (0, 0) of the 2 x 2 grid at the jitter";
+        }
+      }
+  }
 }
 
 TEST(PixelSurface, ARayThatLeavesTheSceneHasNoSurface) {
