@@ -28,9 +28,9 @@ struct FrameSetup {
   bool want_surfaces = false;
 };
 
-// The first surface the camera ray through a pixel's centre meets: what the
-// master needs to carry the pixel's history into a new view. Plain bytes on
-// the wire, 8 a pixel.
+// The first surface one camera ray through a pixel meets (its sub-sample 0 at
+// the frame's jitter: core/pixel_surface.h): what the master needs to carry
+// the pixel's history into a new view. Plain bytes on the wire, 8 a pixel.
 struct PixelSurface {
   static constexpr uint8_t kViewDependent = 1;  // glossy, mirror or glass: its colour changes with the view
   float depth = 0.0f;            // distance along the ray; 0: the ray leaves the scene

@@ -137,7 +137,7 @@ class ViewHistory {
   double carried_share_ = 1.0;
 };
 
-// A frame's surfaces decoded: the point a pixel's centre ray meets, and its unit normal.
+// A surface's unit normal, decoded.
 glm::vec3 surface_normal(const PixelSurface& s);
 
 }  // namespace igi
