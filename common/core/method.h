@@ -27,9 +27,8 @@ class Method {
   // The same, and into `surfaces` (w x h) what the pixels show
   // (core/pixel_surface.h) from the method's own camera rays; false when
   // it has none to give (then the caller traces them: trace_pixel_surfaces).
-  virtual bool render_tile_with_surfaces(const TileJob& job, std::span<glm::vec3> out,
-                                         std::span<PixelSurface> surfaces, RayCounts& rays) const {
-    (void)job, (void)out, (void)surfaces, (void)rays;
+  virtual bool render_tile_with_surfaces(const TileJob& /*job*/, std::span<glm::vec3> /*out*/,
+                                         std::span<PixelSurface> /*surfaces*/, RayCounts& /*rays*/) const {
     return false;
   }
   // Content hash of the per-frame state (VPL sets); 0 for methods without one.

@@ -76,7 +76,6 @@ void ViewHistory::reset() {
   const size_t pixels = size_t(width_) * height_;
   for (Layer* layer : {&still_, &carried_, &moving_, &preview_}) layer->clear(pixels);
   from_previews_.assign(pixels, 0);
-  from_view_.assign(pixels, -1);
   still_view_ = view_ = View{};
   empty_ = true;
   is_moving_ = false;
